@@ -1,0 +1,81 @@
+// feint/stats/htest.hpp - the one result type every hypothesis test returns.
+//
+// Modelled on R's `htest` (and broom's tidy columns): whatever the test, the same fields, so every
+// report writer renders every test. Fields that do not apply to a test are empty (nullopt), never
+// 0 or NaN. A test that cannot be computed (n < 2, constant data, an empty group) has
+// `computed == false` and says why in `note`; its numeric results are empty.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+
+namespace feint::stats {
+
+/// The alternative hypothesis, as R's `alternative =` argument.
+enum class Alternative { two_sided, greater, less };
+
+/// "two.sided", "greater", "less" (R's spelling).
+std::string_view to_string(Alternative alternative) noexcept;
+/// Parses R's spelling (also "two-sided"); throws UsageError otherwise.
+Alternative parse_alternative(std::string_view text);
+
+/// Settings shared by every test.
+struct TestOptions {
+  Alternative alternative = Alternative::two_sided;
+  double conf_level = 0.95;  ///< in (0, 1)
+};
+
+struct TestResult {
+  // What was run.
+  std::string test;    ///< one_sample_t, welch_t, student_t, paired_t, tost,
+                       ///< wilcoxon_signed_rank, mann_whitney, anova, welch_anova, kruskal_wallis
+  std::string method;  ///< R's `method` string, e.g. "Welch Two Sample t-test"
+  Alternative alternative = Alternative::two_sided;
+  double conf_level = 0.95;
+  std::optional<double> mu;  ///< the null value (reference mean, or hypothesised difference)
+
+  // The samples (group 1 = x, group 2 = y; one-sample tests fill only group 1).
+  std::size_t n1 = 0;
+  std::size_t n2 = 0;
+  std::optional<double> mean1, mean2, sd1, sd2;
+  std::optional<double> median1, median2, iqr1, iqr2;
+
+  // The result.
+  std::optional<double> estimate;   ///< mean (one-sample, paired: mean difference) or mean1 - mean2
+  std::optional<double> statistic;  ///< t, V, W, F, chi-squared ...
+  std::string statistic_name;       ///< "t", "V", "W", "F", "chi-squared"
+  std::optional<double> df;         ///< R's `parameter` (numerator df for F tests)
+  std::optional<double> df2;        ///< denominator df of F tests
+  std::optional<double> p_value;    ///< may be 0 only when below the smallest double (see p_text)
+  std::optional<double> p_adjusted; ///< filled by a multiple-comparison step, not by the test
+  std::optional<double> conf_low, conf_high;
+
+  // Effect sizes.
+  std::optional<double> cohen_d;        ///< d (one-sample, two-sample pooled) or d_z (paired)
+  std::optional<double> hedges_g;       ///< d times the exact gamma-function correction J(df)
+  std::optional<double> rank_biserial;  ///< rank tests only
+  std::optional<bool> exact;            ///< rank tests: exact distribution (true) or normal approx.
+
+  bool computed = true;
+  std::string note;  ///< why it could not be computed, or a warning (ties, zeros, ...)
+
+  /// (conf_low, conf_high); SciPy's `confidence_interval()`.
+  std::pair<std::optional<double>, std::optional<double>> confidence_interval() const {
+    return {conf_low, conf_high};
+  }
+
+  /// A result that could not be computed, with the reason.
+  static TestResult not_computable(std::string test, std::string method, std::string reason) {
+    TestResult r;
+    r.test = std::move(test);
+    r.method = std::move(method);
+    r.computed = false;
+    r.note = std::move(reason);
+    return r;
+  }
+};
+
+}  // namespace feint::stats

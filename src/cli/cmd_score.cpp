@@ -1,0 +1,13 @@
+// Placeholder registration; the command is implemented by its issue (see commands.hpp).
+#include "commands.hpp"
+#include "feint/error.hpp"
+
+namespace feint::cli {
+
+void add_score_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand("score", "(not implemented yet)");
+  cmd->allow_extras();
+  cmd->callback([] { throw UsageError("'feint score' is not implemented yet"); });
+}
+
+}  // namespace feint::cli

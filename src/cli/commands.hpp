@@ -1,0 +1,18 @@
+// src/cli/commands.hpp - each subcommand registers itself on the top-level app.
+//
+// A command's callback does the work and reports failure by throwing a feint::Error subclass;
+// main() maps it to the exit code (see feint/error.hpp and the README).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace feint::cli {
+
+void add_score_command(CLI::App& app);     // cmd_score.cpp    (issue: trial scoring)
+void add_table_command(CLI::App& app);     // cmd_table.cpp    (issue: Table 1)
+void add_describe_command(CLI::App& app);  // cmd_describe.cpp (issue: Table 1)
+void add_analyze_command(CLI::App& app);   // cmd_analyze.cpp  (issue: Table 1)
+void add_likert_command(CLI::App& app);    // cmd_likert.cpp   (issue: Likert)
+void add_simulate_command(CLI::App& app);  // cmd_simulate.cpp (issue: selection simulator)
+
+}  // namespace feint::cli

@@ -1,0 +1,185 @@
+#include <gtest/gtest.h>
+#include <zlib.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "feint/error.hpp"
+#include "feint/io/csv.hpp"
+#include "feint/io/number.hpp"
+#include "feint/io/output.hpp"
+
+namespace fs = std::filesystem;
+using feint::io::CsvOptions;
+using feint::io::CsvReader;
+
+namespace {
+
+fs::path temp_file(const std::string& name, const std::string& content) {
+  const fs::path dir = fs::temp_directory_path() / "feint-test-csv";
+  fs::create_directories(dir);
+  const fs::path p = dir / name;
+  std::ofstream(p, std::ios::binary) << content;
+  return p;
+}
+
+std::vector<std::vector<std::string>> read_all(const fs::path& p, CsvOptions opt = {}) {
+  CsvReader r(p.string(), opt);
+  std::vector<std::vector<std::string>> rows;
+  while (r.next()) rows.emplace_back(r.fields().begin(), r.fields().end());
+  return rows;
+}
+
+}  // namespace
+
+TEST(CsvReader, ReadsHeaderAndRecords) {
+  const auto p = temp_file("plain.csv", "a,b,c\n1,2,3\n4,5,6\n");
+  CsvReader r(p.string());
+  EXPECT_EQ(r.header(), (std::vector<std::string>{"a", "b", "c"}));
+  ASSERT_TRUE(r.next());
+  EXPECT_EQ(r.line(), 2u);
+  EXPECT_EQ(r.field(2), "3");
+  ASSERT_TRUE(r.next());
+  EXPECT_EQ(r.line(), 3u);
+  EXPECT_EQ(r.field(0), "4");
+  EXPECT_FALSE(r.next());
+  EXPECT_EQ(r.records(), 2u);
+}
+
+TEST(CsvReader, HandlesQuotesCrlfBomAndMissingFinalNewline) {
+  const auto p = temp_file("quoted.csv",
+                           "\xEF\xBB\xBFName,Text\r\n\"P,01\",\"say \"\"hi\"\"\"\r\n"
+                           "P02,\"two\nlines\"\r\nP03,last");
+  CsvReader r(p.string());
+  EXPECT_EQ(r.header()[0], "Name");
+  EXPECT_EQ(r.column("name"), 0);
+  EXPECT_EQ(r.column(" TEXT "), 1);
+  ASSERT_TRUE(r.next());
+  EXPECT_EQ(r.field(0), "P,01");
+  EXPECT_EQ(r.field(1), "say \"hi\"");
+  ASSERT_TRUE(r.next());
+  EXPECT_EQ(r.field(1), "two\nlines");
+  EXPECT_EQ(r.line(), 3u);
+  ASSERT_TRUE(r.next());
+  EXPECT_EQ(r.line(), 5u);  // the quoted line break moved it down one line
+  EXPECT_EQ(r.field(1), "last");
+  EXPECT_FALSE(r.next());
+}
+
+TEST(CsvReader, DetectsSemicolonAndTab) {
+  EXPECT_EQ(read_all(temp_file("semi.csv", "a;b\n1,5;2\n"))[0][0], "1,5");
+  CsvReader tab(temp_file("tab.csv", "a\tb\n1\t2\n").string());
+  EXPECT_EQ(tab.delimiter(), '\t');
+  CsvOptions explicit_comma;
+  explicit_comma.delimiter = ',';
+  explicit_comma.require_header_width = false;
+  EXPECT_EQ(read_all(temp_file("semi2.csv", "a;b\n1;2\n"), explicit_comma)[0].size(), 1u);
+}
+
+TEST(CsvReader, ReadsGzipTransparently) {
+  const fs::path p = fs::temp_directory_path() / "feint-test-csv" / "z.csv.gz";
+  fs::create_directories(p.parent_path());
+  gzFile f = gzopen(p.c_str(), "wb");
+  ASSERT_NE(f, nullptr);
+  std::string content = "t,pad\n";
+  for (int i = 0; i < 100000; ++i) content += std::to_string(i) + ",0.5\n";
+  gzwrite(f, content.data(), static_cast<unsigned>(content.size()));
+  gzclose(f);
+  CsvReader r(p.string());
+  std::size_t n = 0;
+  while (r.next()) ++n;
+  EXPECT_TRUE(r.compressed());
+  EXPECT_EQ(n, 100000u);
+  EXPECT_EQ(r.line(), 100001u);
+}
+
+TEST(CsvReader, RecordsLongerThanTheBufferSurvive) {
+  std::string big(3'000'000, 'x');
+  const auto rows = read_all(temp_file("big.csv", "a,b\n" + big + ",\"" + big + "\"\n1,2\n"));
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0][0].size(), big.size());
+  EXPECT_EQ(rows[0][1], big);
+  EXPECT_EQ(rows[1][1], "2");
+}
+
+TEST(CsvReader, RejectsMalformedInputWithFileAndLine) {
+  const auto expect_invalid = [](const std::string& name, const std::string& content,
+                                 const std::string& fragment) {
+    const auto p = temp_file(name, content);
+    try {
+      read_all(p);
+      ADD_FAILURE() << "no error for " << name;
+    } catch (const feint::InvalidData& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(p.string()), std::string::npos) << e.what();
+      EXPECT_EQ(e.code(), feint::ExitCode::invalid_data);
+    }
+  };
+  expect_invalid("width.csv", "a,b\n1,2\n1,2,3\n", ":3: 3 fields where the header has 2");
+  expect_invalid("unterminated.csv", "a,b\n1,\"2\n", ":2: unterminated quoted field");
+  expect_invalid("after.csv", "a,b\n\"1\"x,2\n", ":2: field 1: text after a closing quote");
+  expect_invalid("stray.csv", "a,b\n1,2\"x\"\n3,4\n", ":2: field 2: a quote inside an unquoted field");
+  expect_invalid("empty.csv", "", "empty file: a header row is required");
+}
+
+TEST(CsvReader, MissingFileIsAnIoError) {
+  try {
+    CsvReader r("/nonexistent/feint/x.csv");
+    FAIL();
+  } catch (const feint::IoError& e) {
+    EXPECT_EQ(e.code(), feint::ExitCode::io);
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/feint/x.csv"), std::string::npos);
+  }
+}
+
+TEST(Number, ParsesOnlyWhatTheContractAllows) {
+  using feint::io::parse_double;
+  EXPECT_EQ(parse_double("0.5"), 0.5);
+  EXPECT_EQ(parse_double(" -1e-3 "), -1e-3);
+  EXPECT_EQ(parse_double("+2"), 2.0);
+  EXPECT_EQ(parse_double(".25"), 0.25);
+  for (const char* bad : {"", " ", "nan", "NaN", "inf", "-inf", "1,5", "1,000", "0x10", "1.5x",
+                          "1e999", "abc"}) {
+    EXPECT_FALSE(parse_double(bad).has_value()) << bad;
+  }
+  EXPECT_EQ(feint::io::parse_integer("12"), 12);
+  EXPECT_FALSE(feint::io::parse_integer("1.5").has_value());
+}
+
+TEST(Number, FormatsRoundTrip) {
+  for (const double x : {0.1, 1.0 / 3.0, 1e-300, 123456789.125, -0.0, 5e-324}) {
+    EXPECT_EQ(*feint::io::parse_double(feint::io::format_double(x)), x);
+  }
+  EXPECT_EQ(feint::io::format_double(0.5), "0.5");
+  EXPECT_EQ(feint::io::format_double(std::nan("")), "");
+}
+
+TEST(AtomicOutput, NothingAppearsUntilCommit) {
+  const fs::path dir = fs::temp_directory_path() / "feint-test-out";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path target = dir / "table.csv";
+  {
+    feint::io::AtomicOutput out(target.string());
+    out.stream() << "half a table";
+    EXPECT_FALSE(fs::exists(target));
+  }  // destroyed without commit: as a failing run
+  EXPECT_FALSE(fs::exists(target));
+  EXPECT_TRUE(fs::is_empty(dir)) << "temporary file left behind";
+  {
+    feint::io::AtomicOutput out(target.string());
+    out.stream() << "whole table\n";
+    out.commit();
+  }
+  std::ifstream in(target);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "whole table");
+}
+
+TEST(AtomicOutput, UnwritableDirectoryIsAnIoError) {
+  EXPECT_THROW(feint::io::AtomicOutput("/nonexistent/feint/out.csv"), feint::IoError);
+}
