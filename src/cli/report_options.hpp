@@ -1,0 +1,63 @@
+// src/cli/report_options.hpp - command-line options shared by the report commands (`feint table`,
+// `feint likert`, `feint describe`) and the atomic write of their rendered output.
+//
+// Usage in a command:
+//   auto opts = std::make_shared<ReportOptions>();
+//   add_report_options(*cmd, *opts);              // --format -o --apa --alpha --alternative ...
+//   cmd->callback([opts] {
+//     const ResolvedReportOptions r = resolve_report_options(*opts);  // UsageError (exit 64)
+//     ... render with r.format ...
+//     write_report(r.output, text);                                     // atomic; `-` = stdout
+//   });
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include <CLI/CLI.hpp>
+
+#include "feint/report/writers.hpp"
+#include "feint/stats/htest.hpp"
+#include "feint/stats/p_adjust.hpp"
+
+namespace feint::cli {
+
+/// The raw option values as CLI11 parses them.
+struct ReportOptions {
+  std::string format = "text";
+  std::string output = "-";
+  bool apa = false;
+  double alpha = 0.05;
+  std::string alternative = "two.sided";
+  double conf_level = 0.95;
+  std::string p_adjust = "none";
+};
+
+/// Which of the shared options a command offers (describe has no tests: only format and output).
+struct ReportOptionSet {
+  bool tests = true;  ///< --apa --alpha --alternative --conf-level --p-adjust
+};
+
+/// Registers `--format`, `-o/--output` and (unless `set.tests` is false) `--apa`, `--alpha`,
+/// `--alternative`, `--conf-level`, `--p-adjust` on `cmd`, bound to `options` (which must outlive
+/// the parse).
+void add_report_options(CLI::App& cmd, ReportOptions& options, ReportOptionSet set = {});
+
+/// The validated options.
+struct ResolvedReportOptions {
+  report::OutputFormat format = report::OutputFormat::text;
+  std::string output = "-";
+  bool apa = false;
+  double alpha = 0.05;
+  stats::TestOptions test;
+  stats::PAdjustMethod p_adjust = stats::PAdjustMethod::none;
+};
+
+/// Validates: format name, alpha and conf-level in (0, 1), alternative, p-adjust method. Throws
+/// UsageError (exit 64) naming the option and the accepted values.
+ResolvedReportOptions resolve_report_options(const ReportOptions& options);
+
+/// Writes `content` to `path` atomically (temporary file + rename; `-` = standard output).
+void write_report(const std::string& path, std::string_view content);
+
+}  // namespace feint::cli
