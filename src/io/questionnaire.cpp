@@ -1,0 +1,459 @@
+// Likert questionnaire loader (formats.md, Questionnaires). See feint/io/questionnaire.hpp.
+#include "feint/io/questionnaire.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "feint/error.hpp"
+#include "feint/io/csv.hpp"
+#include "feint/io/number.hpp"
+
+namespace feint::io {
+
+namespace detail {
+namespace {
+
+/// A record kept in memory: questionnaires are small, and the Qualtrics check needs look-ahead.
+struct Record {
+  std::uint64_t line = 0;
+  std::vector<std::string> fields;
+};
+
+bool iequals(std::string_view a, std::string_view b) { return to_lower(trim(a)) == to_lower(trim(b)); }
+
+/// Column metadata written by survey platforms, never an item unless named in --items.
+constexpr std::array<std::string_view, 23> kPlatformColumns = {
+    // Qualtrics
+    "startdate", "enddate", "status", "ipaddress", "progress", "duration (in seconds)", "finished",
+    "recordeddate", "responseid", "recipientlastname", "recipientfirstname", "recipientemail",
+    "externalreference", "externaldatareference", "locationlatitude", "locationlongitude",
+    "distributionchannel", "userlanguage", "q_recaptchascore", "q_relevantidduplicate",
+    // Google Forms
+    "timestamp", "email address", "score"};
+
+bool is_platform_column(std::string_view name) {
+  const std::string key = to_lower(trim(name));
+  return std::find(kPlatformColumns.begin(), kPlatformColumns.end(), key) != kPlatformColumns.end();
+}
+
+std::string scale_text(int lo, int hi) { return fmt::format("{}-{}", lo, hi); }
+
+/// Converts one answer to a scale point, or nullopt when empty (missing).
+class ResponseParser {
+ public:
+  ResponseParser(const QuestionnaireOptions& options, std::string file)
+      : min_(options.scale_min), max_(options.scale_max), file_(std::move(file)) {
+    if (!options.labels.empty()) {
+      labels_ = options.labels;
+      label_map_ = "user";
+    } else {
+      labels_ = builtin_agree_labels(min_, max_);
+      if (!labels_.empty()) label_map_ = fmt::format("built-in {}-point agree", max_ - min_ + 1);
+    }
+    for (const auto& e : labels_) keys_.emplace(to_lower(trim(e.text)), e.value);
+  }
+
+  const std::string& label_map() const { return label_map_; }
+  std::size_t mapped() const { return mapped_; }
+
+  /// `who` is the context in parentheses, e.g. "participant P07".
+  std::optional<int> parse(std::string_view raw, std::uint64_t line, std::string_view column,
+                           const std::string& who) {
+    const std::string_view text = trim(raw);
+    if (text.empty()) return std::nullopt;
+    if (const auto it = keys_.find(to_lower(text)); it != keys_.end()) {
+      ++mapped_;
+      return it->second;
+    }
+    const auto value = parse_double(text);
+    if (!value) {
+      std::string expected = fmt::format("expected a whole number {}", scale_text(min_, max_));
+      if (!label_map_.empty()) {
+        expected += fmt::format(" or a label of the {} map", label_map_);
+      } else {
+        expected += " (use --labels to map text answers)";
+      }
+      fail(line, fmt::format("column '{}': '{}' is not a number or a known label ({}); {}", column,
+                             text, who, expected));
+    }
+    if (*value < min_ || *value > max_) {
+      fail(line, fmt::format("column '{}': {} is outside the scale {} ({})", column, text,
+                             scale_text(min_, max_), who));
+    }
+    if (*value != std::floor(*value)) {
+      fail(line, fmt::format("column '{}': {} is not a whole number on the scale {} ({})", column,
+                             text, scale_text(min_, max_), who));
+    }
+    return static_cast<int>(*value);
+  }
+
+  [[noreturn]] void fail(std::uint64_t line, const std::string& what) const {
+    throw InvalidData(fmt::format("{}:{}: {}", file_, line, what));
+  }
+
+ private:
+  int min_;
+  int max_;
+  std::string file_;
+  std::vector<LabelEntry> labels_;
+  std::map<std::string, int> keys_;
+  std::string label_map_;
+  std::size_t mapped_ = 0;
+};
+
+int find_column(const std::vector<std::string>& header, std::string_view name) {
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (iequals(header[i], name)) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+std::string list_names(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) {
+    if (!out.empty()) out += ", ";
+    out += n;
+  }
+  return out;
+}
+
+/// Respondent index by (participant, condition), in order of first appearance.
+class Respondents {
+ public:
+  explicit Respondents(Questionnaire& q) : q_(q) {}
+  /// Returns (index, line of first appearance, inserted).
+  std::pair<std::size_t, bool> find_or_add(const std::string& participant,
+                                           const std::string& condition, std::uint64_t line) {
+    const auto key = std::make_pair(participant, condition);
+    if (const auto it = index_.find(key); it != index_.end()) return {it->second, false};
+    const std::size_t i = q_.participants.size();
+    index_.emplace(key, i);
+    first_line_.push_back(line);
+    q_.participants.push_back(participant);
+    q_.conditions.push_back(condition);
+    for (auto& col : q_.responses) col.emplace_back();
+    return {i, true};
+  }
+  std::uint64_t first_line(std::size_t i) const { return first_line_[i]; }
+
+ private:
+  Questionnaire& q_;
+  std::map<std::pair<std::string, std::string>, std::size_t> index_;
+  std::vector<std::uint64_t> first_line_;
+};
+
+std::string who(const Questionnaire& q, const std::string& participant,
+                const std::string& condition) {
+  if (q.has_condition) return fmt::format("participant {}, condition {}", participant, condition);
+  return fmt::format("participant {}", participant);
+}
+
+}  // namespace
+}  // namespace detail
+
+std::string_view to_string(QuestionnaireLayout layout) noexcept {
+  switch (layout) {
+    case QuestionnaireLayout::long_format: return "long";
+    case QuestionnaireLayout::wide_format: return "wide";
+    case QuestionnaireLayout::automatic: break;
+  }
+  return "auto";
+}
+
+QuestionnaireLayout parse_questionnaire_layout(std::string_view text) {
+  const std::string t = to_lower(trim(text));
+  if (t == "long") return QuestionnaireLayout::long_format;
+  if (t == "wide") return QuestionnaireLayout::wide_format;
+  if (t == "auto") return QuestionnaireLayout::automatic;
+  throw UsageError(fmt::format("--layout '{}': expected long, wide or auto", text));
+}
+
+std::optional<std::size_t> Questionnaire::item_index(std::string_view name) const {
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (items[i] == trim(name)) return i;
+  }
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (detail::iequals(items[i], name)) return i;
+  }
+  return std::nullopt;
+}
+
+std::vector<std::string> Questionnaire::condition_names() const {
+  std::vector<std::string> out;
+  for (const auto& c : conditions) {
+    if (std::find(out.begin(), out.end(), c) == out.end()) out.push_back(c);
+  }
+  return out;
+}
+
+std::size_t Questionnaire::missing(std::size_t i) const {
+  return static_cast<std::size_t>(
+      std::count_if(responses[i].begin(), responses[i].end(), [](const auto& r) { return !r; }));
+}
+
+std::pair<int, int> parse_scale(std::string_view text) {
+  const std::string_view t = trim(text);
+  // The separating '-' is the first one after the first character (MIN may be negative).
+  const auto dash = t.size() > 1 ? t.find('-', 1) : std::string_view::npos;
+  const auto fail = [&]() -> std::pair<int, int> {
+    throw UsageError(fmt::format("--scale '{}': expected MIN-MAX with whole numbers MIN < MAX, "
+                                 "e.g. 1-7",
+                                 text));
+  };
+  if (dash == std::string_view::npos) return fail();
+  const auto lo = parse_integer(t.substr(0, dash));
+  const auto hi = parse_integer(t.substr(dash + 1));
+  if (!lo || !hi || *lo >= *hi || *lo < -1000000 || *hi > 1000000) return fail();
+  return {static_cast<int>(*lo), static_cast<int>(*hi)};
+}
+
+std::vector<LabelEntry> parse_label_map(std::string_view text) {
+  std::vector<LabelEntry> out;
+  for (const auto& entry : split_csv_line(text, ',')) {
+    if (trim(entry).empty()) continue;
+    const auto eq = entry.rfind('=');
+    if (eq == std::string::npos) {
+      throw UsageError(fmt::format("--labels: '{}' is not of the form Text=N", entry));
+    }
+    const std::string label(trim(std::string_view(entry).substr(0, eq)));
+    const auto value = parse_integer(std::string_view(entry).substr(eq + 1));
+    if (label.empty() || !value || *value < -1000000 || *value > 1000000) {
+      throw UsageError(
+          fmt::format("--labels: '{}' is not of the form Text=N with a whole number N", entry));
+    }
+    for (const auto& e : out) {
+      if (to_lower(e.text) == to_lower(label)) {
+        throw UsageError(fmt::format("--labels: label '{}' is given twice", label));
+      }
+    }
+    out.push_back({label, static_cast<int>(*value)});
+  }
+  if (out.empty()) throw UsageError("--labels: no labels given");
+  return out;
+}
+
+std::vector<LabelEntry> builtin_agree_labels(int scale_min, int scale_max) {
+  const long long points = static_cast<long long>(scale_max) - scale_min + 1;
+  const int m = scale_min;
+  if (points == 5) {
+    return {{"Strongly disagree", m},         {"Disagree", m + 1},
+            {"Somewhat disagree", m + 1},     {"Neither agree nor disagree", m + 2},
+            {"Neutral", m + 2},               {"Agree", m + 3},
+            {"Somewhat agree", m + 3},        {"Strongly agree", m + 4}};
+  }
+  if (points == 7) {
+    return {{"Strongly disagree", m},      {"Disagree", m + 1},
+            {"Somewhat disagree", m + 2},  {"Neither agree nor disagree", m + 3},
+            {"Neutral", m + 3},            {"Somewhat agree", m + 4},
+            {"Agree", m + 5},              {"Strongly agree", m + 6}};
+  }
+  return {};
+}
+
+Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOptions& options) {
+  using detail::Record;
+  if (options.scale_min >= options.scale_max) {
+    throw UsageError(fmt::format("--scale {}-{}: MIN must be below MAX", options.scale_min,
+                                 options.scale_max));
+  }
+  for (const auto& e : options.labels) {
+    if (e.value < options.scale_min || e.value > options.scale_max) {
+      throw UsageError(fmt::format("--labels: '{}={}' is outside the scale {}-{}", e.text, e.value,
+                                   options.scale_min, options.scale_max));
+    }
+  }
+
+  CsvOptions csv;
+  csv.delimiter = options.delimiter;
+  CsvReader reader(path, csv);
+  const std::string file = path == "-" ? "<stdin>" : path;
+  const std::vector<std::string> header = reader.header();
+
+  std::vector<Record> records;
+  while (reader.next()) {
+    Record r;
+    r.line = reader.line();
+    for (const auto f : reader.fields()) r.fields.emplace_back(f);
+    records.push_back(std::move(r));
+  }
+
+  Questionnaire q;
+  q.source = path;
+  q.scale_min = options.scale_min;
+  q.scale_max = options.scale_max;
+
+  // Qualtrics: row 2 is the question text, row 3 holds {"ImportId": ...} cells.
+  std::size_t first = 0;
+  if (records.size() >= 2) {
+    const auto& third = records[1].fields;
+    const bool import_ids = std::any_of(third.begin(), third.end(), [](const std::string& f) {
+      return trim(f).rfind("{\"ImportId\"", 0) == 0;
+    });
+    if (import_ids) {
+      q.qualtrics = true;
+      first = 2;
+    }
+  }
+
+  // Columns.
+  int id_col = detail::find_column(header, options.id_column);
+  if (id_col < 0 && q.qualtrics) id_col = detail::find_column(header, "ResponseId");
+  if (id_col < 0) {
+    throw InvalidData(fmt::format(
+        "{}: no column '{}' (the respondent id); name the study's column with --id-column "
+        "(columns: {})",
+        file, options.id_column, detail::list_names(header)));
+  }
+  const int cond_col = detail::find_column(header, options.condition_column);
+  q.has_condition = cond_col >= 0;
+  const int item_col = detail::find_column(header, options.item_column);
+  const int resp_col = detail::find_column(header, options.response_column);
+
+  q.layout = options.layout;
+  if (q.layout == QuestionnaireLayout::automatic) {
+    q.layout = item_col >= 0 && resp_col >= 0 ? QuestionnaireLayout::long_format
+                                              : QuestionnaireLayout::wide_format;
+  }
+
+  detail::ResponseParser parser(options, file);
+  detail::Respondents respondents(q);
+
+  const auto read_key = [&](const Record& r) {
+    const std::string participant(trim(r.fields[static_cast<std::size_t>(id_col)]));
+    if (participant.empty()) {
+      parser.fail(r.line, fmt::format("column '{}': empty respondent id",
+                                      header[static_cast<std::size_t>(id_col)]));
+    }
+    std::string condition;
+    if (cond_col >= 0) {
+      condition = std::string(trim(r.fields[static_cast<std::size_t>(cond_col)]));
+      if (condition.empty()) {
+        parser.fail(r.line, fmt::format("column '{}': empty condition (participant {})",
+                                        header[static_cast<std::size_t>(cond_col)], participant));
+      }
+    }
+    return std::make_pair(participant, condition);
+  };
+
+  if (q.layout == QuestionnaireLayout::long_format) {
+    if (item_col < 0 || resp_col < 0) {
+      throw InvalidData(fmt::format(
+          "{}: the long layout needs columns '{}' and '{}' (columns: {})", file,
+          options.item_column, options.response_column, detail::list_names(header)));
+    }
+    if (!options.items.empty()) {
+      throw UsageError("--items picks columns of a wide file; this file is in the long layout");
+    }
+    // (respondent, item) -> line of the answer, to name both places of a duplicate.
+    std::map<std::pair<std::size_t, std::size_t>, std::uint64_t> seen;
+    for (std::size_t k = first; k < records.size(); ++k) {
+      const Record& r = records[k];
+      ++q.rows_read;
+      const auto [participant, condition] = read_key(r);
+      const std::string item(trim(r.fields[static_cast<std::size_t>(item_col)]));
+      if (item.empty()) {
+        parser.fail(r.line, fmt::format("column '{}': empty item name (participant {})",
+                                        header[static_cast<std::size_t>(item_col)], participant));
+      }
+      std::size_t it = 0;
+      while (it < q.items.size() && q.items[it] != item) ++it;
+      if (it == q.items.size()) {
+        q.items.push_back(item);
+        q.item_columns.push_back(header[static_cast<std::size_t>(resp_col)]);
+        q.responses.emplace_back(q.participants.size());
+      }
+      const auto [resp, inserted] = respondents.find_or_add(participant, condition, r.line);
+      (void)inserted;
+      if (const auto prev = seen.find({resp, it}); prev != seen.end()) {
+        parser.fail(r.line, fmt::format("{} answered item '{}' twice (first at line {})",
+                                        detail::who(q, participant, condition), item,
+                                        prev->second));
+      }
+      seen.emplace(std::make_pair(resp, it), r.line);
+      q.responses[it][resp] =
+          parser.parse(r.fields[static_cast<std::size_t>(resp_col)], r.line,
+                       header[static_cast<std::size_t>(resp_col)],
+                       detail::who(q, participant, condition) + ", item " + item);
+    }
+  } else {
+    std::vector<std::size_t> cols;
+    if (!options.items.empty()) {
+      for (const auto& name : options.items) {
+        const int c = detail::find_column(header, name);
+        if (c < 0) {
+          throw UsageError(fmt::format("--items: no column '{}' in {} (columns: {})", name, file,
+                                       detail::list_names(header)));
+        }
+        if (c == id_col || c == cond_col) {
+          throw UsageError(fmt::format("--items: '{}' is the id or condition column", name));
+        }
+        if (std::find(cols.begin(), cols.end(), static_cast<std::size_t>(c)) != cols.end()) {
+          throw UsageError(fmt::format("--items: column '{}' is named twice", name));
+        }
+        cols.push_back(static_cast<std::size_t>(c));
+      }
+    } else {
+      for (std::size_t c = 0; c < header.size(); ++c) {
+        if (static_cast<int>(c) == id_col || static_cast<int>(c) == cond_col) continue;
+        if (detail::is_platform_column(header[c])) continue;
+        if (trim(header[c]).empty()) continue;
+        cols.push_back(c);
+      }
+    }
+    if (cols.empty()) {
+      throw InvalidData(fmt::format("{}: no item columns (columns: {})", file,
+                                    detail::list_names(header)));
+    }
+    for (const auto c : cols) {
+      q.items.emplace_back(trim(header[c]));
+      q.item_columns.push_back(header[c]);
+      q.responses.emplace_back();
+    }
+    for (std::size_t k = first; k < records.size(); ++k) {
+      const Record& r = records[k];
+      ++q.rows_read;
+      const auto [participant, condition] = read_key(r);
+      const auto [resp, inserted] = respondents.find_or_add(participant, condition, r.line);
+      if (!inserted) {
+        parser.fail(r.line, fmt::format("{} has a second row (first at line {}); the wide layout "
+                                        "has one row per respondent",
+                                        detail::who(q, participant, condition),
+                                        respondents.first_line(resp)));
+      }
+      for (std::size_t j = 0; j < cols.size(); ++j) {
+        q.responses[j][resp] = parser.parse(r.fields[cols[j]], r.line, header[cols[j]],
+                                            detail::who(q, participant, condition));
+      }
+    }
+  }
+
+  if (q.participants.empty()) {
+    throw InvalidData(fmt::format("{}: no responses (a header but no data rows)", file));
+  }
+  q.text_answers_mapped = parser.mapped();
+  if (q.text_answers_mapped > 0) q.label_map = parser.label_map();
+
+  // Reverse coding, before anything else sees the data.
+  q.reversed.assign(q.items.size(), false);
+  for (const auto& name : options.reverse) {
+    const auto i = q.item_index(name);
+    if (!i) {
+      throw UsageError(fmt::format("--reverse: no item '{}' (items: {})", name,
+                                   detail::list_names(q.items)));
+    }
+    if (q.reversed[*i]) throw UsageError(fmt::format("--reverse: item '{}' is named twice", name));
+    q.reversed[*i] = true;
+    for (auto& x : q.responses[*i]) {
+      if (x) x = q.scale_min + q.scale_max - *x;
+    }
+  }
+  return q;
+}
+
+}  // namespace feint::io
