@@ -36,6 +36,7 @@ struct TestResult {
   Alternative alternative = Alternative::two_sided;
   double conf_level = 0.95;
   std::optional<double> mu;  ///< the null value (reference mean, or hypothesised difference)
+  std::optional<double> margin;  ///< TOST only: the equivalence margin delta (H1: |true - mu| < delta)
 
   // The samples (group 1 = x, group 2 = y; one-sample tests fill only group 1).
   std::size_t n1 = 0;
@@ -51,6 +52,7 @@ struct TestResult {
   std::optional<double> df2;        ///< denominator df of F tests
   std::optional<double> p_value;    ///< may be 0 only when below the smallest double (see p_text)
   std::optional<double> p_adjusted; ///< filled by a multiple-comparison step, not by the test
+  /// The interval at `conf_level`; a one-sided test has one infinite bound (-inf or +inf), as R.
   std::optional<double> conf_low, conf_high;
 
   // Effect sizes.
