@@ -7,16 +7,21 @@
 #include <boost/math/distributions/students_t.hpp>
 
 #include "feint/error.hpp"
+#include "shifted.hpp"
 #include "stats_detail.hpp"
 
 namespace feint::stats {
 
 void Summary::add(double x) noexcept {
-  // Welford (1962): the running mean and M2 never subtract two large nearly-equal sums.
+  // Welford (1962): the running mean and M2 never subtract two large nearly-equal sums. The mean
+  // is carried in extended precision (mean + mean_lo).
   ++n;
-  const double delta = x - mean;
-  mean += delta / static_cast<double>(n);
-  m2 += delta * (x - mean);
+  long double m = static_cast<long double>(mean) + mean_lo;
+  const long double delta = x - m;
+  m += delta / static_cast<long double>(n);
+  m2 += static_cast<double>(delta * (x - m));
+  mean = static_cast<double>(m);
+  mean_lo = static_cast<double>(m - mean);
   min = std::min(min, x);
   max = std::max(max, x);
 }
@@ -27,16 +32,17 @@ void Summary::merge(const Summary& other) noexcept {
     *this = other;
     return;
   }
-  // Chan, Golub & LeVeque (1979), eq. 2.1b: M2 = M2a + M2b + delta^2 na nb / (na + nb).
-  const double na = static_cast<double>(n);
-  const double nb = static_cast<double>(other.n);
-  const double nt = na + nb;
-  const double delta = other.mean - mean;
-  // Weighted mean rather than mean + delta * nb / nt: exact when the means are equal, and
-  // symmetric in the two parts.
-  mean = (na * mean + nb * other.mean) / nt;
-  if (!std::isfinite(mean)) mean = (n >= other.n ? *this : other).mean + delta * (nb / nt);
-  m2 += other.m2 + delta * delta * (na * nb / nt);
+  // Chan, Golub & LeVeque (1979), eq. 2.1b: M2 = M2a + M2b + delta^2 na nb / (na + nb). delta is
+  // formed from the high parts (exact when the means are within a factor two) plus the low parts.
+  const long double na = static_cast<long double>(n);
+  const long double nb = static_cast<long double>(other.n);
+  const long double nt = na + nb;
+  const long double delta = (static_cast<long double>(other.mean) - mean) +
+                            (static_cast<long double>(other.mean_lo) - mean_lo);
+  const long double m = static_cast<long double>(mean) + mean_lo + delta * (nb / nt);
+  m2 = static_cast<double>(static_cast<long double>(m2) + other.m2 + delta * delta * (na * nb / nt));
+  mean = static_cast<double>(m);
+  mean_lo = static_cast<double>(m - mean);
   n += other.n;
   min = std::min(min, other.min);
   max = std::max(max, other.max);
@@ -59,31 +65,73 @@ std::optional<double> Summary::se() const noexcept {
   return *s / std::sqrt(static_cast<double>(n));
 }
 
-Summary summarize(std::span<const double> x) {
-  Summary s;
+namespace detail {
+
+Shifted shift_doubles(const std::vector<double>& x) {
+  Shifted s;
   if (x.empty()) return s;
-  // Pass 1: the mean, accumulated in extended precision around a shift (the first value), so a
-  // sample with many constant leading digits keeps its trailing ones.
-  const long double shift = x[0];
-  long double sum = 0;
-  for (double v : x) {
-    sum += static_cast<long double>(v) - shift;
-    s.min = std::min(s.min, v);
-    s.max = std::max(s.max, v);
+  s.shift = x[0];
+  s.a.reserve(x.size());
+  for (double v : x) s.a.push_back(static_cast<long double>(v) - s.shift);
+  return s;
+}
+
+Summary summary_of(const Shifted& sh) {
+  Summary s;
+  if (sh.a.empty()) return s;
+  const long double n = static_cast<long double>(sh.a.size());
+  // Pass 1: the mean of the shifted values, in extended precision.
+  long double sum = 0, lo = sh.a[0], hi = sh.a[0];
+  for (long double v : sh.a) {
+    sum += v;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
   }
-  const long double n = static_cast<long double>(x.size());
-  const long double dmean = sum / n;  // mean - shift
+  const long double dmean = sum / n;
   // Pass 2: sum of squared deviations with the corrected two-pass algorithm (Chan, Golub &
   // LeVeque 1983, eq. 1.7): the second term removes the rounding error of the mean.
   long double ss = 0, corr = 0;
-  for (double v : x) {
-    const long double d = (static_cast<long double>(v) - shift) - dmean;
+  for (long double v : sh.a) {
+    const long double d = v - dmean;
     ss += d * d;
     corr += d;
   }
-  s.n = x.size();
-  s.mean = static_cast<double>(shift + dmean);
-  s.m2 = static_cast<double>(std::max(0.0L, ss - corr * corr / n));
+  s.n = sh.a.size();
+  const long double mean = sh.shift + dmean / sh.scale;
+  s.mean = static_cast<double>(mean);
+  s.mean_lo = static_cast<double>(mean - s.mean);
+  s.m2 = static_cast<double>(std::max(0.0L, ss - corr * corr / n) / (sh.scale * sh.scale));
+  s.min = static_cast<double>(sh.shift + lo / sh.scale);
+  s.max = static_cast<double>(sh.shift + hi / sh.scale);
+  return s;
+}
+
+std::optional<double> autocorr_of(const Shifted& sh) {
+  const auto& a = sh.a;
+  if (a.size() < 2) return std::nullopt;
+  long double sum = 0;
+  for (long double v : a) sum += v;
+  const long double mean = sum / static_cast<long double>(a.size());
+  long double prev = a[0] - mean;
+  long double num = 0, den = prev * prev;
+  for (std::size_t i = 1; i < a.size(); ++i) {
+    const long double d = a[i] - mean;
+    num += d * prev;
+    den += d * d;
+    prev = d;
+  }
+  if (!(den > 0)) return std::nullopt;
+  return static_cast<double>(num / den);
+}
+
+}  // namespace detail
+
+Summary summarize(std::span<const double> x) {
+  Summary s = detail::summary_of(detail::shift_doubles(std::vector<double>(x.begin(), x.end())));
+  if (!x.empty()) {  // min and max exactly as given
+    s.min = *std::min_element(x.begin(), x.end());
+    s.max = *std::max_element(x.begin(), x.end());
+  }
   return s;
 }
 
@@ -102,22 +150,7 @@ double quantile_type7(std::span<const double> sorted, double p) {
 }
 
 std::optional<double> autocorr_lag1(std::span<const double> x) {
-  if (x.size() < 2) return std::nullopt;
-  const long double shift = x[0];
-  long double sum = 0;
-  for (double v : x) sum += static_cast<long double>(v) - shift;
-  const long double mean = sum / static_cast<long double>(x.size());
-  long double num = 0, den = 0;
-  long double prev = (static_cast<long double>(x[0]) - shift) - mean;
-  den = prev * prev;
-  for (std::size_t i = 1; i < x.size(); ++i) {
-    const long double d = (static_cast<long double>(x[i]) - shift) - mean;
-    num += d * prev;
-    den += d * d;
-    prev = d;
-  }
-  if (!(den > 0)) return std::nullopt;
-  return static_cast<double>(num / den);
+  return detail::autocorr_of(detail::shift_doubles(std::vector<double>(x.begin(), x.end())));
 }
 
 namespace {

@@ -59,6 +59,7 @@ struct TestResult {
   std::optional<double> cohen_d;        ///< d (one-sample, two-sample pooled) or d_z (paired)
   std::optional<double> hedges_g;       ///< d times the exact gamma-function correction J(df)
   std::optional<double> rank_biserial;  ///< rank tests only
+  std::optional<double> r_squared;      ///< ANOVA: R^2 (eta squared) = SS_between / SS_total
   std::optional<bool> exact;            ///< rank tests: exact distribution (true) or normal approx.
 
   bool computed = true;

@@ -1,0 +1,30 @@
+// src/stats/shifted.hpp - the accurate cores shared by the double and the exact-decimal APIs.
+//
+// A sample is given as x_i = shift + a_i / scale, with a_i exact in long double (small integers
+// for decimal text, x_i - x_0 for doubles) and scale = 10^s (1 for doubles). The cores work on a_i
+// in extended precision and apply shift and scale only to the final results.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "feint/stats/anova.hpp"
+#include "feint/stats/descriptive.hpp"
+
+namespace feint::stats::detail {
+
+struct Shifted {
+  std::vector<long double> a;
+  long double shift = 0;
+  long double scale = 1;
+};
+
+Summary summary_of(const Shifted& s);
+std::optional<double> autocorr_of(const Shifted& s);
+/// Groups share shift and scale (the ANOVA sums of squares do not depend on the shift).
+AnovaTable anova_of(const std::vector<std::vector<long double>>& groups, long double scale);
+
+/// x - x[0] in long double (exact for doubles within a factor 2^11 of each other).
+Shifted shift_doubles(const std::vector<double>& x);
+
+}  // namespace feint::stats::detail
