@@ -1,0 +1,642 @@
+#include "feint/report/writers.hpp"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "feint/error.hpp"
+#include "feint/io/csv.hpp"
+#include "feint/io/number.hpp"
+
+namespace feint::report {
+
+// ---------------------------------------------------------------------------------------------
+// Output formats
+
+OutputFormat parse_output_format(std::string_view name) {
+  const std::string n = io::to_lower(io::trim(name));
+  if (n == "text" || n == "txt") return OutputFormat::text;
+  if (n == "markdown" || n == "md") return OutputFormat::markdown;
+  if (n == "latex" || n == "tex") return OutputFormat::latex;
+  if (n == "csv") return OutputFormat::csv;
+  if (n == "json") return OutputFormat::json;
+  throw UsageError(
+      fmt::format("--format '{}': expected text, markdown, latex, csv or json", name));
+}
+
+std::string_view to_string(OutputFormat format) noexcept {
+  switch (format) {
+    case OutputFormat::markdown: return "markdown";
+    case OutputFormat::latex: return "latex";
+    case OutputFormat::csv: return "csv";
+    case OutputFormat::json: return "json";
+    case OutputFormat::text: break;
+  }
+  return "text";
+}
+
+// ---------------------------------------------------------------------------------------------
+// Number formatting
+
+namespace {
+
+// "-0.0000" reads as a sign where there is none: drop the minus when every digit is zero.
+std::string drop_negative_zero(std::string s) {
+  if (!s.empty() && s.front() == '-' &&
+      s.find_first_not_of("0.", 1) == std::string::npos) {
+    s.erase(0, 1);
+  }
+  return s;
+}
+
+bool is_whole(double x) { return std::isfinite(x) && x == std::floor(x) && std::fabs(x) < 1e15; }
+
+}  // namespace
+
+std::string format_mean(std::optional<double> value, int decimals) {
+  if (!value || std::isnan(*value)) return {};
+  if (std::isinf(*value)) return *value > 0 ? "Inf" : "-Inf";
+  return drop_negative_zero(fmt::format("{:.{}f}", *value, decimals));
+}
+
+std::string format_p(std::optional<double> p, PStyle style) {
+  if (!p || std::isnan(*p)) return {};
+  if (*p < DBL_MIN) {
+    return style == PStyle::latex ? "$< 2.2 \\times 10^{-308}$" : "< 2.2e-308";
+  }
+  if (*p < 1e-3) {
+    const std::string s = fmt::format("{:.1e}", *p);  // "1.5e-04"
+    if (style == PStyle::plain) return s;
+    const auto e = s.find('e');
+    const int exponent = std::stoi(s.substr(e + 1));
+    return fmt::format("${} \\times 10^{{{}}}$", s.substr(0, e), exponent);
+  }
+  return fmt::format("{:.4f}", *p);
+}
+
+std::string format_full(std::optional<double> value) {
+  if (!value) return {};
+  if (std::isinf(*value)) return *value > 0 ? "Inf" : "-Inf";
+  return io::format_double(*value);
+}
+
+// ---------------------------------------------------------------------------------------------
+// APA strings
+
+std::string apa_p(double p) {
+  if (std::isnan(p)) return "p = NA";
+  if (p < 0.001) return "p < .001";
+  std::string s = fmt::format("{:.3f}", p);
+  if (s == "1.000") return "p > .999";
+  if (s.front() == '0') s.erase(0, 1);
+  return "p = " + s;
+}
+
+namespace {
+
+std::string apa_df(double df) {
+  if (is_whole(df)) return fmt::format("{}", static_cast<long long>(df));
+  return fmt::format("{:.2f}", df);
+}
+
+// Rank statistics are sums of (mid)ranks: whole or half numbers; others get two decimals.
+std::string apa_rank_statistic(double x) {
+  if (is_whole(x)) return fmt::format("{}", static_cast<long long>(x));
+  std::string s = fmt::format("{:.2f}", x);
+  while (!s.empty() && s.back() == '0') s.pop_back();
+  if (!s.empty() && s.back() == '.') s.pop_back();
+  return s;
+}
+
+// Correlation-like effect sizes (|r| <= 1): no leading zero, as p.
+std::string apa_r(double r) {
+  std::string s = drop_negative_zero(fmt::format("{:.2f}", r));
+  if (s.rfind("0.", 0) == 0) s.erase(0, 1);
+  if (s.rfind("-0.", 0) == 0) s.erase(1, 1);
+  return s;
+}
+
+std::string apa_two_dec(double x) { return drop_negative_zero(fmt::format("{:.2f}", x)); }
+
+}  // namespace
+
+std::string apa_string(const stats::TestResult& r) {
+  if (!r.computed) {
+    return r.note.empty() ? std::string(kNotComputable)
+                          : fmt::format("{}: {}", kNotComputable, r.note);
+  }
+  const std::string& t = r.test;
+  const bool rank = t == "wilcoxon_signed_rank" || t == "mann_whitney";
+  const bool f_test = t == "anova" || t == "welch_anova" ||
+                      (t.empty() && r.statistic_name == "F");
+  const bool chi2 = t == "kruskal_wallis" || r.statistic_name == "chi-squared" ||
+                    r.statistic_name == "Kruskal-Wallis chi-squared";
+  std::string out;
+  if (t == "tost") out = "TOST: ";
+  const double stat = r.statistic.value_or(std::nan(""));
+  if (rank) {
+    const std::string name = r.statistic_name.empty()
+                                 ? (t == "mann_whitney" ? std::string("W") : std::string("V"))
+                                 : r.statistic_name;
+    out += fmt::format("{} = {}", name, apa_rank_statistic(stat));
+  } else if (f_test) {
+    out += fmt::format("F({}, {}) = {}", r.df ? apa_df(*r.df) : "NA",
+                       r.df2 ? apa_df(*r.df2) : "NA", apa_two_dec(stat));
+  } else if (chi2) {
+    out += fmt::format("\u03c7\u00b2({}) = {}", r.df ? apa_df(*r.df) : "NA", apa_two_dec(stat));
+  } else {
+    const std::string name = r.statistic_name.empty() ? std::string("t") : r.statistic_name;
+    if (r.df) {
+      out += fmt::format("{}({}) = {}", name, apa_df(*r.df), apa_two_dec(stat));
+    } else {
+      out += fmt::format("{} = {}", name, apa_two_dec(stat));
+    }
+  }
+  if (!r.statistic) out = out.substr(0, out.rfind('=')) + "= NA";
+  out += ", ";
+  out += r.p_value ? apa_p(*r.p_value) : std::string("p = NA");
+  if (r.p_adjusted) {
+    std::string adj = apa_p(*r.p_adjusted);  // "p = .021" -> "adjusted p = .021"
+    out += ", adjusted " + adj;
+  }
+  if (rank) {
+    if (r.rank_biserial) out += ", r = " + apa_r(*r.rank_biserial);
+  } else if (!f_test && !chi2 && t != "tost") {
+    if (r.cohen_d) out += ", d = " + apa_two_dec(*r.cohen_d);
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Labels
+
+std::optional<double> decision_p(const stats::TestResult& result) noexcept {
+  return result.p_adjusted ? result.p_adjusted : result.p_value;
+}
+
+std::string inference_label(const stats::TestResult& difference, double alpha,
+                            std::string_view lhs, std::string_view rhs,
+                            const stats::TestResult* tost) {
+  const auto p = decision_p(difference);
+  if (!difference.computed || !p) return std::string(kNotComputable);
+  if (*p < alpha) {
+    const double effect = difference.estimate.value_or(0.0) - difference.mu.value_or(0.0);
+    return fmt::format("{}{}{}", lhs, effect > 0 ? ">" : "<", rhs);
+  }
+  const std::string approx = fmt::format("{}{}{}", lhs, kApprox, rhs);
+  if (tost == nullptr) return approx;
+  const auto tp = decision_p(*tost);
+  if (!tost->computed || !tp) return std::string(kNotComputable);
+  return *tp < alpha ? approx : std::string(kInconclusive);
+}
+
+std::string one_sample_label(const stats::TestResult& difference, double alpha,
+                             const stats::TestResult* tost) {
+  return inference_label(difference, alpha, "M", "R", tost);
+}
+
+std::string two_sample_label(const stats::TestResult& difference, double alpha,
+                             const stats::TestResult* tost) {
+  return inference_label(difference, alpha, "A", "B", tost);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Tidy records
+
+Cell Cell::num(std::optional<double> v) {
+  if (!v || std::isnan(*v)) return {};
+  if (std::isinf(*v)) return {Kind::text, *v > 0 ? "Inf" : "-Inf"};  // R's spelling; not JSON
+  return {Kind::number, io::format_double(*v)};
+}
+
+namespace {
+Cell text_or_none(const std::string& s) { return s.empty() ? Cell::none() : Cell::str(s); }
+}  // namespace
+
+Cell tidy_cell(const TidyRow& row, std::string_view c) {
+  const stats::TestResult& r = row.result;
+  if (c == "metric") return text_or_none(row.metric);
+  if (c == "iteration") return row.iteration ? Cell::integer(*row.iteration) : Cell::none();
+  if (c == "test") return text_or_none(r.test);
+  if (c == "method") return text_or_none(r.method);
+  if (c == "alternative") {
+    return r.test.empty() ? Cell::none() : Cell::str(std::string(stats::to_string(r.alternative)));
+  }
+  if (c == "mu") return Cell::num(r.mu);
+  if (c == "group1") return text_or_none(row.group1);
+  if (c == "group2") return text_or_none(row.group2);
+  if (c == "n1") return Cell::integer(static_cast<long long>(r.n1));
+  if (c == "n2") {
+    return (!row.group2.empty() || r.n2 > 0) ? Cell::integer(static_cast<long long>(r.n2))
+                                             : Cell::none();
+  }
+  if (c == "mean1") return Cell::num(r.mean1);
+  if (c == "mean2") return Cell::num(r.mean2);
+  if (c == "sd1") return Cell::num(r.sd1);
+  if (c == "sd2") return Cell::num(r.sd2);
+  if (c == "estimate") return Cell::num(r.estimate);
+  if (c == "conf_low") return Cell::num(r.conf_low);
+  if (c == "conf_high") return Cell::num(r.conf_high);
+  if (c == "statistic") return Cell::num(r.statistic);
+  if (c == "df") return Cell::num(r.df);
+  if (c == "p_value") return Cell::num(r.p_value);
+  if (c == "p_adjusted") return Cell::num(r.p_adjusted);
+  if (c == "cohen_d") return Cell::num(r.cohen_d);
+  if (c == "hedges_g") return Cell::num(r.hedges_g);
+  if (c == "label") return text_or_none(row.label);
+  if (c == "note") return text_or_none(r.note);
+  if (c == "median1") return Cell::num(r.median1);
+  if (c == "median2") return Cell::num(r.median2);
+  if (c == "iqr1") return Cell::num(r.iqr1);
+  if (c == "iqr2") return Cell::num(r.iqr2);
+  if (c == "rank_biserial") return Cell::num(r.rank_biserial);
+  if (c == "exact") return Cell::flag(r.exact);
+  if (c == "cronbach_alpha") return Cell::num(row.cronbach_alpha);
+  if (c == "apa") return text_or_none(row.apa);
+  throw std::invalid_argument(fmt::format("tidy_cell: unknown column '{}'", c));
+}
+
+std::vector<Record> tidy_records(std::span<const TidyRow> rows,
+                                 std::span<const std::string_view> columns) {
+  std::vector<Record> out;
+  out.reserve(rows.size());
+  for (const auto& row : rows) {
+    Record rec;
+    rec.reserve(columns.size());
+    for (auto c : columns) rec.push_back(tidy_cell(row, c));
+    out.push_back(std::move(rec));
+  }
+  return out;
+}
+
+std::vector<std::string_view> table_columns(bool apa) {
+  std::vector<std::string_view> cols(kTableColumns.begin(), kTableColumns.end());
+  if (apa) cols.push_back("apa");
+  return cols;
+}
+
+std::vector<std::string_view> likert_columns(bool apa) {
+  std::vector<std::string_view> cols(kTableColumns.begin(), kTableColumns.end());
+  cols.insert(cols.end(), kLikertExtraColumns.begin(), kLikertExtraColumns.end());
+  if (apa) cols.push_back("apa");
+  return cols;
+}
+
+std::string write_csv(std::span<const std::string_view> columns, std::span<const Record> records) {
+  std::string out;
+  for (std::size_t i = 0; i < columns.size(); ++i) {
+    if (i > 0) out += ',';
+    out += io::csv_escape(columns[i]);
+  }
+  out += '\n';
+  for (const auto& rec : records) {
+    for (std::size_t i = 0; i < rec.size(); ++i) {
+      if (i > 0) out += ',';
+      out += io::csv_escape(rec[i].text);
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+std::string json_quote(std::string_view text) {
+  std::string out = "\"";
+  for (const char ch : text) {
+    const auto u = static_cast<unsigned char>(ch);
+    switch (ch) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      case '\b': out += "\\b"; break;
+      case '\f': out += "\\f"; break;
+      default:
+        if (u < 0x20) {
+          out += fmt::format("\\u{:04x}", static_cast<unsigned>(u));
+        } else {
+          out += ch;
+        }
+    }
+  }
+  out += '"';
+  return out;
+}
+
+std::string write_json(std::span<const std::string_view> columns, std::span<const Record> records) {
+  if (records.empty()) return "[]\n";
+  std::string out = "[\n";
+  for (std::size_t r = 0; r < records.size(); ++r) {
+    out += "  {";
+    for (std::size_t i = 0; i < columns.size(); ++i) {
+      if (i > 0) out += ", ";
+      out += json_quote(columns[i]);
+      out += ": ";
+      const Cell empty;
+      const Cell& cell = i < records[r].size() ? records[r][i] : empty;
+      switch (cell.kind) {
+        case Cell::Kind::empty: out += "null"; break;
+        case Cell::Kind::text: out += json_quote(cell.text); break;
+        case Cell::Kind::number:
+        case Cell::Kind::boolean: out += cell.text; break;
+      }
+    }
+    out += r + 1 < records.size() ? "},\n" : "}\n";
+  }
+  out += "]\n";
+  return out;
+}
+
+std::string tidy_csv(std::span<const TidyRow> rows, std::span<const std::string_view> columns) {
+  const auto records = tidy_records(rows, columns);
+  return write_csv(columns, records);
+}
+
+std::string tidy_json(std::span<const TidyRow> rows, std::span<const std::string_view> columns) {
+  const auto records = tidy_records(rows, columns);
+  return write_json(columns, records);
+}
+
+std::string latex_escape(std::string_view text) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char ch = text[i];
+    const std::string_view rest = text.substr(i);
+    auto starts = [&](std::string_view s) { return rest.substr(0, s.size()) == s; };
+    if (starts("\u2248")) { out += "\\ensuremath{\\approx}"; i += 2; continue; }
+    if (starts("\u00b1")) { out += "\\ensuremath{\\pm}"; i += 1; continue; }
+    if (starts("\u00d7")) { out += "\\ensuremath{\\times}"; i += 1; continue; }
+    if (starts("\u03b1")) { out += "\\ensuremath{\\alpha}"; i += 1; continue; }
+    if (starts("\u03b4")) { out += "\\ensuremath{\\delta}"; i += 1; continue; }
+    if (starts("\u03c7")) { out += "\\ensuremath{\\chi}"; i += 1; continue; }
+    if (starts("\u00b2")) { out += "\\textsuperscript{2}"; i += 1; continue; }
+    if (starts("\u2013")) { out += "--"; i += 2; continue; }
+    if (starts("\u2014")) { out += "---"; i += 2; continue; }
+    if (starts("\u2265")) { out += "\\ensuremath{\\geq}"; i += 2; continue; }
+    if (starts("\u2264")) { out += "\\ensuremath{\\leq}"; i += 2; continue; }
+    switch (ch) {
+      case '&': out += "\\&"; break;
+      case '%': out += "\\%"; break;
+      case '$': out += "\\$"; break;
+      case '#': out += "\\#"; break;
+      case '_': out += "\\_"; break;
+      case '{': out += "\\{"; break;
+      case '}': out += "\\}"; break;
+      case '~': out += "\\textasciitilde{}"; break;
+      case '^': out += "\\textasciicircum{}"; break;
+      case '\\': out += "\\textbackslash{}"; break;
+      case '<': out += "\\textless{}"; break;  // OT1 would print an inverted "!"
+      case '>': out += "\\textgreater{}"; break;
+      default: out += ch;
+    }
+  }
+  return out;
+}
+
+std::size_t display_width(std::string_view utf8) noexcept {
+  std::size_t w = 0;
+  for (const char ch : utf8) {
+    if ((static_cast<unsigned char>(ch) & 0xC0) != 0x80) ++w;
+  }
+  return w;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Aligned tables
+
+namespace {
+
+std::string pad(std::string_view s, std::size_t width, bool right) {
+  const std::size_t w = display_width(s);
+  const std::string fill(width > w ? width - w : 0, ' ');
+  return right ? fill + std::string(s) : std::string(s) + fill;
+}
+
+std::string rstrip(std::string s) {
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s;
+}
+
+// Greedy word wrap of a paragraph to `width` columns.
+std::string wrap(std::string_view text, std::size_t width) {
+  std::string out, line;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto j = text.find(' ', i);
+    const std::string_view word = text.substr(i, j == std::string_view::npos ? j : j - i);
+    if (!line.empty() && display_width(line) + 1 + display_width(word) > width) {
+      out += line + '\n';
+      line.clear();
+    }
+    if (!line.empty()) line += ' ';
+    line += word;
+    if (j == std::string_view::npos) break;
+    i = j + 1;
+  }
+  if (!line.empty()) out += line + '\n';
+  return out;
+}
+
+std::size_t column_count(const TextTable& t) {
+  std::size_t n = t.header.size();
+  for (const auto& r : t.rows) {
+    if (!r.section) n = std::max(n, r.cells.size());
+  }
+  return n;
+}
+
+std::string cell_at(const std::vector<std::string>& cells, std::size_t i) {
+  return i < cells.size() ? cells[i] : std::string();
+}
+
+bool right_at(const TextTable& t, std::size_t i) {
+  return i < t.right_align.size() && t.right_align[i];
+}
+
+std::string render_text(const TextTable& t) {
+  const std::size_t n = column_count(t);
+  const std::string sep = "  ";
+  std::vector<std::size_t> width(n, 0);
+  for (std::size_t i = 0; i < n; ++i) width[i] = display_width(cell_at(t.header, i));
+  for (const auto& r : t.rows) {
+    if (r.section) continue;
+    for (std::size_t i = 0; i < n; ++i) width[i] = std::max(width[i], display_width(cell_at(r.cells, i)));
+  }
+  // A group title wider than its columns widens the last column it spans.
+  for (const auto& g : t.groups) {
+    if (g.count == 0 || g.first + g.count > n) continue;
+    std::size_t span = 0;
+    for (std::size_t i = g.first; i < g.first + g.count; ++i) span += width[i];
+    span += sep.size() * (g.count - 1);
+    const std::size_t need = display_width(g.title);
+    if (need > span) width[g.first + g.count - 1] += need - span;
+  }
+  std::string out;
+  if (!t.caption.empty()) out += t.caption + "\n\n";
+  if (!t.groups.empty()) {
+    std::string titles, rules;
+    std::size_t col = 0;
+    for (const auto& g : t.groups) {
+      if (g.count == 0 || g.first + g.count > n || g.first < col) continue;
+      for (; col < g.first; ++col) {
+        titles += std::string(width[col], ' ') + sep;
+        rules += std::string(width[col], ' ') + sep;
+      }
+      std::size_t span = sep.size() * (g.count - 1);
+      for (std::size_t i = g.first; i < g.first + g.count; ++i) span += width[i];
+      titles += pad(g.title, span, false) + sep;
+      rules += std::string(span, '-') + sep;
+      col = g.first + g.count;
+    }
+    out += rstrip(titles) + '\n' + rstrip(rules) + '\n';
+  }
+  std::string line;
+  std::size_t total = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    line += pad(cell_at(t.header, i), width[i], right_at(t, i)) + (i + 1 < n ? sep : "");
+    total += width[i] + (i + 1 < n ? sep.size() : 0);
+  }
+  out += rstrip(line) + '\n' + std::string(total, '-') + '\n';
+  bool first = true;
+  for (const auto& r : t.rows) {
+    if (r.section) {
+      if (!first) out += '\n';
+      out += cell_at(r.cells, 0) + '\n';
+    } else {
+      line.clear();
+      for (std::size_t i = 0; i < n; ++i) {
+        line += pad(cell_at(r.cells, i), width[i], right_at(t, i)) + (i + 1 < n ? sep : "");
+      }
+      out += rstrip(line) + '\n';
+    }
+    first = false;
+  }
+  out += std::string(total, '-') + '\n';
+  for (const auto& note : t.notes) out += '\n' + wrap(note, std::max<std::size_t>(total, 72));
+  return out;
+}
+
+std::string md_cell(std::string_view s) {
+  std::string out;
+  for (const char ch : s) {
+    if (ch == '|') out += "\\|";
+    else out += ch;
+  }
+  return out;
+}
+
+std::string render_markdown(const TextTable& t) {
+  const std::size_t n = column_count(t);
+  std::string out;
+  if (!t.caption.empty()) out += "**" + md_cell(t.caption) + "**\n\n";
+  auto row_line = [&](const std::vector<std::string>& cells, bool bold) {
+    std::string l = "|";
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::string c = md_cell(cell_at(cells, i));
+      l += ' ' + ((bold && !c.empty()) ? "**" + c + "**" : c) + " |";
+    }
+    return l + '\n';
+  };
+  std::string align = "|";
+  for (std::size_t i = 0; i < n; ++i) align += right_at(t, i) ? "---:|" : "---|";
+  align += '\n';
+  if (!t.groups.empty()) {
+    std::vector<std::string> g(n);
+    for (const auto& grp : t.groups) {
+      if (grp.first < n) g[grp.first] = grp.title;
+    }
+    out += row_line(g, true) + align + row_line(t.header, true);
+  } else {
+    out += row_line(t.header, false) + align;
+  }
+  for (const auto& r : t.rows) {
+    if (r.section) {
+      out += row_line({cell_at(r.cells, 0)}, true);
+    } else {
+      out += row_line(r.cells, false);
+    }
+  }
+  for (std::size_t i = 0; i < t.notes.size(); ++i) {
+    out += '\n' + std::string(i == 0 ? "*Note.* " : "") + t.notes[i] + '\n';
+  }
+  return out;
+}
+
+std::string render_latex(const TextTable& t) {
+  const std::size_t n = column_count(t);
+  std::string out = "% Needs \\usepackage{booktabs} in the preamble.\n";
+  out += "\\begin{table}[htbp]\n  \\centering\n";
+  if (!t.caption.empty()) out += "  \\caption{" + latex_escape(t.caption) + "}\n";
+  if (!t.latex_label.empty()) out += "  \\label{" + t.latex_label + "}\n";
+  std::string spec;
+  for (std::size_t i = 0; i < n; ++i) spec += right_at(t, i) ? 'r' : 'l';
+  out += "  \\begin{tabular}{" + spec + "}\n    \\toprule\n";
+  if (!t.groups.empty()) {
+    std::string l = "   ";
+    std::string rules = "   ";
+    std::size_t col = 0;
+    bool any = false;
+    for (const auto& g : t.groups) {
+      if (g.count == 0 || g.first + g.count > n || g.first < col) continue;
+      for (; col < g.first; ++col) l += col == 0 ? " " : " & ";
+      l += std::string(col == 0 ? " " : " & ") + "\\multicolumn{" + std::to_string(g.count) +
+           "}{c}{" + latex_escape(g.title) + "}";
+      rules += fmt::format(" \\cmidrule(lr){{{}-{}}}", g.first + 1, g.first + g.count);
+      col = g.first + g.count;
+      any = true;
+    }
+    for (; col < n; ++col) l += " &";
+    if (any) out += l + " \\\\\n" + rules + "\n";
+  }
+  std::string h = "   ";
+  for (std::size_t i = 0; i < n; ++i) h += (i == 0 ? " " : " & ") + latex_escape(cell_at(t.header, i));
+  out += h + " \\\\\n    \\midrule\n";
+  bool first = true;
+  for (std::size_t r = 0; r < t.rows.size(); ++r) {
+    const auto& row = t.rows[r];
+    if (row.section) {
+      if (!first) out += "    \\addlinespace\n";
+      out += "    \\multicolumn{" + std::to_string(n) + "}{l}{\\textit{" +
+             latex_escape(cell_at(row.cells, 0)) + "}} \\\\\n";
+    } else {
+      std::string l = "   ";
+      for (std::size_t i = 0; i < n; ++i) {
+        const bool verbatim = r < t.latex_cells.size() && i < t.latex_cells[r].size() &&
+                              !t.latex_cells[r][i].empty();
+        l += (i == 0 ? " " : " & ") +
+             (verbatim ? t.latex_cells[r][i] : latex_escape(cell_at(row.cells, i)));
+      }
+      out += l + " \\\\\n";
+    }
+    first = false;
+  }
+  out += "    \\bottomrule\n  \\end{tabular}\n";
+  if (!t.notes.empty()) {
+    out += "  \\par\\smallskip\n  \\begin{minipage}{\\linewidth}\n    \\footnotesize\n";
+    for (std::size_t i = 0; i < t.notes.size(); ++i) {
+      out += std::string("    ") + (i == 0 ? "\\textit{Note.} " : "\\par ") +
+             latex_escape(t.notes[i]) + "\n";
+    }
+    out += "  \\end{minipage}\n";
+  }
+  out += "\\end{table}\n";
+  return out;
+}
+
+}  // namespace
+
+std::string render_table(const TextTable& table, OutputFormat format) {
+  switch (format) {
+    case OutputFormat::text: return render_text(table);
+    case OutputFormat::markdown: return render_markdown(table);
+    case OutputFormat::latex: return render_latex(table);
+    case OutputFormat::csv:
+    case OutputFormat::json: break;
+  }
+  throw std::invalid_argument("render_table: csv/json are tidy formats (write_csv/write_json)");
+}
+
+}  // namespace feint::report
