@@ -1,0 +1,116 @@
+// feint/io/trace.hpp - streaming pad-trace logs: trials from many files, validated, with precise
+// errors.
+//
+// The input is the long format of formats.md: one row per pad sample,
+//   participant,condition,iteration,strategy,variant,target,t,pad,pad_speed
+// A trial is keyed by (participant, condition, iteration); its rows are contiguous and its
+// trial-level fields (target, strategy, variant, pad_speed) are constant. TraceReader reads any
+// number of files (plain or .gz, `-` = stdin) as one data set and hands out one validated Trial at a
+// time, as soon as its last row has been read, so memory does not grow with the input (except in
+// `unsorted` mode, which buffers every row and groups them by key).
+//
+// Every violation of formats.md / metrics.md is reported as
+//   `file:line: column 'pad': 1.7 is outside [0, 1] (trial P07/adaptive/3)`
+// In strict mode (no `on_reject` callback) the first one throws feint::InvalidData; in lenient mode
+// the whole trial is handed to `on_reject` (with the number of rows it had) and reading goes on.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace feint::io {
+
+/// One interaction: the samples (t_i, mu_i) of a trial and its trial-level fields.
+struct Trial {
+  std::string participant;
+  std::string condition;  // empty when the data has no condition column
+  long long iteration = 0;
+  std::string strategy;  // empty when absent
+  std::string variant;   // empty when absent
+  double target = 0;     // the true target's pad coordinate T in [0, 1] (left = 0, right = 1)
+  std::optional<double> pad_speed;  // pad units per second; the --pad-speed override if given
+  std::vector<double> times;        // t_i in seconds, strictly increasing, size >= 2
+  std::vector<double> pads;         // mu_i in [0, 1], same size as times
+  std::string file;                 // file of the trial's first row (`<stdin>` for `-`)
+  std::uint64_t line = 0;           // physical line of its first row (header = line 1)
+  std::uint64_t rows = 0;           // rows read for this trial (== times.size() when valid)
+
+  /// `participant/condition/iteration` (or `participant/iteration` without conditions), as used
+  /// in every message.
+  std::string label() const;
+};
+
+/// A trial that failed validation (lenient mode).
+struct Rejection {
+  std::string file;         // where the offending row (or the trial) is
+  std::uint64_t line = 0;   // the offending row's line (or the trial's first line)
+  std::string participant;  // the trial's key as written in the file
+  std::string condition;
+  std::string iteration;
+  std::uint64_t rows = 0;  // rows of the trial, all excluded from scoring
+  std::string reason;      // the full message, `file:line: ... (trial P/C/I)`
+};
+
+/// The column names the loader looks for (formats.md), matched case-insensitively.
+/// Keys: participant, condition, iteration, strategy, variant, target, t, pad, pad_speed.
+const std::vector<std::string>& trace_field_names();
+
+struct TraceOptions {
+  /// Our field name -> the study's column name (`--map pad=position`). Unknown field names are a
+  /// UsageError at construction.
+  std::map<std::string, std::string> column_map;
+  /// 0 = detect per file from its header (`,` `;` TAB).
+  char delimiter = 0;
+  /// Replaces any pad_speed column (pad units per second, > 0). The column is then not read.
+  std::optional<double> pad_speed;
+  /// Every trial must have a pad speed (the `speed` confusion normalisation): a file without a
+  /// pad_speed column and no override is a UsageError that says how to give it.
+  bool require_pad_speed = false;
+  /// Buffer every row and group by key (rows of a trial need not be contiguous or in one file).
+  bool unsorted = false;
+  /// Lenient mode: called for each invalid trial instead of throwing.
+  std::function<void(const Rejection&)> on_reject;
+};
+
+/// Expands command-line inputs into a list of files, in command-line order: a file as given, a
+/// directory as every *.csv, *.tsv, *.txt (optionally .gz) below it (sorted by path), a pattern
+/// with * ? [ via glob(3) (sorted); `-` is standard input. A file named twice is read once. Throws IoError for a missing path, a pattern without match or a
+/// directory without data files.
+std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs);
+
+class TraceReader {
+ public:
+  /// `files` as returned by expand_inputs (read in this order). Throws UsageError for a bad
+  /// column_map or pad_speed.
+  TraceReader(std::vector<std::string> files, TraceOptions options);
+  ~TraceReader();
+  TraceReader(const TraceReader&) = delete;
+  TraceReader& operator=(const TraceReader&) = delete;
+
+  /// Reads the next valid trial into `trial` (its vectors' capacity is reused); false at the end of
+  /// all inputs. Throws InvalidData (strict mode, or a file-level problem such as a missing
+  /// column or malformed CSV), IoError (cannot read), UsageError (no pad speed when required).
+  bool next(Trial& trial);
+
+  /// Data rows read so far (all files).
+  std::uint64_t rows_read() const noexcept;
+  /// Rows in trials handed out by next() / in rejected trials, so far.
+  std::uint64_t rows_in_trials() const noexcept;
+  std::uint64_t rows_rejected() const noexcept;
+  std::uint64_t trials_rejected() const noexcept;
+  /// Bytes of input consumed so far (compressed bytes for .gz), for progress reports.
+  std::uint64_t bytes_consumed() const noexcept;
+  /// Files opened so far.
+  std::size_t files_read() const noexcept;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace feint::io

@@ -1,0 +1,84 @@
+// feint/metrics/score.hpp - scoring many pad-trace logs into one scores table (`feint score`).
+//
+// The library behind the command: `feint analyze` and other programs call score_to_file() (or
+// score_each() to receive each trial's score without writing a file). Streaming: a trial is scored
+// as soon as its last row is read, so memory does not grow with the input (except `unsorted`).
+// See docs/scoring.md for the output columns, the sidecar and the rejects file.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "feint/io/trace.hpp"
+#include "feint/metrics/trial_metrics.hpp"
+
+namespace feint::metrics {
+
+/// What to do with an invalid trial: stop with an error (strict) or skip it and list it (skip).
+enum class OnError { strict, skip };
+
+/// Progress, reported after every trial (scored or rejected).
+struct ScoreProgress {
+  std::uint64_t rows_read = 0;
+  std::uint64_t bytes_read = 0;  // compressed bytes for .gz input
+  std::uint64_t trials_scored = 0;
+  std::uint64_t trials_rejected = 0;
+};
+
+struct ScoreSettings {
+  MetricSettings metrics;  // trim, dead band, normalisation, pad-speed override
+  /// Our field name -> the study's column name (participant, condition, iteration, strategy,
+  /// variant, target, t, pad, pad_speed).
+  std::map<std::string, std::string> column_map;
+  char delimiter = 0;  // 0 = detect per file
+  OnError on_error = OnError::strict;
+  /// Where skip mode lists rejected trials (CSV). Empty: `<output>.rejects.csv`; required when
+  /// the output is `-`. Must be empty in strict mode.
+  std::string rejects_path;
+  /// Buffer every row and group trials by key (rows of a trial need not be contiguous).
+  bool unsorted = false;
+  /// Where the settings are recorded (JSON). Empty: `<output>.meta.json`, or none for `-`.
+  std::string sidecar_path;
+  /// Recorded in the sidecar.
+  std::string tool_version = "unknown";
+  /// Called after each trial (may be empty).
+  std::function<void(const ScoreProgress&)> on_progress;
+};
+
+struct ScoreSummary {
+  std::uint64_t files = 0;
+  std::uint64_t rows_read = 0;      // == rows_scored + rows_rejected
+  std::uint64_t rows_scored = 0;    // rows in scored trials
+  std::uint64_t rows_rejected = 0;  // rows in rejected trials
+  std::uint64_t trials_scored = 0;
+  std::uint64_t trials_rejected = 0;
+  std::uint64_t overspeed_trials = 0;  // trials with at least one overspeed segment
+  std::uint64_t bytes_read = 0;
+  std::string output_path;
+  std::string sidecar_path;  // empty when none was written
+  std::string rejects_path;  // empty in strict mode
+};
+
+/// The scores table's columns, in order (formats.md).
+const std::vector<std::string>& score_columns();
+
+/// Checks settings against each other (throws UsageError), e.g. trims, --rejects without skip.
+void validate(const ScoreSettings& settings, const std::string& output_path);
+
+/// Reads `inputs` (files, directories, globs, `-`) and calls `on_trial` for every valid trial with
+/// its score; invalid trials throw InvalidData (strict) or go to `on_reject` (skip). Does not
+/// write files. Throws InvalidData when no trial is valid.
+ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSettings& settings,
+                        const std::function<void(const io::Trial&, const TrialScore&)>& on_trial,
+                        const std::function<void(const io::Rejection&)>& on_reject = {});
+
+/// Scores `inputs` into the CSV `output_path` (`-` = stdout), atomically, plus the sidecar (and,
+/// in skip mode, the rejects list). A failing run leaves no scores file behind. Throws
+/// UsageError, InvalidData, IoError.
+ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSettings& settings,
+                           const std::string& output_path);
+
+}  // namespace feint::metrics

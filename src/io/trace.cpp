@@ -1,0 +1,557 @@
+#include "feint/io/trace.hpp"
+
+#include <glob.h>
+
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <set>
+#include <string_view>
+#include <unordered_map>
+
+#include <fmt/format.h>
+
+#include "feint/error.hpp"
+#include "feint/io/csv.hpp"
+#include "feint/io/number.hpp"
+
+namespace feint::io {
+
+namespace fs = std::filesystem;
+
+std::string Trial::label() const {
+  return condition.empty() ? fmt::format("{}/{}", participant, iteration)
+                           : fmt::format("{}/{}/{}", participant, condition, iteration);
+}
+
+namespace {
+
+enum Field : int {
+  kParticipant,
+  kCondition,
+  kIteration,
+  kStrategy,
+  kVariant,
+  kTarget,
+  kT,
+  kPad,
+  kPadSpeed,
+  kFieldCount
+};
+
+const std::array<const char*, kFieldCount> kFieldNames = {
+    "participant", "condition", "iteration", "strategy", "variant", "target", "t", "pad",
+    "pad_speed"};
+
+constexpr std::array<bool, kFieldCount> kRequired = {true, false, true, false, false,
+                                                     true, true,  true, false};
+
+std::string display_name(const std::string& path) { return path == "-" ? "<stdin>" : path; }
+
+// Where a trial's rows begin, for "appeared before" messages.
+struct Location {
+  std::uint32_t file = 0;
+  std::uint64_t line = 0;
+};
+
+// Columns of the current file: index per field (-1 = absent) and the header's spelling.
+struct Columns {
+  std::array<int, kFieldCount> index{};
+  std::array<std::string, kFieldCount> name{};
+  std::size_t width = 0;
+};
+
+// One trial being assembled from its rows.
+struct Builder {
+  Trial trial;
+  std::string participant, condition, iteration;  // key as written (trimmed)
+  std::string target_text, strategy_text, variant_text, pad_speed_text;
+  std::uint32_t file = 0;
+  std::uint64_t last_line = 0;
+  std::string error;  // lenient mode: the first problem (full message); empty = valid
+  std::uint64_t error_line = 0;
+  std::uint32_t error_file = 0;
+
+  std::string label() const {
+    return condition.empty() ? fmt::format("{}/{}", participant, iteration)
+                             : fmt::format("{}/{}/{}", participant, condition, iteration);
+  }
+};
+
+bool has_data_extension(const fs::path& p) {
+  std::string name = to_lower(p.filename().string());
+  if (name.size() > 3 && name.ends_with(".gz")) name.resize(name.size() - 3);
+  return name.ends_with(".csv") || name.ends_with(".tsv") || name.ends_with(".txt");
+}
+
+}  // namespace
+
+const std::vector<std::string>& trace_field_names() {
+  static const std::vector<std::string> names(kFieldNames.begin(), kFieldNames.end());
+  return names;
+}
+
+std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs) {
+  std::vector<std::string> out;
+  std::set<std::string> seen;
+  auto add = [&](const std::string& path) {
+    if (path == "-") {
+      if (seen.insert("-").second) out.push_back(path);
+      return;
+    }
+    std::error_code ec;
+    const auto canon = fs::weakly_canonical(path, ec);
+    if (seen.insert(ec ? path : canon.string()).second) out.push_back(path);
+  };
+  for (const auto& input : inputs) {
+    if (input == "-") {
+      add(input);
+      continue;
+    }
+    std::error_code ec;
+    const auto status = fs::status(input, ec);
+    if (fs::is_directory(status)) {
+      std::vector<std::string> found;
+      for (auto it = fs::recursive_directory_iterator(input, ec); !ec && it != fs::end(it);
+           it.increment(ec)) {
+        if (it->is_regular_file() && has_data_extension(it->path())) {
+          found.push_back(it->path().string());
+        }
+      }
+      if (ec) throw IoError(fmt::format("cannot read directory '{}': {}", input, ec.message()));
+      if (found.empty()) {
+        throw IoError(fmt::format("directory '{}' holds no data files (*.csv, *.tsv, *.txt, "
+                                  "optionally .gz)", input));
+      }
+      std::sort(found.begin(), found.end());
+      for (const auto& f : found) add(f);
+    } else if (fs::exists(status)) {
+      add(input);
+    } else if (input.find_first_of("*?[") != std::string::npos) {
+      glob_t g{};
+      const int rc = ::glob(input.c_str(), 0, nullptr, &g);
+      std::vector<std::string> found;
+      if (rc == 0) {
+        for (std::size_t i = 0; i < g.gl_pathc; ++i) found.emplace_back(g.gl_pathv[i]);
+      }
+      ::globfree(&g);
+      if (found.empty()) throw IoError(fmt::format("no file matches '{}'", input));
+      std::sort(found.begin(), found.end());
+      for (const auto& f : found) {
+        if (fs::is_directory(f)) {
+          for (const auto& sub : expand_inputs({f})) add(sub);
+        } else {
+          add(f);
+        }
+      }
+    } else {
+      throw IoError(fmt::format("cannot open '{}': No such file or directory", input));
+    }
+  }
+  if (out.empty()) throw UsageError("no input files given");
+  return out;
+}
+
+struct TraceReader::Impl {
+  std::vector<std::string> files;
+  std::vector<std::string> names;  // display names
+  TraceOptions options;
+  std::size_t next_file = 0;
+  std::uint32_t file_index = 0;  // index of the open file
+  std::unique_ptr<CsvReader> reader;
+  Columns cols;
+
+  Builder cur;
+  bool have_cur = false;
+  std::unordered_map<std::string, Location> seen;  // streaming: where each trial began
+  std::string key_scratch;
+
+  // unsorted mode
+  bool buffered = false;
+  std::vector<Builder> groups;
+  std::unordered_map<std::string, std::size_t> group_index;
+  std::size_t next_group = 0;
+
+  std::uint64_t rows_read = 0;
+  std::uint64_t rows_ok = 0;
+  std::uint64_t rows_bad = 0;
+  std::uint64_t trials_bad = 0;
+  std::uint64_t bytes_done = 0;
+
+  bool strict() const { return !options.on_reject; }
+
+  [[noreturn]] void throw_at(std::uint32_t file, std::uint64_t line, const std::string& what,
+                             const std::string& label) const {
+    throw InvalidData(fmt::format("{}:{}: {} (trial {})", names[file], line, what, label));
+  }
+
+  // A problem with the trial `b` at `line` of the current file.
+  void invalid(Builder& b, std::uint64_t line, const std::string& what) {
+    if (strict()) throw_at(file_index, line, what, b.label());
+    if (b.error.empty()) {
+      b.error = fmt::format("{}:{}: {} (trial {})", names[file_index], line, what, b.label());
+      b.error_line = line;
+      b.error_file = file_index;
+    }
+  }
+
+  bool open_next_file() {
+    if (reader) {
+      bytes_done += reader->bytes_consumed();
+      reader.reset();
+    }
+    if (next_file >= files.size()) return false;
+    file_index = static_cast<std::uint32_t>(next_file++);
+    CsvOptions copt;
+    copt.delimiter = options.delimiter;
+    copt.require_header_width = false;  // a short/long row is a problem of its trial
+    reader = std::make_unique<CsvReader>(files[file_index], copt);
+    const std::string& name = names[file_index];
+    cols = {};
+    cols.width = reader->header().size();
+    for (int f = 0; f < kFieldCount; ++f) {
+      const auto mapped = options.column_map.find(kFieldNames[f]);
+      const bool is_mapped = mapped != options.column_map.end();
+      const std::string want = is_mapped ? mapped->second : kFieldNames[f];
+      int idx = reader->column(want);
+      if (f == kPadSpeed && options.pad_speed) idx = -1;  // the override replaces the column
+      cols.index[f] = idx;
+      if (idx >= 0) {
+        cols.name[f] = reader->header()[static_cast<std::size_t>(idx)];
+        continue;
+      }
+      cols.name[f] = want;
+      if (f == kPadSpeed && options.pad_speed) continue;
+      if (kRequired[f]) {
+        throw InvalidData(fmt::format(
+            "{}:1: no column '{}' (required; the header has: {}; name the study's column with "
+            "--map {}=COLUMN)",
+            name, want, fmt::join(reader->header(), ", "), kFieldNames[f]));
+      }
+      if (is_mapped) {
+        throw InvalidData(fmt::format("{}:1: no column '{}' (given by --map {}={})", name, want,
+                                      kFieldNames[f], want));
+      }
+      if (f == kPadSpeed && options.require_pad_speed) {
+        throw UsageError(fmt::format(
+            "{}: no 'pad_speed' column, but the 'speed' confusion normalisation needs the pad "
+            "speed: give --pad-speed V (pad units per second), name the column with --map "
+            "pad_speed=COLUMN, or use --confusion-norm raw",
+            name));
+      }
+    }
+    return true;
+  }
+
+  std::string_view get(Field f) const {
+    const int i = cols.index[f];
+    return i < 0 ? std::string_view{} : trim(reader->field(static_cast<std::size_t>(i)));
+  }
+
+  // Starts a trial with the key of the current row.
+  void start(Builder& b, std::string_view p, std::string_view c, std::string_view it) {
+    b.participant.assign(p);
+    b.condition.assign(c);
+    b.iteration.assign(it);
+    b.file = file_index;
+    b.error.clear();
+    b.error_line = 0;
+    b.last_line = 0;
+    Trial& t = b.trial;
+    t.times.clear();
+    t.pads.clear();
+    t.rows = 0;
+    t.line = reader->line();
+    t.file = names[file_index];
+    t.participant = b.participant;
+    t.condition = b.condition;
+    t.iteration = 0;
+    t.strategy.assign(get(kStrategy));
+    t.variant.assign(get(kVariant));
+    b.strategy_text = t.strategy;
+    b.variant_text = t.variant;
+    b.target_text.assign(get(kTarget));
+    b.pad_speed_text.assign(get(kPadSpeed));
+    t.target = 0;
+    t.pad_speed = options.pad_speed;
+
+    const std::uint64_t line = reader->line();
+    if (reader->fields().size() != cols.width) return;  // reported by add_row
+    if (p.empty()) invalid(b, line, fmt::format("column '{}': empty (every row needs a participant)",
+                                                cols.name[kParticipant]));
+    if (cols.index[kCondition] >= 0 && c.empty()) {
+      invalid(b, line, fmt::format("column '{}': empty (expected the condition's name)",
+                                   cols.name[kCondition]));
+    }
+    if (const auto i = parse_integer(it)) {
+      t.iteration = *i;
+    } else {
+      invalid(b, line, it.empty() ? fmt::format("column '{}': empty (expected a whole number)",
+                                                cols.name[kIteration])
+                                  : fmt::format("column '{}': '{}' is not a whole number",
+                                                cols.name[kIteration], it));
+    }
+    const std::string tl = to_lower(b.target_text);
+    if (tl == "left") {
+      t.target = 0;
+    } else if (tl == "right") {
+      t.target = 1;
+    } else if (const auto v = parse_double(tl)) {
+      if (*v < 0 || *v > 1) {
+        invalid(b, line, fmt::format("column '{}': {} is outside [0, 1] (expected left, right, or "
+                                     "a pad coordinate in [0, 1])", cols.name[kTarget], b.target_text));
+      }
+      t.target = *v;
+    } else {
+      invalid(b, line,
+              b.target_text.empty()
+                  ? fmt::format("column '{}': empty (expected left, right, or a number in [0, 1])",
+                                cols.name[kTarget])
+                  : fmt::format("column '{}': '{}' is not left, right, or a number in [0, 1]",
+                                cols.name[kTarget], b.target_text));
+    }
+    if (!options.pad_speed && cols.index[kPadSpeed] >= 0) {
+      if (b.pad_speed_text.empty()) {
+        if (options.require_pad_speed) {
+          invalid(b, line, fmt::format("column '{}': empty (the 'speed' confusion normalisation "
+                                       "needs the pad speed in pad units per second; or give "
+                                       "--pad-speed V)", cols.name[kPadSpeed]));
+        }
+      } else if (const auto v = parse_double(b.pad_speed_text); v && *v > 0) {
+        t.pad_speed = *v;
+      } else {
+        invalid(b, line, fmt::format("column '{}': '{}' is not a number > 0 (pad units per second)",
+                                     cols.name[kPadSpeed], b.pad_speed_text));
+      }
+    }
+  }
+
+  // Trial-level text that must not change within a trial; numbers compare by value.
+  void check_constant(Builder& b, Field f, std::string_view now, const std::string& first,
+                      bool numeric) {
+    if (now == first) return;
+    if (numeric) {
+      const auto a = parse_double(now), c = parse_double(first);
+      if (a && c && *a == *c) return;
+      if (f == kTarget) {
+        const std::string nl = to_lower(now), fl = to_lower(first);
+        if (nl == fl) return;
+      }
+    }
+    invalid(b, reader->line(),
+            fmt::format("column '{}': '{}' differs from '{}' on the trial's first row (line {}) "
+                        "(trial-level fields must be constant within a trial)",
+                        cols.name[f], now, first, b.trial.line));
+  }
+
+  void add_row(Builder& b) {
+    const std::uint64_t line = reader->line();
+    ++b.trial.rows;
+    if (!b.error.empty()) return;  // lenient: already rejected; just count its rows
+    if (reader->fields().size() != cols.width) {
+      invalid(b, line, fmt::format("{} fields where the header has {}", reader->fields().size(),
+                                   cols.width));
+      return;
+    }
+    Trial& t = b.trial;
+    if (!t.times.empty()) {
+      check_constant(b, kTarget, get(kTarget), b.target_text, true);
+      check_constant(b, kStrategy, get(kStrategy), b.strategy_text, false);
+      check_constant(b, kVariant, get(kVariant), b.variant_text, false);
+      if (!options.pad_speed && cols.index[kPadSpeed] >= 0) {
+        check_constant(b, kPadSpeed, get(kPadSpeed), b.pad_speed_text, true);
+      }
+    }
+    const std::string_view ts = get(kT);
+    const auto tv = parse_double(ts);
+    if (!tv) {
+      invalid(b, line, ts.empty() ? fmt::format("column '{}': empty (expected a time in seconds)",
+                                                cols.name[kT])
+                                  : fmt::format("column '{}': '{}' is not a number (expected a "
+                                                "time in seconds, decimal point)", cols.name[kT], ts));
+      return;
+    }
+    const std::string_view ps = get(kPad);
+    const auto pv = parse_double(ps);
+    if (!pv) {
+      invalid(b, line, ps.empty() ? fmt::format("column '{}': empty (expected a pad position in "
+                                                "[0, 1])", cols.name[kPad])
+                                  : fmt::format("column '{}': '{}' is not a number (expected a pad "
+                                                "position in [0, 1])", cols.name[kPad], ps));
+      return;
+    }
+    if (*pv < 0 || *pv > 1) {
+      invalid(b, line, fmt::format("column '{}': {} is outside [0, 1]", cols.name[kPad], ps));
+      return;
+    }
+    if (!t.times.empty() && !(*tv > t.times.back())) {
+      invalid(b, line, fmt::format("column '{}': {} is not after the previous sample's {} (line "
+                                   "{}; times must strictly increase)", cols.name[kT], ts,
+                                   format_double(t.times.back()), b.last_line));
+      return;
+    }
+    t.times.push_back(*tv);
+    t.pads.push_back(*pv);
+    b.last_line = line;
+  }
+
+  // Ends a trial: true when it is valid (then it is in b.trial), false when rejected.
+  bool finish(Builder& b) {
+    if (b.error.empty() && b.trial.times.size() < 2) {
+      const std::string what = fmt::format(
+          "{} valid sample(s); a trial needs at least 2 (metrics.md)", b.trial.times.size());
+      if (strict()) throw_at(b.file, b.trial.line, what, b.label());
+      b.error = fmt::format("{}:{}: {} (trial {})", names[b.file], b.trial.line, what, b.label());
+      b.error_line = b.trial.line;
+      b.error_file = b.file;
+    }
+    if (b.error.empty()) {
+      rows_ok += b.trial.rows;
+      return true;
+    }
+    rows_bad += b.trial.rows;
+    ++trials_bad;
+    Rejection r;
+    r.file = names[b.error_file];
+    r.line = b.error_line;
+    r.participant = b.participant;
+    r.condition = b.condition;
+    r.iteration = b.iteration;
+    r.rows = b.trial.rows;
+    r.reason = b.error;
+    options.on_reject(r);
+    return false;
+  }
+
+  void make_key(std::string_view p, std::string_view c, std::string_view it) {
+    key_scratch.clear();
+    key_scratch.append(p).push_back('\x1f');
+    key_scratch.append(c).push_back('\x1f');
+    key_scratch.append(it);
+  }
+
+  // Streaming: the next valid trial into `out`.
+  bool next_streaming(Trial& out) {
+    for (;;) {
+      if (!reader) {
+        if (!open_next_file()) {
+          if (!have_cur) return false;
+          have_cur = false;
+          if (finish(cur)) {
+            std::swap(out, cur.trial);
+            return true;
+          }
+          continue;
+        }
+      }
+      if (!reader->next()) {
+        // A trial never continues into the next file: end it here.
+        bytes_done += reader->bytes_consumed();
+        reader.reset();
+        if (have_cur) {
+          have_cur = false;
+          if (finish(cur)) {
+            std::swap(out, cur.trial);
+            return true;
+          }
+        }
+        continue;
+      }
+      ++rows_read;
+      const std::string_view p = get(kParticipant), c = get(kCondition), it = get(kIteration);
+      if (have_cur && p == cur.participant && c == cur.condition && it == cur.iteration) {
+        add_row(cur);
+        continue;
+      }
+      bool emitted = false;
+      if (have_cur) emitted = finish(cur);
+      if (emitted) std::swap(out, cur.trial);
+      have_cur = true;
+      start(cur, p, c, it);
+      make_key(p, c, it);
+      const auto [pos, inserted] = seen.try_emplace(key_scratch, Location{file_index, reader->line()});
+      if (!inserted) {
+        const Location& before = pos->second;
+        invalid(cur, reader->line(),
+                fmt::format("rows of this trial already appeared at {}:{}{} (a trial's rows must "
+                            "be contiguous and in one file; --unsorted buffers and groups them)",
+                            names[before.file], before.line,
+                            before.file != file_index ? " (it spans two files)" : ""));
+      }
+      add_row(cur);
+      if (emitted) return true;
+    }
+  }
+
+  // Unsorted: read everything, group by key (first appearance order), then hand out.
+  void buffer_all() {
+    buffered = true;
+    while (open_next_file()) {
+      while (reader->next()) {
+        ++rows_read;
+        const std::string_view p = get(kParticipant), c = get(kCondition), it = get(kIteration);
+        make_key(p, c, it);
+        auto [pos, inserted] = group_index.try_emplace(key_scratch, groups.size());
+        if (inserted) {
+          groups.emplace_back();
+          start(groups.back(), p, c, it);
+        }
+        add_row(groups[pos->second]);
+      }
+    }
+    group_index.clear();
+  }
+
+  bool next_buffered(Trial& out) {
+    if (!buffered) buffer_all();
+    while (next_group < groups.size()) {
+      Builder& b = groups[next_group++];
+      const bool ok = finish(b);
+      if (ok) {
+        out = std::move(b.trial);
+        b = Builder{};
+        return true;
+      }
+      b = Builder{};
+    }
+    return false;
+  }
+};
+
+TraceReader::TraceReader(std::vector<std::string> files, TraceOptions options)
+    : impl_(std::make_unique<Impl>()) {
+  for (const auto& [field, column] : options.column_map) {
+    if (std::find(kFieldNames.begin(), kFieldNames.end(), field) == kFieldNames.end()) {
+      throw UsageError(fmt::format("--map {}={}: unknown field '{}' (known: {})", field, column,
+                                   field, fmt::join(kFieldNames, ", ")));
+    }
+    if (trim(column).empty()) {
+      throw UsageError(fmt::format("--map {}=: the column name is empty", field));
+    }
+  }
+  if (options.pad_speed && !(*options.pad_speed > 0 && *options.pad_speed < 1e300)) {
+    throw UsageError(fmt::format("--pad-speed: {} must be a number > 0 (pad units per second)",
+                                 *options.pad_speed));
+  }
+  if (files.empty()) throw UsageError("no input files given");
+  impl_->files = std::move(files);
+  for (const auto& f : impl_->files) impl_->names.push_back(display_name(f));
+  impl_->options = std::move(options);
+}
+
+TraceReader::~TraceReader() = default;
+
+bool TraceReader::next(Trial& trial) {
+  return impl_->options.unsorted ? impl_->next_buffered(trial) : impl_->next_streaming(trial);
+}
+
+std::uint64_t TraceReader::rows_read() const noexcept { return impl_->rows_read; }
+std::uint64_t TraceReader::rows_in_trials() const noexcept { return impl_->rows_ok; }
+std::uint64_t TraceReader::rows_rejected() const noexcept { return impl_->rows_bad; }
+std::uint64_t TraceReader::trials_rejected() const noexcept { return impl_->trials_bad; }
+std::uint64_t TraceReader::bytes_consumed() const noexcept {
+  return impl_->bytes_done + (impl_->reader ? impl_->reader->bytes_consumed() : 0);
+}
+std::size_t TraceReader::files_read() const noexcept { return impl_->next_file; }
+
+}  // namespace feint::io

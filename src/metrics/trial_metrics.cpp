@@ -1,0 +1,175 @@
+#include "feint/metrics/trial_metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "feint/error.hpp"
+#include "feint/io/number.hpp"
+
+namespace feint::metrics {
+
+std::string to_string(ConfusionNorm norm) { return norm == ConfusionNorm::speed ? "speed" : "raw"; }
+
+std::optional<ConfusionNorm> parse_confusion_norm(std::string_view text) {
+  const std::string s = io::to_lower(io::trim(text));
+  if (s == "speed") return ConfusionNorm::speed;
+  if (s == "raw") return ConfusionNorm::raw;
+  return std::nullopt;
+}
+
+void MetricSettings::validate() const {
+  auto fraction_ok = [](double f) { return std::isfinite(f) && f >= 0 && f < 1; };
+  if (!fraction_ok(trim_start)) {
+    throw UsageError(fmt::format("--trim-start: {} is outside [0, 1) (a fraction of the trial's "
+                                 "duration)", trim_start));
+  }
+  if (!fraction_ok(trim_end)) {
+    throw UsageError(fmt::format("--trim-end: {} is outside [0, 1) (a fraction of the trial's "
+                                 "duration)", trim_end));
+  }
+  if (!(trim_start + trim_end < 1)) {
+    throw UsageError(fmt::format("--trim-start + --trim-end = {} must be < 1 (nothing would be "
+                                 "left of the trial)", trim_start + trim_end));
+  }
+  if (!std::isfinite(deadband) || deadband < 0) {
+    throw UsageError(fmt::format("--deadband: {} must be a finite number >= 0 (pad units)",
+                                 deadband));
+  }
+  if (pad_speed && !(std::isfinite(*pad_speed) && *pad_speed > 0)) {
+    throw UsageError(fmt::format("--pad-speed: {} must be a finite number > 0 (pad units per "
+                                 "second)", *pad_speed));
+  }
+}
+
+namespace detail {
+
+// Integral of |g(x)| over [x0, x1] for g linear from g0 to g1: a trapezoid, or two triangles when
+// g changes sign inside (metrics.md: exact, no quadrature).
+inline double abs_linear_integral(double g0, double g1, double h) {
+  if ((g0 >= 0 && g1 >= 0) || (g0 <= 0 && g1 <= 0)) return 0.5 * (std::fabs(g0) + std::fabs(g1)) * h;
+  const double a0 = std::fabs(g0), a1 = std::fabs(g1);
+  return 0.5 * h * (a0 * a0 + a1 * a1) / (a0 + a1);
+}
+
+}  // namespace detail
+
+TrialScore score_trace(std::span<const double> times, std::span<const double> pads, double target,
+                       std::optional<double> pad_speed, const MetricSettings& settings) {
+  const std::size_t n = times.size();
+  if (pads.size() != n) {
+    throw InvalidData(fmt::format("{} times but {} pad positions", n, pads.size()));
+  }
+  if (n < 2) throw InvalidData(fmt::format("{} sample(s); a trial needs at least 2", n));
+  if (!(std::isfinite(target) && target >= 0 && target <= 1)) {
+    throw InvalidData(fmt::format("target {} is outside [0, 1]", target));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(times[i])) throw InvalidData(fmt::format("sample {}: time is not finite", i));
+    if (!(std::isfinite(pads[i]) && pads[i] >= 0 && pads[i] <= 1)) {
+      throw InvalidData(fmt::format("sample {}: pad {} is outside [0, 1]", i, pads[i]));
+    }
+    if (i > 0 && !(times[i] > times[i - 1])) {
+      throw InvalidData(fmt::format("sample {}: time {} is not after {} (times must strictly "
+                                    "increase)", i, times[i], times[i - 1]));
+    }
+  }
+  const std::optional<double> v = settings.pad_speed ? settings.pad_speed : pad_speed;
+  if (v && !(std::isfinite(*v) && *v > 0)) {
+    throw InvalidData(fmt::format("pad speed {} must be > 0 (pad units per second)", *v));
+  }
+  if (settings.norm == ConfusionNorm::speed && !v) {
+    throw InvalidData("the pad speed is unknown: the 'speed' confusion normalisation needs it "
+                      "(give --pad-speed V, a pad_speed column, or use --confusion-norm raw)");
+  }
+
+  // Work in w = t - t0 (the time weight of metrics.md) so that the result does not depend on where
+  // the clock started.
+  const double t0 = times[0];
+  auto w = [&](std::size_t i) { return times[i] - t0; };
+  const double tau = w(n - 1);
+  if (!(tau > 0) || !std::isfinite(tau)) {
+    throw InvalidData(fmt::format("duration {} must be > 0", tau));
+  }
+  const double a = settings.trim_start * tau;
+  const double b = (1 - settings.trim_end) * tau;
+
+  TrialScore s;
+  s.n_samples = n;
+  s.duration = tau;
+  s.final_pad = pads[n - 1];
+
+  // Direction of each segment, first direction, reversal, number of reversals, overspeed.
+  const double eps = settings.deadband;
+  int first_dir = 0;
+  int last_dir = 0;
+  std::size_t rev_segment = n;  // none
+  s.overspeed_segments = v ? 0 : -1;
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const double d = pads[i + 1] - pads[i];
+    const int dir = d > eps ? 1 : (d < -eps ? -1 : 0);
+    if (dir != 0) {
+      if (first_dir == 0) first_dir = dir;
+      if (dir == -first_dir && rev_segment == n) rev_segment = i;
+      if (last_dir != 0 && dir != last_dir) ++s.reversals;
+      last_dir = dir;
+    }
+    if (v) {
+      const double speed = std::fabs(d) / (times[i + 1] - times[i]);
+      if (speed > *v * (1 + kOverspeedTolerance)) ++s.overspeed_segments;
+    }
+  }
+  s.reversal_time = rev_segment < n ? w(rev_segment) : std::numeric_limits<double>::quiet_NaN();
+
+  // Error: exact integral of |T - mu| over [a, b].
+  auto mu_at = [&](std::size_t i, double x) {  // mu at w = x inside segment i
+    const double x0 = w(i), x1 = w(i + 1);
+    if (x <= x0) return pads[i];
+    if (x >= x1) return pads[i + 1];
+    return pads[i] + (pads[i + 1] - pads[i]) * ((x - x0) / (x1 - x0));
+  };
+  double err_integral = 0;
+  const double c = rev_segment < n ? std::max(a, w(rev_segment)) : b;
+  double moving = 0;  // M (speed) or the raw sum
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const double x0 = w(i), x1 = w(i + 1);
+    if (x1 <= a) continue;
+    if (x0 >= b) break;
+    const double lo = std::max(x0, a), hi = std::min(x1, b);
+    if (hi > lo) {
+      err_integral += detail::abs_linear_integral(target - mu_at(i, lo), target - mu_at(i, hi), hi - lo);
+    }
+    if (rev_segment < n) {
+      const double cs = std::max(x0, c), ce = std::min(x1, b);
+      if (ce > cs) {
+        const double seg_speed = std::fabs(pads[i + 1] - pads[i]) / (times[i + 1] - times[i]);
+        const double weight = 0.5 * (ce * ce - cs * cs);  // integral of w over [cs, ce]
+        const double rate = settings.norm == ConfusionNorm::speed ? std::min(1.0, seg_speed / *v)
+                                                                  : seg_speed;
+        moving += rate * weight;
+      }
+    }
+  }
+  // Rounding can push a mean of values in [0, 1] an ulp outside; the true values cannot be.
+  s.error = std::clamp(err_integral / (b - a), 0.0, 1.0);
+  if (settings.norm == ConfusionNorm::speed) {
+    const double denom = 0.5 * (b * b - a * a);
+    s.confusion = std::clamp(moving / denom, 0.0, 1.0);
+  } else {
+    s.confusion = moving / tau;
+  }
+  return s;
+}
+
+TrialScore score_trial(const io::Trial& trial, const MetricSettings& settings) {
+  try {
+    return score_trace(trial.times, trial.pads, trial.target, trial.pad_speed, settings);
+  } catch (const InvalidData& e) {
+    throw InvalidData(fmt::format("{}:{}: {} (trial {})", trial.file, trial.line, e.what(),
+                                  trial.label()));
+  }
+}
+
+}  // namespace feint::metrics
