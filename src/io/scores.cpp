@@ -1,0 +1,366 @@
+#include "feint/io/scores.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <tuple>
+
+#include <fmt/format.h>
+
+#include "feint/error.hpp"
+#include "feint/io/csv.hpp"
+#include "feint/io/number.hpp"
+
+namespace feint::io {
+
+namespace {
+
+std::string header_list(const CsvReader& reader) {
+  std::string out;
+  for (const auto& h : reader.header()) {
+    if (!out.empty()) out += ", ";
+    out += h;
+  }
+  return out;
+}
+
+int require_column(const CsvReader& reader, const std::string& name, std::string_view role) {
+  const int i = reader.column(name);
+  if (i < 0) {
+    throw InvalidData(fmt::format("{}:1: column '{}' ({}) is missing; the header has: {}",
+                                  reader.path(), name, role, header_list(reader)));
+  }
+  return i;
+}
+
+std::string trial_key(const ScoreRecord& r, bool has_condition) {
+  return has_condition ? fmt::format("{}/{}/{}", r.participant, r.condition, r.iteration)
+                       : fmt::format("{}/{}", r.participant, r.iteration);
+}
+
+}  // namespace
+
+std::vector<std::string> ScoresTable::conditions() const {
+  std::vector<std::string> out;
+  std::set<std::string> seen;
+  for (const auto& r : records) {
+    if (seen.insert(r.condition).second) out.push_back(r.condition);
+  }
+  if (out.empty()) out.emplace_back();
+  return out;
+}
+
+std::vector<long long> ScoresTable::iterations() const {
+  std::set<long long> s;
+  for (const auto& r : records) s.insert(r.iteration);
+  return {s.begin(), s.end()};
+}
+
+int ScoresTable::metric_index(const std::string& name) const noexcept {
+  const std::string lower = to_lower(name);
+  for (std::size_t i = 0; i < metrics.size(); ++i) {
+    if (to_lower(metrics[i]) == lower) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+ScoresTable load_scores(const std::string& path, const ScoresOptions& options) {
+  CsvReader reader(path);
+  ScoresTable table;
+  table.path = path;
+  table.metrics = options.metrics;
+  const int ip = require_column(reader, options.participant_column, "participant");
+  const int ii = require_column(reader, options.iteration_column, "iteration");
+  const int ic = reader.column(options.condition_column);
+  table.has_condition = ic >= 0;
+  std::vector<int> im;
+  for (const auto& m : options.metrics) {
+    const int i = reader.column(m);
+    if (i < 0) {
+      throw InvalidData(fmt::format("{}:1: metric column '{}' is missing; the header has: {}",
+                                    path, m, header_list(reader)));
+    }
+    im.push_back(i);
+  }
+
+  // (participant, condition, iteration) -> line, to name both places of a duplicate.
+  std::map<std::tuple<std::string, std::string, long long>, std::uint64_t> seen;
+  while (reader.next()) {
+    ScoreRecord rec;
+    rec.line = reader.line();
+    rec.participant = std::string(trim(reader.field(static_cast<std::size_t>(ip))));
+    if (table.has_condition) {
+      rec.condition = std::string(trim(reader.field(static_cast<std::size_t>(ic))));
+    }
+    const std::string_view it_text = reader.field(static_cast<std::size_t>(ii));
+    if (rec.participant.empty()) {
+      throw InvalidData(fmt::format("{}:{}: column '{}': empty participant (expected an id)", path,
+                                    rec.line, reader.header()[static_cast<std::size_t>(ip)]));
+    }
+    if (table.has_condition && rec.condition.empty()) {
+      throw InvalidData(fmt::format("{}:{}: column '{}': empty condition (participant {})", path,
+                                    rec.line, reader.header()[static_cast<std::size_t>(ic)],
+                                    rec.participant));
+    }
+    const auto iteration = parse_integer(it_text);
+    if (!iteration) {
+      throw InvalidData(fmt::format(
+          "{}:{}: column '{}': '{}' is not a whole number (participant {}{}; expected the "
+          "iteration number)",
+          path, rec.line, reader.header()[static_cast<std::size_t>(ii)], it_text, rec.participant,
+          table.has_condition ? "/" + rec.condition : std::string()));
+    }
+    rec.iteration = *iteration;
+    for (std::size_t m = 0; m < im.size(); ++m) {
+      const std::string_view text = reader.field(static_cast<std::size_t>(im[m]));
+      if (trim(text).empty()) {
+        rec.values.emplace_back();  // missing: excluded from this metric's tests, and counted
+        continue;
+      }
+      const auto v = parse_double(text);
+      if (!v) {
+        throw InvalidData(fmt::format("{}:{}: column '{}': '{}' is not a number ({}; expected a "
+                                      "finite number with a decimal point, or an empty cell)",
+                                      path, rec.line,
+                                      reader.header()[static_cast<std::size_t>(im[m])], text,
+                                      trial_key(rec, table.has_condition)));
+      }
+      rec.values.push_back(*v);
+    }
+    const auto [pos, inserted] =
+        seen.emplace(std::make_tuple(rec.participant, rec.condition, rec.iteration), rec.line);
+    if (!inserted) {
+      throw InvalidData(fmt::format(
+          "{}:{}: duplicate participant/{}iteration {}: already on line {} (one value per "
+          "participant and iteration is expected)",
+          path, rec.line, table.has_condition ? "condition/" : "",
+          trial_key(rec, table.has_condition), pos->second));
+    }
+    table.records.push_back(std::move(rec));
+  }
+  if (table.records.empty()) {
+    throw InvalidData(fmt::format("{}: no data rows (expected one row per participant and "
+                                  "iteration after the header)",
+                                  path));
+  }
+  return table;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sidecar
+
+namespace {
+
+std::string read_small_file(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  if (!in) return {};
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Minimal reader of a flat JSON object {"key": value, ...} or nested objects: collects every
+// "key": scalar pair (strings unescaped for \" and \\ only; numbers/booleans as written), with
+// nested keys joined by '.'.
+void collect_json(std::string_view s, std::size_t& i, const std::string& prefix,
+                  std::vector<std::pair<std::string, std::string>>& out, int depth);
+
+void skip_ws(std::string_view s, std::size_t& i) {
+  while (i < s.size() && (s[i] == ' ' || s[i] == '\n' || s[i] == '\r' || s[i] == '\t')) ++i;
+}
+
+std::string read_json_string(std::string_view s, std::size_t& i) {
+  std::string out;
+  ++i;  // opening quote
+  while (i < s.size() && s[i] != '"') {
+    if (s[i] == '\\' && i + 1 < s.size()) {
+      ++i;
+      switch (s[i]) {
+        case 'n': out += '\n'; break;
+        case 't': out += '\t'; break;
+        default: out += s[i];
+      }
+    } else {
+      out += s[i];
+    }
+    ++i;
+  }
+  if (i < s.size()) ++i;  // closing quote
+  return out;
+}
+
+void skip_json_value(std::string_view s, std::size_t& i) {
+  int level = 0;
+  while (i < s.size()) {
+    const char c = s[i];
+    if (c == '"') {
+      read_json_string(s, i);
+      if (level == 0) return;
+      continue;
+    }
+    if (c == '{' || c == '[') ++level;
+    if (c == '}' || c == ']') {
+      if (level == 0) return;
+      --level;
+      ++i;
+      if (level == 0) return;
+      continue;
+    }
+    if (level == 0 && c == ',') return;
+    ++i;
+  }
+}
+
+void collect_json(std::string_view s, std::size_t& i, const std::string& prefix,
+                  std::vector<std::pair<std::string, std::string>>& out, int depth) {
+  skip_ws(s, i);
+  if (i >= s.size() || s[i] != '{' || depth > 8) {
+    skip_json_value(s, i);
+    return;
+  }
+  ++i;
+  while (i < s.size()) {
+    skip_ws(s, i);
+    if (i < s.size() && s[i] == '}') {
+      ++i;
+      return;
+    }
+    if (i >= s.size() || s[i] != '"') return;  // malformed: stop quietly
+    const std::string key = prefix + read_json_string(s, i);
+    skip_ws(s, i);
+    if (i >= s.size() || s[i] != ':') return;
+    ++i;
+    skip_ws(s, i);
+    if (i < s.size() && s[i] == '{') {
+      collect_json(s, i, key + ".", out, depth + 1);
+    } else if (i < s.size() && s[i] == '"') {
+      out.emplace_back(key, read_json_string(s, i));
+    } else if (i < s.size() && s[i] == '[') {
+      const std::size_t start = i;
+      skip_json_value(s, i);
+      out.emplace_back(key, std::string(s.substr(start, i - start)));
+    } else {
+      const std::size_t start = i;
+      while (i < s.size() && s[i] != ',' && s[i] != '}') ++i;
+      std::string v(s.substr(start, i - start));
+      while (!v.empty() && (v.back() == ' ' || v.back() == '\n' || v.back() == '\r')) v.pop_back();
+      out.emplace_back(key, v);
+    }
+    skip_ws(s, i);
+    if (i < s.size() && s[i] == ',') ++i;
+  }
+}
+
+// key=value or key: value lines (# comments).
+void collect_lines(std::string_view s, std::vector<std::pair<std::string, std::string>>& out) {
+  std::size_t i = 0;
+  while (i < s.size()) {
+    auto j = s.find('\n', i);
+    if (j == std::string_view::npos) j = s.size();
+    std::string_view line = trim(s.substr(i, j - i));
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    i = j + 1;
+    if (line.empty() || line.front() == '#') continue;
+    const auto k = line.find_first_of("=:");
+    if (k == std::string_view::npos) continue;
+    out.emplace_back(std::string(trim(line.substr(0, k))), std::string(trim(line.substr(k + 1))));
+  }
+}
+
+}  // namespace
+
+ScoresProvenance read_scores_provenance(const std::string& scores_path) {
+  ScoresProvenance prov;
+  if (scores_path.empty() || scores_path == "-") return prov;
+  namespace fs = std::filesystem;
+  const fs::path p(scores_path);
+  fs::path stem = p;
+  if (stem.extension() == ".gz") stem.replace_extension();
+  stem.replace_extension();  // scores.csv -> scores
+  const std::vector<fs::path> candidates = {
+      fs::path(scores_path + ".json"),     fs::path(scores_path + ".meta.json"),
+      fs::path(stem.string() + ".json"),  fs::path(stem.string() + ".meta.json"),
+      fs::path(stem.string() + ".sidecar.json"), fs::path(scores_path + ".settings"),
+  };
+  for (const auto& c : candidates) {
+    std::error_code ec;
+    if (!fs::is_regular_file(c, ec)) continue;
+    const std::string text = read_small_file(c);
+    if (text.empty()) continue;
+    std::size_t i = 0;
+    skip_ws(text, i);
+    if (i < text.size() && text[i] == '{') {
+      collect_json(text, i, "", prov.settings, 0);
+    } else {
+      collect_lines(text, prov.settings);
+    }
+    prov.sidecar_path = c.string();
+    break;
+  }
+  // The confusion normalisation: `feint score` writes settings.confusion_norm ("speed"/"raw") and
+  // describes the unit in units.confusion; other tools may write any key naming a normalisation.
+  std::string norm, unit;
+  for (const auto& [k, v] : prov.settings) {
+    const std::string key = to_lower(k);
+    if (norm.empty() && (key.find("confusion_norm") != std::string::npos ||
+                         key.find("normali") != std::string::npos)) {
+      norm = v;
+    }
+    if (unit.empty() && key == "units.confusion") unit = v;
+  }
+  if (!norm.empty()) {
+    prov.confusion_normalisation = unit.empty() ? norm : norm + " (confusion in " + unit + ")";
+  }
+  return prov;
+}
+
+// ---------------------------------------------------------------------------------------------
+// One numeric column
+
+NumericColumn load_numeric_column(const std::string& path, const std::string& column,
+                                  const std::string& by) {
+  CsvReader reader(path);
+  NumericColumn out;
+  out.path = path;
+  out.column = column;
+  out.by = by;
+  const int iv = require_column(reader, column, "--column");
+  const int ib = by.empty() ? -1 : require_column(reader, by, "--by");
+  std::map<std::string, std::size_t> index;
+  while (reader.next()) {
+    std::string group;
+    if (ib >= 0) group = std::string(trim(reader.field(static_cast<std::size_t>(ib))));
+    auto [it, inserted] = index.emplace(group, out.groups.size());
+    if (inserted) {
+      out.groups.push_back(group);
+      out.values.emplace_back();
+      out.missing.push_back(0);
+    }
+    const std::size_t g = it->second;
+    const std::string_view text = reader.field(static_cast<std::size_t>(iv));
+    if (trim(text).empty()) {
+      ++out.missing[g];
+      continue;
+    }
+    const auto v = parse_double(text);
+    if (!v) {
+      throw InvalidData(fmt::format(
+          "{}:{}: column '{}': '{}' is not a number ({}expected a finite number with a decimal "
+          "point, or an empty cell)",
+          path, reader.line(), reader.header()[static_cast<std::size_t>(iv)], text,
+          ib >= 0 ? fmt::format("{} {}; ", reader.header()[static_cast<std::size_t>(ib)], group)
+                  : std::string()));
+    }
+    out.values[g].push_back(*v);
+  }
+  if (out.groups.empty()) {
+    throw InvalidData(fmt::format("{}: no data rows (expected at least one row after the header)",
+                                  path));
+  }
+  return out;
+}
+
+}  // namespace feint::io
