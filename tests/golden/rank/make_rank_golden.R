@@ -146,11 +146,14 @@ write.csv(do.call(rbind, kw), file.path(out_dir, "kruskal.csv"), row.names = FAL
 # ---- psych::alpha: raw_alpha and alpha.drop$raw_alpha (complete cases) ------------------------
 al <- list()
 add_alpha <- function(label, items) {
-  m <- na.omit(as.data.frame(items))
+  m <- na.omit(as.data.frame(items, col.names = paste0("item", seq_along(items))))
   a <- suppressWarnings(suppressMessages(psych::alpha(m, warnings = FALSE)))
+  # alpha.drop has a row per item psych kept (it deletes items without variance): align by name.
+  drop <- a$alpha.drop$raw_alpha[match(names(m), rownames(a$alpha.drop))]
   al[[length(al) + 1]] <<- data.frame(
     case = label, items = paste(vapply(items, vec, ""), collapse = "|"),
-    raw_alpha = g17(a$total$raw_alpha), drop = vec(a$alpha.drop$raw_alpha), n = nrow(m))
+    raw_alpha = g17(a$total$raw_alpha), drop = vec(drop), n = nrow(m),
+    items_used = nrow(a$alpha.drop))
 }
 scale_items <- function(n, k, loading = 0.7, likert_scale = TRUE) {
   f <- rnorm(n)
@@ -173,6 +176,12 @@ invisible(capture.output({
   items[[3]][c(17, 25, 31)] <- NA
   add_alpha("likert_k3_missing", items)
   add_alpha("paper_like_k4_n25", scale_items(25, 4, 0.6))
+  items <- scale_items(20, 4)
+  items[[3]] <- rep(5, 20)  # no variance: psych deletes the item (and warns)
+  add_alpha("likert_k4_constant_item", items)
+  items <- scale_items(20, 3)
+  items[[1]] <- rep(4, 20)
+  add_alpha("likert_k3_constant_item_leaves_two", items)
 }))
 write.csv(do.call(rbind, al), file.path(out_dir, "alpha.csv"), row.names = FALSE, quote = FALSE)
 cat("wrote", nrow(wilcoxon), "wilcox.test cases,", length(dist), "distribution values,",

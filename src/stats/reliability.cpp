@@ -1,0 +1,120 @@
+// Cronbach's alpha, reproducing psych::alpha()'s raw_alpha and alpha.drop.
+#include "feint/stats/reliability.hpp"
+
+#include <cmath>
+#include <vector>
+
+#include <fmt/format.h>
+
+namespace feint::stats {
+namespace {
+
+// Raw alpha of the items `use` (indices into the covariance matrix c, order k x k).
+double raw_alpha(const std::vector<double>& c, std::size_t k, const std::vector<std::size_t>& use) {
+  double trace = 0.0;
+  double total = 0.0;
+  for (std::size_t a : use) {
+    trace += c[a * k + a];
+    for (std::size_t b : use) total += c[a * k + b];
+  }
+  const double m = static_cast<double>(use.size());
+  return (1.0 - trace / total) * (m / (m - 1.0));
+}
+
+}  // namespace
+
+CronbachAlpha cronbach_alpha(std::span<const std::vector<double>> items) {
+  CronbachAlpha out;
+  const std::size_t k = items.size();
+  out.if_dropped.assign(k, std::nullopt);
+  if (k < 2) {
+    out.note = fmt::format("{} item(s): Cronbach's alpha needs at least 2", k);
+    return out;
+  }
+  const std::size_t rows = items[0].size();
+  for (std::size_t j = 1; j < k; ++j)
+    if (items[j].size() != rows) {
+      out.note = fmt::format("items have different lengths ({} and {} answers)", rows, items[j].size());
+      return out;
+    }
+
+  // Complete cases: respondents who answered every item.
+  std::vector<std::size_t> complete;
+  for (std::size_t i = 0; i < rows; ++i) {
+    bool ok = true;
+    for (const auto& item : items) ok = ok && !std::isnan(item[i]);
+    if (ok) complete.push_back(i);
+  }
+  out.n = complete.size();
+  if (out.n < 2) {
+    out.note = fmt::format("{} respondent(s) answered every item: at least 2 are needed", out.n);
+    return out;
+  }
+
+  // Covariance matrix, two passes (means, then centred cross products) for accuracy.
+  const double nd = static_cast<double>(out.n);
+  std::vector<double> mean(k, 0.0);
+  for (std::size_t j = 0; j < k; ++j) {
+    double s = 0.0;
+    for (std::size_t i : complete) s += items[j][i];
+    mean[j] = s / nd;
+  }
+  std::vector<double> c(k * k, 0.0);
+  for (std::size_t a = 0; a < k; ++a)
+    for (std::size_t b = a; b < k; ++b) {
+      double s = 0.0;
+      for (std::size_t i : complete) s += (items[a][i] - mean[a]) * (items[b][i] - mean[b]);
+      c[a * k + b] = c[b * k + a] = s / (nd - 1.0);
+    }
+
+  // psych deletes items without variance (with a warning) before computing alpha.
+  std::vector<std::size_t> use;
+  std::string constant;
+  for (std::size_t j = 0; j < k; ++j) {
+    if (c[j * k + j] > 0.0) {
+      use.push_back(j);
+    } else {
+      constant += fmt::format("{}{}", constant.empty() ? "" : ", ", j + 1);
+    }
+  }
+  out.items_used = use.size();
+  if (!constant.empty())
+    out.note = fmt::format("item(s) {} have no variance and were left out (as psych::alpha does)", constant);
+  auto add_note = [&](const std::string& text) {
+    out.note += out.note.empty() ? text : "; " + text;
+  };
+  if (use.size() < 2) {
+    add_note(fmt::format("{} item(s) with variance: Cronbach's alpha needs at least 2", use.size()));
+    return out;
+  }
+  double total_var = 0.0;
+  for (std::size_t a : use)
+    for (std::size_t b : use) total_var += c[a * k + b];
+  if (!(total_var > 0.0)) {
+    add_note("the total score has no variance (items cancel out): alpha is undefined");
+    return out;
+  }
+  out.raw_alpha = raw_alpha(c, k, use);
+
+  if (use.size() == 2) {
+    // psych's special case for two items: "alpha if dropped" is the regression-like C12 / C_jj
+    // of the remaining item j.
+    const std::size_t a = use[0], b = use[1];
+    const double cov = c[a * k + b];
+    if (c[b * k + b] > 0.0) out.if_dropped[a] = cov / c[b * k + b];
+    if (c[a * k + a] > 0.0) out.if_dropped[b] = cov / c[a * k + a];
+    return out;
+  }
+  for (std::size_t drop : use) {
+    std::vector<std::size_t> rest;
+    for (std::size_t j : use)
+      if (j != drop) rest.push_back(j);
+    double rest_total = 0.0;
+    for (std::size_t a : rest)
+      for (std::size_t b : rest) rest_total += c[a * k + b];
+    if (rest_total > 0.0) out.if_dropped[drop] = raw_alpha(c, k, rest);
+  }
+  return out;
+}
+
+}  // namespace feint::stats
