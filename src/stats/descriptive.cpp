@@ -155,7 +155,7 @@ std::optional<double> autocorr_lag1(std::span<const double> x) {
 
 namespace {
 
-std::vector<double> finite_values(std::span<const double> x) {
+std::vector<double> without_nan(std::span<const double> x) {
   std::vector<double> v;
   v.reserve(x.size());
   for (double d : x)
@@ -168,7 +168,7 @@ std::vector<double> finite_values(std::span<const double> x) {
 Description describe(std::span<const double> x, double conf_level) {
   detail::check_conf_level(conf_level);
   Description d;
-  std::vector<double> v = finite_values(x);
+  std::vector<double> v = without_nan(x);
   d.n = v.size();
   if (v.empty()) {
     d.note = "no values";
@@ -188,13 +188,16 @@ Description describe(std::span<const double> x, double conf_level) {
   }
   d.sd = s.sd();
   d.se = s.se();
+  if (!(*d.sd > 0)) {
+    d.note = "constant data: confidence interval and lag-1 autocorrelation undefined";
+    return d;
+  }
   const boost::math::students_t dist(static_cast<double>(v.size() - 1));
   const double q = boost::math::quantile(boost::math::complement(dist, (1.0 - conf_level) / 2.0));
   d.conf_low = s.mean - q * *d.se;
   d.conf_high = s.mean + q * *d.se;
-  // The sample order is the input order (for autocorrelation): recompute on the unsorted values.
-  d.autocorr_lag1 = autocorr_lag1(finite_values(x));
-  if (!d.autocorr_lag1) d.note = "constant data: lag-1 autocorrelation undefined";
+  // Autocorrelation follows the input order, not the sorted one.
+  d.autocorr_lag1 = autocorr_lag1(without_nan(x));
   return d;
 }
 
