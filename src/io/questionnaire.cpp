@@ -347,9 +347,12 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
           "{}: the long layout needs columns '{}' and '{}' (columns: {})", file,
           options.item_column, options.response_column, detail::list_names(header)));
     }
-    if (!options.items.empty()) {
-      throw UsageError("--items picks columns of a wide file; this file is in the long layout");
-    }
+    // --items selects items (rows of other items are skipped, unread) and sets their order.
+    const auto selected = [&](const std::string& item) {
+      if (options.items.empty()) return true;
+      return std::any_of(options.items.begin(), options.items.end(),
+                         [&](const std::string& s) { return detail::iequals(s, item); });
+    };
     // (respondent, item) -> line of the answer, to name both places of a duplicate.
     std::map<std::pair<std::size_t, std::size_t>, std::uint64_t> seen;
     for (std::size_t k = first; k < records.size(); ++k) {
@@ -361,6 +364,7 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
         parser.fail(r.line, fmt::format("column '{}': empty item name (participant {})",
                                         header[static_cast<std::size_t>(item_col)], participant));
       }
+      if (!selected(item)) continue;
       std::size_t it = 0;
       while (it < q.items.size() && q.items[it] != item) ++it;
       if (it == q.items.size()) {
@@ -380,6 +384,27 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
           parser.parse(r.fields[static_cast<std::size_t>(resp_col)], r.line,
                        header[static_cast<std::size_t>(resp_col)],
                        detail::who(q, participant, condition) + ", item " + item);
+    }
+    if (!options.items.empty()) {
+      // Reorder (and check) the items as --items lists them.
+      Questionnaire sel = q;
+      sel.items.clear();
+      sel.item_columns.clear();
+      sel.responses.clear();
+      for (const auto& name : options.items) {
+        const auto i = q.item_index(name);
+        if (!i) {
+          throw UsageError(fmt::format("--items: no item '{}' in {} (items: {})", name, file,
+                                       detail::list_names(q.items)));
+        }
+        if (std::find(sel.items.begin(), sel.items.end(), q.items[*i]) != sel.items.end()) {
+          throw UsageError(fmt::format("--items: item '{}' is named twice", name));
+        }
+        sel.items.push_back(q.items[*i]);
+        sel.item_columns.push_back(q.item_columns[*i]);
+        sel.responses.push_back(q.responses[*i]);
+      }
+      q = std::move(sel);
     }
   } else {
     std::vector<std::size_t> cols;

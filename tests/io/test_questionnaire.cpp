@@ -295,3 +295,17 @@ TEST(Questionnaire, ScaleAndLabelOptionsParse) {
   EXPECT_EQ(feint::io::builtin_agree_labels(0, 6).front().value, 0);
   EXPECT_EQ(feint::io::builtin_agree_labels(0, 6).back().value, 6);
 }
+
+TEST(Questionnaire, ItemsSelectAndOrderLongLayoutItems) {
+  QuestionnaireOptions o;
+  o.items = {"Trust", "entertainment"};
+  TempCsv f("participant,item,response\nP1,entertainment,5\nP1,notes,free text\nP1,trust,2\n"
+            "P2,trust,3\n");
+  const auto q = load_questionnaire(f.path(), o);
+  EXPECT_EQ(q.items, (std::vector<std::string>{"trust", "entertainment"}));
+  EXPECT_EQ(q.responses[0], (std::vector<std::optional<int>>{2, 3}));
+  EXPECT_EQ(q.responses[1], (std::vector<std::optional<int>>{5, std::nullopt}));
+  EXPECT_EQ(q.rows_read, 4u);
+  o.items = {"honesty"};
+  EXPECT_THROW(load_questionnaire(f.path(), o), UsageError);
+}

@@ -38,7 +38,8 @@ struct QuestionnaireOptions {
   std::string condition_column = "condition";  ///< optional; absent = one condition for everybody
   std::string item_column = "item";            ///< long layout
   std::string response_column = "response";    ///< long layout
-  /// Wide layout: the item columns to use, in this order. Empty = every column that is not the id,
+  /// The items to use, in this order (wide: columns; long: values of the item column, rows of other
+  /// items skipped). Empty = every item; in the wide layout every column that is not the id,
   /// the condition, or a known survey-platform metadata column (Qualtrics, Google Forms).
   std::vector<std::string> items;
   /// Label map for text answers. Empty = the built-in agree/disagree map when the scale has 5 or 7
