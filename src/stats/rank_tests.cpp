@@ -224,6 +224,11 @@ void append_note(std::string& note, const std::string& text) {
 TestResult wilcoxon_signed_rank(std::span<const double> x_in, double mu, const TestOptions& options,
                                 bool correct, std::optional<bool> exact) {
   const std::string test = "wilcoxon_signed_rank";
+  if (!std::isfinite(mu))
+    return TestResult::not_computable(test, "Wilcoxon signed rank test",
+                                      fmt::format("mu = {} is not a finite number (R: \"'mu' must be "
+                                                  "a single number\")",
+                                                  mu));
   const std::vector<double> x = drop_nan(x_in);
   if (x.empty())
     return TestResult::not_computable(

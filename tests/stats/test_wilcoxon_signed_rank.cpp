@@ -132,6 +132,12 @@ TEST(WilcoxonSignedRank, CannotComputeWithoutNonZeroDifferences) {
 
   const std::vector<double> nans{std::nan(""), std::nan("")};
   EXPECT_FALSE(fs::wilcoxon_signed_rank(nans, 0.0).computed);
+
+  const std::vector<double> x{1.0, 2.0, 3.0};
+  const auto bad_mu = fs::wilcoxon_signed_rank(x, std::nan(""));
+  EXPECT_FALSE(bad_mu.computed);
+  EXPECT_NE(bad_mu.note.find("mu"), std::string::npos);
+  EXPECT_FALSE(fs::wilcoxon_signed_rank(x, HUGE_VAL).computed);
 }
 
 TEST(WilcoxonSignedRank, DropsNaNLikeR) {
