@@ -354,7 +354,7 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
   notes.push_back(
       "Rank-test p-values are exact when n < 50 with no ties and no responses equal to the null "
       "value, otherwise from the normal approximation with continuity and tie corrections (R's "
-      "rules; column 'exact' says which ran). Responses equal to R are dropped by the signed-rank "
+      "rules; column 'dist' of the table, 'exact' of the CSV/JSON, says which ran). Responses equal to R are dropped by the signed-rank "
       "test, as in R.");
   notes.push_back(fmt::format(
       "Labels: {0} when p < {1} (rank tests: direction of r; t-tests: of the mean difference); "

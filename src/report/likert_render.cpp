@@ -67,7 +67,7 @@ const LikertSummary* find_summary(const LikertAnalysis& a, const std::string& na
 
 std::string display_name(const LikertAnalysis& a, std::size_t k) {
   if (a.is_composite[k]) return a.names[k] + " (scale)";
-  if (a.reversed[k]) return a.names[k] + " (R)";
+  if (a.reversed[k]) return a.names[k] + " (reversed)";
   return a.names[k];
 }
 
@@ -248,12 +248,16 @@ TextTable reliability_table(const LikertAnalysis& a) {
   return t;
 }
 
+/// One line per item and group: the primary test's APA string, then the t-test's.
 std::vector<std::string> apa_lines(const LikertAnalysis& a) {
   std::vector<std::string> out;
-  for (const auto& row : a.rows) {
-    std::string who = row.metric;
-    if (!a.two_sample && !row.group1.empty() && a.groups.size() > 1) who += " (" + row.group1 + ")";
-    out.push_back(fmt::format("APA, {}, {}: {}", who, row.result.test, row.apa));
+  for (std::size_t i = 0; i + 1 < a.rows.size(); i += 2) {
+    const auto& rank = a.rows[i];
+    std::string who = rank.metric;
+    if (!a.two_sample && !rank.group1.empty() && a.groups.size() > 1) {
+      who += " (" + rank.group1 + ")";
+    }
+    out.push_back(fmt::format("APA, {}: {}; {}", who, rank.apa, a.rows[i + 1].apa));
   }
   return out;
 }
