@@ -87,10 +87,9 @@ std::vector<double> ranksum_distribution(std::size_t m, std::size_t n) {
   return {row(a), row(a) + width};
 }
 
-// Lower tail P(X <= q) or upper tail P(X > q) of a distribution on 0..size-1, each summed
-// directly from the smallest terms up.
-double tail(const std::vector<double>& p, double q, bool lower_tail) {
-  const double k = std::floor(q + 1e-7);  // R_forceint(q + 1e-7) for integral q
+// Lower tail P(X <= k) or upper tail P(X > k) of a distribution on 0..size-1 (k integral), each
+// summed directly from the smallest terms up.
+double tail(const std::vector<double>& p, double k, bool lower_tail) {
   const double last = static_cast<double>(p.size() - 1);
   if (lower_tail) {
     if (k < 0.0) return 0.0;
@@ -110,12 +109,14 @@ double tail(const std::vector<double>& p, double q, bool lower_tail) {
 
 }  // namespace
 
+// R rounds a non-integral q differently in the two functions: psignrank uses
+// R_forceint(q + 1e-7) (round to nearest), pwilcox floor(q + 1e-7).
 double psignrank(double q, std::size_t n, bool lower_tail) {
-  return tail(signrank_distribution(n), q, lower_tail);
+  return tail(signrank_distribution(n), std::nearbyint(q + 1e-7), lower_tail);
 }
 
 double pwilcox(double q, std::size_t m, std::size_t n, bool lower_tail) {
-  return tail(ranksum_distribution(m, n), q, lower_tail);
+  return tail(ranksum_distribution(m, n), std::floor(q + 1e-7), lower_tail);
 }
 
 double quantile7(std::span<const double> sorted, double p) {

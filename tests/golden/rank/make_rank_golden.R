@@ -105,14 +105,15 @@ write.csv(wilcoxon, file.path(out_dir, "wilcoxon.csv"), row.names = FALSE, quote
 dist <- list()
 for (n in c(1, 2, 5, 10, 25, 40, 49)) {
   S <- n * (n + 1) / 2
-  for (q in unique(c(-1, 0, 1, 2, floor(S / 4), floor(S / 2), ceiling(S / 2), S - 3, S - 1, S)))
+  # Non-integral q too: psignrank rounds it to the nearest integer, pwilcox floors it.
+  for (q in unique(c(-1, 0, 1, 2, 2.4, 2.5, floor(S / 4), floor(S / 2), ceiling(S / 2), S - 3, S - 1, S)))
     for (lower in c(TRUE, FALSE))
       dist[[length(dist) + 1]] <- data.frame(kind = "psignrank", q = q, m = n, n = NA, lower = lgl(lower),
                                              p = g17(psignrank(q, n, lower.tail = lower)))
 }
 for (mn in list(c(1, 1), c(2, 3), c(4, 4), c(7, 12), c(20, 20), c(30, 45), c(49, 49), c(49, 1))) {
   m <- mn[1]; n <- mn[2]; S <- m * n
-  for (q in unique(c(-1, 0, 1, 3, floor(S / 3), floor(S / 2), S - 4, S - 1, S)))
+  for (q in unique(c(-1, 0, 1, 2.5, 2.6, 3, floor(S / 3), floor(S / 2), S - 4, S - 1, S)))
     for (lower in c(TRUE, FALSE))
       dist[[length(dist) + 1]] <- data.frame(kind = "pwilcox", q = q, m = m, n = n, lower = lgl(lower),
                                              p = g17(pwilcox(q, m, n, lower.tail = lower)))
