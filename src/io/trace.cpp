@@ -222,15 +222,16 @@ struct TraceReader::Impl {
       }
       cols.name[f] = want;
       if (f == kPadSpeed && options.pad_speed) continue;
+      if (is_mapped) {
+        throw InvalidData(fmt::format("{}:1: no column '{}' (given by --map {}={}; the header "
+                                      "has: {})", name, want, kFieldNames[f], want,
+                                      fmt::join(reader->header(), ", ")));
+      }
       if (kRequired[f]) {
         throw InvalidData(fmt::format(
             "{}:1: no column '{}' (required; the header has: {}; name the study's column with "
             "--map {}=COLUMN)",
             name, want, fmt::join(reader->header(), ", "), kFieldNames[f]));
-      }
-      if (is_mapped) {
-        throw InvalidData(fmt::format("{}:1: no column '{}' (given by --map {}={})", name, want,
-                                      kFieldNames[f], want));
       }
       if (f == kPadSpeed && options.require_pad_speed) {
         throw UsageError(fmt::format(
