@@ -138,12 +138,13 @@ Summary summarize(std::span<const double> x) {
 double quantile_type7(std::span<const double> sorted, double p) {
   if (sorted.empty()) throw InvalidData("quantile of an empty sample");
   if (!(p >= 0.0 && p <= 1.0)) throw UsageError("quantile probability outside [0, 1]");
-  // R's quantile.default, type 7, literally: index = 1 + (n - 1) p; (1 - h) x[lo] + h x[hi].
-  const double index = static_cast<double>(sorted.size() - 1) * p;  // 0-based
+  // R's quantile.default, type 7, literally (1-based index, so h rounds exactly as in R):
+  // index = 1 + (n - 1) p; lo = floor(index); (1 - h) x[lo] + h x[hi], h = index - lo.
+  const double index = 1.0 + static_cast<double>(sorted.size() - 1) * p;
   const double lo = std::floor(index);
   const double hi = std::ceil(index);
-  const double qlo = sorted[static_cast<std::size_t>(lo)];
-  const double qhi = sorted[static_cast<std::size_t>(hi)];
+  const double qlo = sorted[static_cast<std::size_t>(lo) - 1];
+  const double qhi = sorted[static_cast<std::size_t>(hi) - 1];
   if (!(index > lo) || qhi == qlo) return qlo;
   const double h = index - lo;
   return (1 - h) * qlo + h * qhi;
