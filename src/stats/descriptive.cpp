@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <vector>
 
 #include <boost/math/distributions/students_t.hpp>
@@ -166,24 +167,26 @@ std::vector<double> without_nan(std::span<const double> x) {
 
 }  // namespace
 
-Description describe(std::span<const double> x, double conf_level) {
-  detail::check_conf_level(conf_level);
+namespace detail {
+
+Description describe_from(std::vector<double> sorted, const Summary& s,
+                          const std::function<std::optional<double>()>& autocorr,
+                          double conf_level) {
+  check_conf_level(conf_level);
   Description d;
-  std::vector<double> v = without_nan(x);
-  d.n = v.size();
-  if (v.empty()) {
+  d.n = sorted.size();
+  if (sorted.empty()) {
     d.note = "no values";
     return d;
   }
-  const Summary s = summarize(v);
-  std::sort(v.begin(), v.end());
+  std::sort(sorted.begin(), sorted.end());
   d.mean = s.mean;
-  d.min = v.front();
-  d.max = v.back();
-  d.q1 = quantile_type7(v, 0.25);
-  d.median = quantile_type7(v, 0.5);
-  d.q3 = quantile_type7(v, 0.75);
-  if (v.size() < 2) {
+  d.min = sorted.front();
+  d.max = sorted.back();
+  d.q1 = quantile_type7(sorted, 0.25);
+  d.median = quantile_type7(sorted, 0.5);
+  d.q3 = quantile_type7(sorted, 0.75);
+  if (sorted.size() < 2) {
     d.note = "n < 2: sd, standard error and confidence interval need at least two values";
     return d;
   }
@@ -193,13 +196,22 @@ Description describe(std::span<const double> x, double conf_level) {
     d.note = "constant data: confidence interval and lag-1 autocorrelation undefined";
     return d;
   }
-  const boost::math::students_t dist(static_cast<double>(v.size() - 1));
+  const boost::math::students_t dist(static_cast<double>(sorted.size() - 1));
   const double q = boost::math::quantile(boost::math::complement(dist, (1.0 - conf_level) / 2.0));
   d.conf_low = s.mean - q * *d.se;
   d.conf_high = s.mean + q * *d.se;
-  // Autocorrelation follows the input order, not the sorted one.
-  d.autocorr_lag1 = autocorr_lag1(without_nan(x));
+  d.autocorr_lag1 = autocorr();
   return d;
+}
+
+}  // namespace detail
+
+Description describe(std::span<const double> x, double conf_level) {
+  detail::check_conf_level(conf_level);
+  std::vector<double> v = without_nan(x);
+  const Summary s = summarize(v);
+  // Autocorrelation follows the input order, not the sorted one.
+  return detail::describe_from(v, s, [&] { return autocorr_lag1(v); }, conf_level);
 }
 
 }  // namespace feint::stats

@@ -151,6 +151,15 @@ std::optional<double> autocorr_lag1_decimal(std::span<const std::string> text) {
   return detail::autocorr_of(single(text));
 }
 
+Description describe_decimal(std::span<const std::string> text, double conf_level) {
+  const detail::Shifted sh = single(text);
+  std::vector<double> values;
+  values.reserve(sh.a.size());
+  for (long double a : sh.a) values.push_back(static_cast<double>(sh.shift + a / sh.scale));
+  return detail::describe_from(std::move(values), detail::summary_of(sh),
+                               [&] { return detail::autocorr_of(sh); }, conf_level);
+}
+
 AnovaTable one_way_anova_table_decimal(std::span<const std::vector<std::string>> groups) {
   ExactGroups e = read_exact(groups);
   return detail::anova_of(e.a, e.scale);

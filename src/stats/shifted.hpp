@@ -5,6 +5,7 @@
 // in extended precision and apply shift and scale only to the final results.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -23,6 +24,11 @@ Summary summary_of(const Shifted& s);
 std::optional<double> autocorr_of(const Shifted& s);
 /// Groups share shift and scale (the ANOVA sums of squares do not depend on the shift).
 AnovaTable anova_of(const std::vector<std::vector<long double>>& groups, long double scale);
+
+/// describe() from its parts: the values (any order), their accurate summary, the autocorrelation.
+Description describe_from(std::vector<double> values, const Summary& s,
+                          const std::function<std::optional<double>()>& autocorr,
+                          double conf_level);
 
 /// x - x[0] in long double (exact for doubles within a factor 2^11 of each other).
 Shifted shift_doubles(const std::vector<double>& x);

@@ -127,3 +127,20 @@ TEST(ExactDecimal, ReadsTextExactlyAndRejectsGarbage) {
   for (const char* bad : {"", "abc", "1.2.3", "1e", "0x10", "nan", "1,5"})
     EXPECT_THROW(fs::summarize_decimal(std::vector<std::string>{bad}), feint::InvalidData) << bad;
 }
+
+TEST(ExactDecimal, DescribeDecimalAgreesWithDescribeOnOrdinaryData) {
+  GoldenCsv golden(feint::test::golden_path("describe_golden.csv"));
+  for (const auto& row : golden.rows()) {
+    SCOPED_TRACE("describe_golden.csv line " + std::to_string(row.line()));
+    std::vector<std::string> text;
+    for (const auto& f : feint::test::split_commas(row.str("x"), ';')) text.push_back(f);
+    const fs::Description d = fs::describe_decimal(text, row.number("conf_level"));
+    EXPECT_EQ(d.n, text.size());
+    EXPECT_TRUE(close("mean", d.mean, row.num("mean")));
+    EXPECT_TRUE(close("sd", d.sd, row.num("sd")));
+    EXPECT_TRUE(close("q1", d.q1, row.num("q1")));
+    EXPECT_TRUE(close("max", d.max, row.num("max")));
+    EXPECT_TRUE(close("conf_low", d.conf_low, row.num("conf_low"), 1e-10));
+    EXPECT_TRUE(close("autocorr_lag1", d.autocorr_lag1, row.num("autocorr_lag1"), 1e-10));
+  }
+}

@@ -137,6 +137,16 @@ TEST(NistUnivariate, MergedPartialSummariesKeepLre13) {
   }
 }
 
+TEST(NistUnivariate, DescribeDecimalKeepsNumAcc4) {
+  SKIP_WITHOUT_NIST();
+  const auto c = certified("NumAcc4");
+  const fs::Description d = fs::describe_decimal(column_text("NumAcc4", 0));
+  EXPECT_GE(lre(*d.mean, c.at("mean")), 13);
+  EXPECT_GE(lre(*d.sd, c.at("sd")), 13);
+  EXPECT_GE(lre(*d.autocorr_lag1, c.at("autocorr_lag1")), 13);
+  EXPECT_EQ(*d.median, 10000000.2);
+}
+
 TEST(NistAnova, ExactDecimalReachesLre9OnEveryQuantity) {
   SKIP_WITHOUT_NIST();
   GoldenCsv r(feint::test::golden_path("nist_r_anova.csv"));

@@ -27,6 +27,11 @@ Summary summarize_decimal(std::span<const std::string> text);
 /// autocorr_lag1() of decimal text, read exactly.
 std::optional<double> autocorr_lag1_decimal(std::span<const std::string> text);
 
+/// describe() of decimal text: mean, sd, se, CI and lag-1 autocorrelation from the exact reading;
+/// min, quartiles and max from the values rounded once to double. No missing values: drop empty
+/// fields before calling.
+Description describe_decimal(std::span<const std::string> text, double conf_level = 0.95);
+
 /// one_way_anova_table() of decimal text (one vector per group), read exactly.
 AnovaTable one_way_anova_table_decimal(std::span<const std::vector<std::string>> groups);
 
