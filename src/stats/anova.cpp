@@ -122,6 +122,11 @@ TestResult one_way_anova(std::span<const std::vector<double>> groups) {
     return r;
   }
   const AnovaTable t = one_way_anova_table(clean);
+  if (!std::isfinite(t.ss_within) || !std::isfinite(t.ss_between)) {
+    r.computed = false;
+    r.note = "infinite values in the data";
+    return r;
+  }
   if (!(t.ss_within > 0)) {
     r.computed = false;
     r.note = "data are essentially constant within groups (residual sum of squares is 0)";
@@ -165,6 +170,7 @@ TestResult welch_anova(std::span<const std::vector<double>> groups) {
   std::vector<double> w(s.size());
   for (std::size_t j = 0; j < s.size(); ++j) {
     const double v = *s[j].variance();
+    if (!std::isfinite(v) || !std::isfinite(s[j].mean)) return cannot("infinite values in the data");
     if (!(v > 0)) return cannot("data are essentially constant within a group (variance 0)");
     w[j] = static_cast<double>(s[j].n) / v;
     sum_w += w[j];

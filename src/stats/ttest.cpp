@@ -76,6 +76,10 @@ TestResult one_sample_impl(std::vector<double> v, double mu, const TestOptions& 
   r.mean1 = s.mean;
   r.sd1 = sd;
   // R: stop("data are essentially constant") when stderr < 10 eps |mean|.
+  if (!std::isfinite(stderr_) || !std::isfinite(s.mean)) {
+    cannot(r, "infinite values in the data");
+    return r;
+  }
   if (stderr_ < 10 * kEps * std::fabs(s.mean) || stderr_ == 0) {
     cannot(r, "data are essentially constant");
     return r;
@@ -127,6 +131,10 @@ TestResult two_sample_impl(std::span<const double> xs, std::span<const double> y
     stderr_ = std::sqrt(sex2 + sey2);
     df = (stderr_ * stderr_) * (stderr_ * stderr_) /
          (sex2 * sex2 / (nx - 1) + sey2 * sey2 / (ny - 1));
+  }
+  if (!std::isfinite(stderr_) || !std::isfinite(sx.mean) || !std::isfinite(sy.mean)) {
+    cannot(r, "infinite values in the data");
+    return r;
   }
   if (stderr_ < 10 * kEps * std::max(std::fabs(sx.mean), std::fabs(sy.mean)) || stderr_ == 0) {
     cannot(r, "data are essentially constant");

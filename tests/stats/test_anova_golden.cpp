@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -95,4 +96,11 @@ TEST(Anova, EmptyGroupIsLeftOutWithANote) {
   EXPECT_EQ(*a.statistic, *b.statistic);
   EXPECT_EQ(*a.df, 1.0);
   EXPECT_FALSE(a.note.empty());
+}
+
+TEST(Anova, InfiniteValuesAreNotComputableRatherThanThrowing) {
+  const std::vector<std::vector<double>> g = {{1, 2, std::numeric_limits<double>::infinity()},
+                                              {2, 3, 4}};
+  EXPECT_FALSE(fs::one_way_anova(g).computed);
+  EXPECT_FALSE(fs::welch_anova(g).computed);
 }

@@ -111,3 +111,13 @@ TEST(Tost, ConstantDataIsNotComputable) {
   EXPECT_EQ(r.note, "data are essentially constant");
   EXPECT_FALSE(r.p_value.has_value());
 }
+
+TEST(TTest, InfiniteValuesAreNotComputableRatherThanThrowing) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<double> x = {1, 2, inf}, y = {1, 2, 3};
+  for (const auto& r : {fs::t_test_one_sample(x, 0), fs::t_test_welch(x, y), fs::t_test_student(y, x),
+                        fs::t_test_paired(x, y)}) {
+    EXPECT_FALSE(r.computed) << r.test;
+    EXPECT_FALSE(r.note.empty());
+  }
+}
