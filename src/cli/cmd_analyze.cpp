@@ -1,13 +1,326 @@
-// Placeholder registration; the command is implemented by its issue (see commands.hpp).
+// `feint analyze STUDY`: a whole study in one command — score the pad-trace logs, tabulate them
+// (the paper's Table 1 per condition and, if asked, condition A against B), and analyse the
+// questionnaire, writing every table in every format into one output folder.
+//
+// A study folder holds `logs/` (pad-trace logs, any number of .csv/.csv.gz files), optionally
+// `questionnaire.csv` (Likert), and optionally `feint.toml`, whose settings have the names of this
+// command's options (read through CLI11's TOML/INI config reader). The command line wins over the
+// file, so a script can change one setting without editing the study.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
 #include "commands.hpp"
 #include "feint/error.hpp"
+#include "feint/io/number.hpp"
+#include "feint/io/questionnaire.hpp"
+#include "feint/io/scores.hpp"
+#include "feint/metrics/score.hpp"
+#include "feint/report/likert.hpp"
+#include "feint/report/table1.hpp"
+#include "feint/report/writers.hpp"
+#include "feint/stats/p_adjust.hpp"
+#include "report_options.hpp"
+
+#ifndef FEINT_VERSION
+#define FEINT_VERSION "dev"
+#endif
 
 namespace feint::cli {
 
+namespace {
+
+namespace fs = std::filesystem;
+
+struct AnalyzeArgs {
+  std::string study;
+  std::string out = "feint-analysis";
+  std::string config;  // default: STUDY/feint.toml when it exists
+  // Scoring.
+  std::vector<std::string> logs;  // default: STUDY/logs
+  std::optional<double> trim, trim_start, trim_end, pad_speed;
+  double deadband = 1e-9;
+  std::string norm = "speed";
+  std::vector<std::string> maps;
+  std::string on_error = "strict";
+  // Tables.
+  std::vector<std::string> metrics;
+  std::string compare;
+  bool var_equal = false;
+  bool paired = false;
+  std::optional<double> equivalence;
+  // Questionnaire.
+  std::string questionnaire;  // default: STUDY/questionnaire.csv when it exists
+  std::optional<double> likert_reference;
+  std::string likert_scale = "1-7";
+  std::vector<std::string> composites;
+  std::vector<std::string> reverse;
+  // Shared report settings.
+  ReportOptions report;
+  std::vector<std::string> formats = {"text", "markdown", "latex", "csv", "json"};
+};
+
+std::string extension(report::OutputFormat format) {
+  switch (format) {
+    case report::OutputFormat::text: return "txt";
+    case report::OutputFormat::markdown: return "md";
+    case report::OutputFormat::latex: return "tex";
+    case report::OutputFormat::csv: return "csv";
+    case report::OutputFormat::json: return "json";
+  }
+  return "txt";
+}
+
+std::pair<std::string, std::string> parse_pair(const std::string& text, const char* option) {
+  const auto comma = text.find(',');
+  if (comma == std::string::npos || comma == 0 || comma + 1 == text.size() ||
+      text.find(',', comma + 1) != std::string::npos) {
+    throw UsageError(fmt::format("{} '{}': expected two conditions A,B", option, text));
+  }
+  return {std::string(io::trim(text.substr(0, comma))), std::string(io::trim(text.substr(comma + 1)))};
+}
+
+// Applies the study's settings file to every option the command line left unset.
+void apply_config(CLI::App& cmd, const std::string& path) {
+  std::vector<CLI::ConfigItem> items;
+  try {
+    items = CLI::ConfigTOML().from_file(path);
+  } catch (const CLI::Error& e) {
+    throw IoError(fmt::format("cannot read settings '{}': {}", path, e.what()));
+  }
+  for (const auto& item : items) {
+    // Top-level keys, or keys under an [analyze] section.
+    if (!item.parents.empty() && !(item.parents.size() == 1 && item.parents[0] == "analyze")) {
+      throw InvalidData(fmt::format("{}: section [{}] is not a feint analyze section", path,
+                                    fmt::join(item.parents, ".")));
+    }
+    if (item.name == "++" || item.name == "--") continue;  // section markers of CLI11's parser
+    CLI::Option* opt = cmd.get_option_no_throw("--" + item.name);
+    if (opt == nullptr || item.name == "config" || item.name == "help") {
+      throw InvalidData(fmt::format("{}: unknown setting '{}' (settings are the options of "
+                                    "'feint analyze --help', without the dashes)", path, item.name));
+    }
+    if (opt->count() > 0) continue;  // the command line wins
+    try {
+      opt->add_result(item.inputs);
+      opt->run_callback();
+    } catch (const CLI::Error& e) {
+      throw InvalidData(fmt::format("{}: setting '{}': {}", path, item.name, e.what()));
+    }
+  }
+}
+
+std::vector<report::OutputFormat> resolve_formats(const std::vector<std::string>& names) {
+  std::vector<report::OutputFormat> out;
+  for (const auto& n : names) out.push_back(report::parse_output_format(n));
+  if (out.empty()) throw UsageError("--formats: name at least one of text, markdown, latex, csv, json");
+  return out;
+}
+
+void run(CLI::App& cmd, AnalyzeArgs& a) {
+  const fs::path study(a.study);
+  if (!fs::is_directory(study)) {
+    throw IoError(fmt::format("study folder '{}' does not exist or is not a folder", a.study));
+  }
+  std::string config = a.config;
+  if (config.empty() && fs::exists(study / "feint.toml")) config = (study / "feint.toml").string();
+  if (!config.empty()) apply_config(cmd, config);
+
+  const ResolvedReportOptions report_opts = resolve_report_options(a.report);
+  const std::vector<report::OutputFormat> formats = resolve_formats(a.formats);
+
+  // Inputs: relative paths in the settings are relative to the study folder.
+  auto in_study = [&](const std::string& p) {
+    const fs::path path(p);
+    return path.is_absolute() ? path.string() : (study / path).string();
+  };
+  std::vector<std::string> logs;
+  for (const auto& l : a.logs) logs.push_back(in_study(l));
+  if (logs.empty()) {
+    if (!fs::is_directory(study / "logs")) {
+      throw InvalidData(fmt::format("{}: no logs/ folder (put the pad-trace logs there, or name "
+                                    "them with --logs)", a.study));
+    }
+    logs.push_back((study / "logs").string());
+  }
+  std::string questionnaire = a.questionnaire.empty() ? "" : in_study(a.questionnaire);
+  if (questionnaire.empty() && fs::exists(study / "questionnaire.csv")) {
+    questionnaire = (study / "questionnaire.csv").string();
+  }
+
+  std::error_code ec;
+  fs::create_directories(a.out, ec);
+  if (ec) throw IoError(fmt::format("cannot create output folder '{}': {}", a.out, ec.message()));
+  const fs::path out(a.out);
+  std::vector<std::string> written;
+
+  // 1. Score every trial.
+  metrics::ScoreSettings s;
+  if (a.trim) s.metrics.trim_start = s.metrics.trim_end = *a.trim;
+  if (a.trim_start) s.metrics.trim_start = *a.trim_start;
+  if (a.trim_end) s.metrics.trim_end = *a.trim_end;
+  s.metrics.deadband = a.deadband;
+  const auto norm = metrics::parse_confusion_norm(a.norm);
+  if (!norm) throw UsageError(fmt::format("--confusion-norm '{}': expected speed or raw", a.norm));
+  s.metrics.norm = *norm;
+  s.metrics.pad_speed = a.pad_speed;
+  for (const auto& m : a.maps) {
+    const auto eq = m.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == m.size()) {
+      throw UsageError(fmt::format("--map '{}': expected NAME=COLUMN", m));
+    }
+    s.column_map[io::to_lower(io::trim(m.substr(0, eq)))] = std::string(io::trim(m.substr(eq + 1)));
+  }
+  if (a.on_error != "strict" && a.on_error != "skip") {
+    throw UsageError(fmt::format("--on-error '{}': expected strict or skip", a.on_error));
+  }
+  s.on_error = a.on_error == "skip" ? metrics::OnError::skip : metrics::OnError::strict;
+  s.tool_version = FEINT_VERSION;
+  const std::string scores_path = (out / "scores.csv").string();
+  const metrics::ScoreSummary scored = metrics::score_to_file(logs, s, scores_path);
+  written.push_back(scores_path);
+  if (!scored.sidecar_path.empty()) written.push_back(scored.sidecar_path);
+  if (!scored.rejects_path.empty()) written.push_back(scored.rejects_path);
+
+  // 2. Table 1: one-sample per condition, and A against B when asked.
+  report::Table1Options t;
+  if (!a.metrics.empty()) {
+    t.metrics.clear();
+    for (const auto& m : a.metrics) t.metrics.push_back(report::parse_metric_spec(m));
+  }
+  t.alpha = report_opts.alpha;
+  t.test = report_opts.test;
+  t.p_adjust = report_opts.p_adjust;
+  t.equivalence = a.equivalence;
+  t.apa = report_opts.apa;
+  io::ScoresOptions load;
+  load.metrics.clear();
+  for (const auto& m : t.metrics) load.metrics.push_back(m.column);
+  const io::ScoresTable scores = io::load_scores(scores_path, load);
+
+  auto write_all = [&](const std::string& stem, auto&& render) {
+    for (const auto f : formats) {
+      const std::string path = (out / (stem + "." + extension(f))).string();
+      write_report(path, render(f));
+      written.push_back(path);
+    }
+  };
+  const report::Table1 one_sample = report::build_table1(scores, t);
+  write_all("table1", [&](report::OutputFormat f) { return report::render_table1(one_sample, f); });
+  if (!a.compare.empty()) {
+    report::Table1Options c = t;
+    c.compare = parse_pair(a.compare, "--compare");
+    c.var_equal = a.var_equal;
+    c.paired = a.paired;
+    const report::Table1 two_sample = report::build_table1(scores, c);
+    write_all("table1_compare",
+              [&](report::OutputFormat f) { return report::render_table1(two_sample, f); });
+  }
+
+  // 3. The questionnaire, when the study has one.
+  if (!questionnaire.empty()) {
+    report::LikertSettings l;
+    const auto [lo, hi] = io::parse_scale(a.likert_scale);
+    l.load.scale_min = lo;
+    l.load.scale_max = hi;
+    l.load.reverse = a.reverse;
+    for (const auto& c : a.composites) l.composites.push_back(report::parse_composite(c));
+    l.reference = a.likert_reference;
+    l.test = report_opts.test;
+    l.alpha = report_opts.alpha;
+    l.p_adjust = report_opts.p_adjust;
+    l.apa = report_opts.apa;
+    const report::LikertAnalysis likert = report::analyze_likert_file(questionnaire, l);
+    write_all("likert", [&](report::OutputFormat f) { return report::render_likert(likert, f); });
+    const std::string summary = (out / "likert_summary.csv").string();
+    write_report(summary, report::likert_summary_csv(likert));
+    written.push_back(summary);
+    if (!a.compare.empty()) {
+      report::LikertSettings lc = l;
+      lc.compare = parse_pair(a.compare, "--compare");
+      const report::LikertAnalysis between = report::analyze_likert_file(questionnaire, lc);
+      write_all("likert_compare",
+                [&](report::OutputFormat f) { return report::render_likert(between, f); });
+    }
+  }
+
+  fmt::print(stderr,
+             "feint analyze: {} rows read, {} trials scored, {} rejected; {} files written to {}\n",
+             scored.rows_read, scored.trials_scored, scored.trials_rejected, written.size(), a.out);
+}
+
+}  // namespace
+
 void add_analyze_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("analyze", "(not implemented yet)");
-  cmd->allow_extras();
-  cmd->callback([] { throw UsageError("'feint analyze' is not implemented yet"); });
+  auto args = std::make_shared<AnalyzeArgs>();
+  auto* cmd = app.add_subcommand(
+      "analyze",
+      "Run a whole study: score the logs in STUDY/logs, tabulate them (Table 1 per condition, and "
+      "A against B with --compare), analyse STUDY/questionnaire.csv if present; every table in "
+      "every format goes to the output folder. Settings may also be given in STUDY/feint.toml, "
+      "one `name = value` per option (without dashes); the command line wins.");
+  cmd->add_option("study", args->study, "Study folder (logs/, questionnaire.csv, feint.toml)")
+      ->required();
+  cmd->add_option("-o,--output", args->out, "Output folder (created if needed)")
+      ->capture_default_str();
+  cmd->add_option("--config", args->config,
+                  "Settings file (TOML/INI; default STUDY/feint.toml when present)");
+  auto* score = "Scoring (see feint score)";
+  cmd->add_option("--logs", args->logs,
+                  "Pad-trace logs: files, folders or globs, relative to STUDY (default: STUDY/logs)")
+      ->group(score);
+  cmd->add_option("--trim", args->trim, "Fraction of each trial's duration cut at both ends "
+                  "(default 0.05)")->group(score);
+  cmd->add_option("--trim-start", args->trim_start, "Fraction cut at the start")->group(score);
+  cmd->add_option("--trim-end", args->trim_end, "Fraction cut at the end")->group(score);
+  cmd->add_option("--deadband", args->deadband, "Pad movement (pad units) below which a segment "
+                  "has no direction")->capture_default_str()->group(score);
+  cmd->add_option("--confusion-norm", args->norm, "speed (bounded, default) or raw (the paper's "
+                  "equation literally)")->capture_default_str()->group(score);
+  cmd->add_option("--pad-speed", args->pad_speed, "Pad speed in pad units per second (overrides "
+                  "the logs' pad_speed column)")->group(score);
+  cmd->add_option("--map", args->maps, "NAME=COLUMN: the study's own column names (repeatable)")
+      ->group(score);
+  cmd->add_option("--on-error", args->on_error, "strict (stop at the first invalid trial) or skip "
+                  "(list it in scores.csv.rejects.csv)")->capture_default_str()->group(score);
+  auto* tables = "Tables (see feint table)";
+  cmd->add_option("--metric", args->metrics, "NAME=REF: metric column and reference mean "
+                  "(default error=0.5 confusion=0.95)")->group(tables);
+  cmd->add_option("--compare", args->compare, "A,B: also compare condition A with B (tables and "
+                  "questionnaire), e.g. adaptive,random")->group(tables);
+  cmd->add_flag("--var-equal", args->var_equal, "Student's t instead of Welch's")->group(tables);
+  cmd->add_flag("--paired", args->paired, "Paired t (same participants in both)")->group(tables);
+  cmd->add_option("--equivalence", args->equivalence, "TOST margin: '≈' must be earned")
+      ->group(tables);
+  auto* likert = "Questionnaire (see feint likert)";
+  cmd->add_option("--questionnaire", args->questionnaire, "Likert file, relative to STUDY "
+                  "(default STUDY/questionnaire.csv when present)")->group(likert);
+  cmd->add_option("--likert-reference", args->likert_reference, "Reference of the one-sample "
+                  "tests (default: the scale midpoint; the paper used 3.5)")->group(likert);
+  cmd->add_option("--likert-scale", args->likert_scale, "MIN-MAX")->capture_default_str()
+      ->group(likert);
+  cmd->add_option("--composite", args->composites, "NAME=ITEM,ITEM,...: a multi-item scale "
+                  "(repeatable)")->group(likert);
+  cmd->add_option("--reverse", args->reverse, "Items to reverse-code")->delimiter(',')
+      ->group(likert);
+  auto* out = "Output";
+  cmd->add_option("--formats", args->formats, "Formats written for every table")
+      ->delimiter(',')->capture_default_str()->group(out);
+  cmd->add_flag("--apa", args->report.apa, "Add APA-style strings")->group(out);
+  cmd->add_option("--alpha", args->report.alpha, "Significance level")->capture_default_str()
+      ->group(out);
+  cmd->add_option("--alternative", args->report.alternative, "two.sided, greater or less")
+      ->capture_default_str()->group(out);
+  cmd->add_option("--conf-level", args->report.conf_level, "Confidence level")
+      ->capture_default_str()->group(out);
+  cmd->add_option("--p-adjust", args->report.p_adjust, "none, bonferroni, holm, hochberg, hommel, "
+                  "BH or BY (family: one metric column / the items)")->capture_default_str()
+      ->group(out);
+  cmd->callback([cmd, args] { run(*cmd, *args); });
 }
 
 }  // namespace feint::cli
