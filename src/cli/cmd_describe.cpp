@@ -1,13 +1,47 @@
-// Placeholder registration; the command is implemented by its issue (see commands.hpp).
+// feint describe FILE.csv --column NAME [--by GROUP]: descriptive statistics (docs/tables.md).
+#include <memory>
+#include <string>
+
 #include "commands.hpp"
-#include "feint/error.hpp"
+#include "feint/io/scores.hpp"
+#include "feint/report/describe.hpp"
+#include "report_options.hpp"
 
 namespace feint::cli {
 
+namespace {
+
+struct DescribeArgs {
+  std::string input;
+  std::string column;
+  std::string by;
+  double conf_level = 0.95;
+  ReportOptions report;
+};
+
+}  // namespace
+
 void add_describe_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("describe", "(not implemented yet)");
-  cmd->allow_extras();
-  cmd->callback([] { throw UsageError("'feint describe' is not implemented yet"); });
+  auto args = std::make_shared<DescribeArgs>();
+  auto* cmd = app.add_subcommand(
+      "describe",
+      "Descriptive statistics of a numeric column, optionally by group: n, mean, sd, se, min, "
+      "quartiles, max, CI of the mean, lag-1 autocorrelation.");
+  cmd->add_option("FILE", args->input, "Any CSV (gzip, ; and TAB too; - = standard input)")
+      ->required();
+  cmd->add_option("--column", args->column, "The numeric column to describe")->required();
+  cmd->add_option("--by", args->by, "Grouping column: one row per group");
+  cmd->add_option("--conf-level", args->conf_level, "Confidence level of the mean's interval, in (0, 1)")
+      ->capture_default_str();
+  add_report_options(*cmd, args->report, ReportOptionSet{false});
+  cmd->callback([args] {
+    ReportOptions ro = args->report;
+    ro.conf_level = args->conf_level;
+    const ResolvedReportOptions r = resolve_report_options(ro);
+    const auto column = io::load_numeric_column(args->input, args->column, args->by);
+    const auto table = report::build_describe(column, r.test.conf_level);
+    write_report(r.output, report::render_describe(table, r.format));
+  });
 }
 
 }  // namespace feint::cli

@@ -1,13 +1,118 @@
-// Placeholder registration; the command is implemented by its issue (see commands.hpp).
+// feint table SCORES.csv: the paper's Table 1 (see docs/tables.md).
+#include <memory>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
 #include "commands.hpp"
 #include "feint/error.hpp"
+#include "feint/io/csv.hpp"
+#include "feint/io/number.hpp"
+#include "feint/io/scores.hpp"
+#include "feint/report/table1.hpp"
+#include "report_options.hpp"
 
 namespace feint::cli {
 
+namespace {
+
+struct TableArgs {
+  std::string input;
+  std::vector<std::string> metrics;
+  std::string condition;
+  std::string compare;
+  bool var_equal = false;
+  bool paired = false;
+  double equivalence = 0.0;
+  CLI::Option* equivalence_option = nullptr;
+  std::string participant_column = "participant";
+  std::string iteration_column = "iteration";
+  std::string condition_column = "condition";
+  ReportOptions report;
+};
+
+void run_table(const TableArgs& a) {
+  const ResolvedReportOptions r = resolve_report_options(a.report);
+  report::Table1Options o;
+  if (!a.metrics.empty()) {
+    o.metrics.clear();
+    std::set<std::string> seen;
+    for (const auto& m : a.metrics) {
+      auto spec = report::parse_metric_spec(m);
+      if (!seen.insert(io::to_lower(spec.column)).second) {
+        throw UsageError(fmt::format("--metric '{}': metric '{}' given twice", m, spec.column));
+      }
+      o.metrics.push_back(std::move(spec));
+    }
+  }
+  o.condition = a.condition;
+  if (!a.compare.empty()) {
+    const auto parts = io::split_csv_line(a.compare);
+    if (parts.size() != 2 || io::trim(parts[0]).empty() || io::trim(parts[1]).empty()) {
+      throw UsageError(
+          fmt::format("--compare '{}': expected two conditions A,B (e.g. adaptive,random)", a.compare));
+    }
+    o.compare = std::make_pair(std::string(io::trim(parts[0])), std::string(io::trim(parts[1])));
+    if (!a.condition.empty()) throw UsageError("--condition and --compare exclude each other");
+  }
+  o.var_equal = a.var_equal;
+  o.paired = a.paired;
+  if (a.equivalence_option != nullptr && a.equivalence_option->count() > 0) {
+    o.equivalence = a.equivalence;
+  }
+  o.alpha = r.alpha;
+  o.test = r.test;
+  o.p_adjust = r.p_adjust;
+  o.apa = r.apa;
+
+  io::ScoresOptions so;
+  so.participant_column = a.participant_column;
+  so.iteration_column = a.iteration_column;
+  so.condition_column = a.condition_column;
+  so.metrics.clear();
+  for (const auto& m : o.metrics) so.metrics.push_back(m.column);
+  const io::ScoresTable scores = io::load_scores(a.input, so);
+  const report::Table1 table = report::build_table1(scores, o);
+  write_report(r.output, report::render_table1(table, r.format));
+}
+
+}  // namespace
+
 void add_table_command(CLI::App& app) {
-  auto* cmd = app.add_subcommand("table", "(not implemented yet)");
-  cmd->allow_extras();
-  cmd->callback([] { throw UsageError("'feint table' is not implemented yet"); });
+  auto args = std::make_shared<TableArgs>();
+  auto* cmd = app.add_subcommand(
+      "table",
+      "The paper's Table 1: per iteration and metric, t-tests of the participants' scores against "
+      "reference means (default) or between two conditions (--compare A,B).");
+  cmd->add_option("SCORES", args->input,
+                  "Scores CSV: participant, iteration, optional condition, numeric metric columns "
+                  "(- = standard input)")
+      ->required();
+  cmd->add_option("--metric", args->metrics,
+                  "Metric column and reference mean, NAME=REF (repeatable; default error=0.5 "
+                  "confusion=0.95)");
+  cmd->add_option("--condition", args->condition,
+                  "One-sample mode: only this condition (default: every condition, one block each)");
+  cmd->add_option("--compare", args->compare,
+                  "Two-sample mode: compare condition A with B, e.g. adaptive,random");
+  cmd->add_flag("--var-equal", args->var_equal, "Two-sample: Student's t (pooled variance) instead of Welch");
+  cmd->add_flag("--paired", args->paired,
+                "Two-sample: paired t-test, pairs matched by participant");
+  args->equivalence_option = cmd->add_option(
+      "--equivalence", args->equivalence,
+      "Equivalence margin delta (> 0, metric units): '≈' is earned by TOST within +-delta");
+  cmd->add_option("--participant-column", args->participant_column, "Name of the participant column")
+      ->capture_default_str();
+  cmd->add_option("--iteration-column", args->iteration_column, "Name of the iteration column")
+      ->capture_default_str();
+  cmd->add_option("--condition-column", args->condition_column,
+                  "Name of the (optional) condition column")
+      ->capture_default_str();
+  add_report_options(*cmd, args->report);
+  cmd->callback([args] { run_table(*args); });
 }
 
 }  // namespace feint::cli
