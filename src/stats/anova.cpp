@@ -101,11 +101,13 @@ AnovaTable one_way_anova_table(std::span<const std::vector<double>> groups) {
   return detail::anova_of(a, 1.0L);
 }
 
+// Strings are assigned from temporaries: GCC 12 at -O2 warns falsely (-Wrestrict, GCC bug 105329)
+// on std::string = "literal".
 TestResult one_way_anova(std::span<const std::vector<double>> groups) {
   TestResult r;
-  r.test = "anova";
-  r.method = "One-way analysis of means (ANOVA F-test)";
-  r.statistic_name = "F";
+  r.test = std::string("anova");
+  r.method = std::string("One-way analysis of means (ANOVA F-test)");
+  r.statistic_name = std::string("F");
   const auto clean = without_nan(groups);
   std::size_t n = 0;
   for (const auto& g : clean) n += g.size();
@@ -118,18 +120,18 @@ TestResult one_way_anova(std::span<const std::vector<double>> groups) {
   }
   if (n <= k) {
     r.computed = false;
-    r.note = "not enough observations: no residual degrees of freedom (one value per group)";
+    r.note = std::string("not enough observations: no residual degrees of freedom (one value per group)");
     return r;
   }
   const AnovaTable t = one_way_anova_table(clean);
   if (!std::isfinite(t.ss_within) || !std::isfinite(t.ss_between)) {
     r.computed = false;
-    r.note = "infinite values in the data";
+    r.note = std::string("infinite values in the data");
     return r;
   }
   if (!(t.ss_within > 0)) {
     r.computed = false;
-    r.note = "data are essentially constant within groups (residual sum of squares is 0)";
+    r.note = std::string("data are essentially constant within groups (residual sum of squares is 0)");
     return r;
   }
   r.statistic = t.f_statistic;
@@ -143,9 +145,9 @@ TestResult one_way_anova(std::span<const std::vector<double>> groups) {
 
 TestResult welch_anova(std::span<const std::vector<double>> groups) {
   TestResult r;
-  r.test = "welch_anova";
-  r.method = "One-way analysis of means (not assuming equal variances)";
-  r.statistic_name = "F";
+  r.test = std::string("welch_anova");
+  r.method = std::string("One-way analysis of means (not assuming equal variances)");
+  r.statistic_name = std::string("F");
   const auto clean = without_nan(groups);
   std::size_t n = 0;
   for (const auto& g : clean) n += g.size();

@@ -176,7 +176,7 @@ Description describe_from(std::vector<double> sorted, const Summary& s,
   Description d;
   d.n = sorted.size();
   if (sorted.empty()) {
-    d.note = "no values";
+    d.note = std::string("no values");
     return d;
   }
   std::sort(sorted.begin(), sorted.end());
@@ -187,13 +187,13 @@ Description describe_from(std::vector<double> sorted, const Summary& s,
   d.median = quantile_type7(sorted, 0.5);
   d.q3 = quantile_type7(sorted, 0.75);
   if (sorted.size() < 2) {
-    d.note = "n < 2: sd, standard error and confidence interval need at least two values";
+    d.note = std::string("n < 2: sd, standard error and confidence interval need at least two values");
     return d;
   }
   d.sd = s.sd();
   d.se = s.se();
   if (!(*d.sd > 0)) {
-    d.note = "constant data: confidence interval and lag-1 autocorrelation undefined";
+    d.note = std::string("constant data: confidence interval and lag-1 autocorrelation undefined");
     return d;
   }
   const boost::math::students_t dist(static_cast<double>(sorted.size() - 1));

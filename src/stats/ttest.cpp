@@ -33,7 +33,7 @@ TestResult base(std::string test, std::string method, double mu, const TestOptio
   r.alternative = options.alternative;
   r.conf_level = options.conf_level;
   r.mu = mu;
-  r.statistic_name = "t";
+  r.statistic_name = std::string("t");
   return r;
 }
 
@@ -182,7 +182,7 @@ double check_tost(double delta, const TestOptions& options) {
 TestResult combine_tost(TestResult lower, TestResult upper, TestResult centre, double mu,
                         double delta, std::string method) {
   TestResult r = std::move(centre);
-  r.test = "tost";
+  r.test = std::string("tost");
   r.method = std::move(method);
   r.mu = mu;
   r.margin = delta;
