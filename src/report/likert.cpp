@@ -411,8 +411,20 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
 
 LikertAnalysis analyze_likert_file(const std::string& path, const LikertSettings& settings) {
   io::QuestionnaireOptions load = settings.load;
-  if (settings.paper && load.items.empty()) load.items = paper_items();
-  return analyze_likert(io::load_questionnaire(path, load), settings);
+  if (!settings.paper || !load.items.empty()) {
+    return analyze_likert(io::load_questionnaire(path, load), settings);
+  }
+  load.items = paper_items();
+  std::optional<io::Questionnaire> q;
+  try {
+    q = io::load_questionnaire(path, load);
+  } catch (const UsageError& e) {
+    // Say why items the user did not type are looked for.
+    throw UsageError(fmt::format("--paper analyses the paper's items ({}; name others with "
+                                 "--items): {}",
+                                 detail::join(paper_items()), e.what()));
+  }
+  return analyze_likert(*q, settings);
 }
 
 void likert_report_to_file(const std::string& path, const LikertSettings& settings,

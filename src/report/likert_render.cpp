@@ -204,7 +204,11 @@ TextTable distribution_table(const LikertAnalysis& a) {
       t.rows.push_back(std::move(row));
     }
     current = s.group;
-    std::vector<std::string> cells{s.composite ? s.name + " (scale)" : s.name};
+    std::string name = s.name;
+    for (std::size_t k = 0; k < a.names.size(); ++k) {
+      if (a.names[k] == s.name) name = display_name(a, k);
+    }
+    std::vector<std::string> cells{name};
     const auto pct = [](std::optional<double> p) {
       return p ? fmt::format("{:.0f}%", *p) : std::string();
     };

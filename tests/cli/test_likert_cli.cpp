@@ -218,3 +218,18 @@ TEST(LikertCli, SummaryFileAndStdin) {
             std::string::npos)
       << csv;
 }
+
+TEST(LikertCli, PaperModeOnAFileWithoutThePapersItemsSaysWhy) {
+  const auto r = likert_on("participant,fun,trust\nP1,3,4\n", "--paper");
+  EXPECT_EQ(r.exit_code, 64);
+  EXPECT_EQ(r.err.rfind("feint: error: --paper analyses the paper's items (entertainment, deception, "
+                        "intelligence, trust; name others with --items): --items: no column "
+                        "'entertainment'",
+                        0),
+            0u)
+      << r.err;
+  // With --items the paper's settings (reference 3.5) apply to the study's own items.
+  const auto ok = likert_on("participant,fun,trust\nP1,3,4\nP2,5,2\n", "--paper --items fun,trust");
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("against R = 3.5"), std::string::npos);
+}
