@@ -117,7 +117,11 @@ void add_likert_command(CLI::App& app) {
                   "Map text answers to scale points: \"Strongly disagree=1,Disagree=2,...\" "
                   "(default: built-in agree/disagree map for 5- and 7-point scales)");
   cmd->add_option("--items", args->items,
-                  "Items to analyse, in order (wide: columns; long: item names); comma-separated");
+                  "Items to analyse, in order (wide: columns; long: item names); comma-separated, "
+                  "repeatable")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->allow_extra_args(false);
   cmd->add_option("--id-column", args->id_column, "Respondent id column")->capture_default_str();
   cmd->add_option("--condition-column", args->condition_column,
                   "Condition column (optional in the file)")
@@ -126,10 +130,17 @@ void add_likert_command(CLI::App& app) {
   cmd->add_option("--response-column", args->response_column, "Long layout: response column")
       ->capture_default_str();
   cmd->add_option("--reverse", args->reverse,
-                  "Reverse-coded items, recoded x -> min + max - x before anything else");
+                  "Reverse-coded items (comma-separated, repeatable), recoded x -> min + max - x "
+                  "before anything else")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->allow_extra_args(false);
   cmd->add_option("--composite", args->composites,
                   "Multi-item scale NAME=ITEM,ITEM,... (repeatable): mean of its items, Cronbach's "
-                  "alpha");
+                  "alpha")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->allow_extra_args(false);
   cmd->add_option("--reference", args->reference,
                   "Reference value of the one-sample tests (default: the scale midpoint; --paper: 3.5)");
   cmd->add_option("--condition", args->condition, "Only this condition (default: each condition)");

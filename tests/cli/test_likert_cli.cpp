@@ -233,3 +233,17 @@ TEST(LikertCli, PaperModeOnAFileWithoutThePapersItemsSaysWhy) {
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_NE(ok.out.find("against R = 3.5"), std::string::npos);
 }
+
+TEST(LikertCli, ListOptionsAreRepeatableAndDoNotSwallowTheFile) {
+  // A list option before the file, and options after it: the file stays the positional argument.
+  const auto r = run_feint("likert --reverse trust --reverse deception --items entertainment,trust "
+                           "--items deception " +
+                           data("wide.csv") + " --condition adaptive --format csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(lines(r.out), 1u + 3u * 2u);
+  EXPECT_EQ(r.out.find("intelligence"), std::string::npos);
+  // trust reversed: adaptive 2 3 2 1 2 -> 6 5 6 7 6, mean 6.
+  EXPECT_NE(r.out.find("trust,,one_sample_t,One Sample t-test,two.sided,4,adaptive,,5,,6,"),
+            std::string::npos)
+      << r.out;
+}
