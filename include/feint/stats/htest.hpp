@@ -50,7 +50,10 @@ struct TestResult {
   std::string statistic_name;       ///< "t", "V", "W", "F", "chi-squared"
   std::optional<double> df;         ///< R's `parameter` (numerator df for F tests)
   std::optional<double> df2;        ///< denominator df of F tests
-  std::optional<double> p_value;    ///< may be 0 only when below the smallest double (see p_text)
+  /// From Boost.Math complements: p = 1e-300 is computed, not rounded to 0 (subnormal values such
+  /// as 4e-310 occur, as in R). 0 only when below the smallest subnormal double; report writers
+  /// print p < 2.2e-308 as "< 2.2e-308".
+  std::optional<double> p_value;
   std::optional<double> p_adjusted; ///< filled by a multiple-comparison step, not by the test
   /// The interval at `conf_level`; a one-sided test has one infinite bound (-inf or +inf), as R.
   std::optional<double> conf_low, conf_high;
