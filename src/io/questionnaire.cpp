@@ -210,6 +210,10 @@ std::pair<int, int> parse_scale(std::string_view text) {
   const auto lo = parse_integer(t.substr(0, dash));
   const auto hi = parse_integer(t.substr(dash + 1));
   if (!lo || !hi || *lo >= *hi || *lo < -1000000 || *hi > 1000000) return fail();
+  if (*hi - *lo + 1 > kMaxScalePoints) {
+    throw UsageError(fmt::format("--scale '{}': {} points; a rating scale has at most {}", text,
+                                 *hi - *lo + 1, kMaxScalePoints));
+  }
   return {static_cast<int>(*lo), static_cast<int>(*hi)};
 }
 
@@ -258,9 +262,10 @@ std::vector<LabelEntry> builtin_agree_labels(int scale_min, int scale_max) {
 
 Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOptions& options) {
   using detail::Record;
-  if (options.scale_min >= options.scale_max) {
-    throw UsageError(fmt::format("--scale {}-{}: MIN must be below MAX", options.scale_min,
-                                 options.scale_max));
+  if (options.scale_min >= options.scale_max ||
+      static_cast<long long>(options.scale_max) - options.scale_min + 1 > kMaxScalePoints) {
+    throw UsageError(fmt::format("--scale {}-{}: expected MIN < MAX and at most {} points",
+                                 options.scale_min, options.scale_max, kMaxScalePoints));
   }
   for (const auto& e : options.labels) {
     if (e.value < options.scale_min || e.value > options.scale_max) {
@@ -436,6 +441,12 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
                                     detail::list_names(header)));
     }
     for (const auto c : cols) {
+      for (const auto& prev : q.items) {
+        if (detail::iequals(prev, header[c])) {
+          throw InvalidData(fmt::format("{}: item column '{}' appears twice in the header", file,
+                                        prev));
+        }
+      }
       q.items.emplace_back(trim(header[c]));
       q.item_columns.push_back(header[c]);
       q.responses.emplace_back();

@@ -14,6 +14,8 @@ namespace feint::report {
 namespace detail {
 namespace {
 
+constexpr std::size_t kMaxPointColumns = 11;
+
 std::string fixed(std::optional<double> x, int decimals) { return format_mean(x, decimals); }
 
 /// V and W are whole or half numbers: shortest exact text. t gets two decimals.
@@ -186,7 +188,14 @@ TextTable distribution_table(const LikertAnalysis& a) {
                           io::format_double(a.neutral));
   t.latex_label = "tab:likert-responses";
   t.header.emplace_back("Item");
-  for (int v = a.scale_min; v <= a.scale_max; ++v) t.header.push_back(std::to_string(v));
+  // Per-point columns for the usual short scales; long ones (e.g. 0-100) only get < = >.
+  const auto points = static_cast<std::size_t>(a.scale_max - a.scale_min + 1);
+  const bool per_point = points <= kMaxPointColumns;
+  if (!per_point) t.caption = fmt::format("Responses: % of n below / at / above the neutral point {}",
+                                          io::format_double(a.neutral));
+  for (int v = a.scale_min; per_point && v <= a.scale_max; ++v) {
+    t.header.push_back(std::to_string(v));
+  }
   const std::string nt = io::format_double(a.neutral);
   t.header.push_back("< " + nt);
   t.header.push_back("= " + nt);
@@ -212,7 +221,7 @@ TextTable distribution_table(const LikertAnalysis& a) {
     const auto pct = [](std::optional<double> p) {
       return p ? fmt::format("{:.0f}%", *p) : std::string();
     };
-    for (std::size_t v = 0; v < static_cast<std::size_t>(a.scale_max - a.scale_min + 1); ++v) {
+    for (std::size_t v = 0; per_point && v < points; ++v) {
       if (s.composite || s.n == 0) {
         cells.emplace_back("");
       } else {

@@ -309,3 +309,16 @@ TEST(Questionnaire, ItemsSelectAndOrderLongLayoutItems) {
   o.items = {"honesty"};
   EXPECT_THROW(load_questionnaire(f.path(), o), UsageError);
 }
+
+TEST(Questionnaire, LongScalesAndDuplicateItemColumns) {
+  EXPECT_EQ(feint::io::parse_scale("0-100"), std::make_pair(0, 100));
+  EXPECT_THROW(feint::io::parse_scale("0-101"), UsageError);
+  QuestionnaireOptions o;
+  o.scale_min = 0;
+  o.scale_max = 100;
+  TempCsv f("participant,vas\nP1,73\nP2,100\n");
+  EXPECT_EQ(load_questionnaire(f.path(), o).responses[0],
+            (std::vector<std::optional<int>>{73, 100}));
+  EXPECT_EQ(invalid_message("participant,trust,Trust\nP1,3,4\n"),
+            "FILE: item column 'trust' appears twice in the header");
+}

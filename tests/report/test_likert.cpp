@@ -228,3 +228,22 @@ TEST(LikertRender, ReportToFileWritesAtomically) {
   EXPECT_NE(ss.str().find("| intelligence"), std::string::npos);
   std::remove(out.c_str());
 }
+
+TEST(LikertRender, LongScalesShowOnlyBelowAtAbove) {
+  const auto path = (std::filesystem::temp_directory_path() /
+                     ("feint-likert-vas-" + std::to_string(::getpid()) + ".csv"))
+                        .string();
+  std::ofstream(path) << "participant,vas\nP1,73\nP2,100\nP3,20\nP4,50\n";
+  LikertSettings s;
+  s.load.scale_min = 0;
+  s.load.scale_max = 100;
+  const auto a = analyze_likert_file(path, s);
+  EXPECT_EQ(a.reference, 50.0);
+  const auto text = render_likert(a, OutputFormat::text);
+  EXPECT_NE(text.find("Responses: % of n below / at / above the neutral point 50"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find(" 99 "), std::string::npos);
+  EXPECT_NE(text.find("vas    25%   25%   50%"), std::string::npos) << text;
+  std::remove(path.c_str());
+}

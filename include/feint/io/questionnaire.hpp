@@ -87,7 +87,11 @@ struct Questionnaire {
 /// UsageError when an option names a column or item the file does not have.
 Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOptions& options = {});
 
-/// Parses `--scale MIN-MAX` (whole numbers, MIN < MAX, negative bounds allowed: `-3-3`).
+/// Largest number of scale points accepted (0-100 rating scales); more is a usage error.
+inline constexpr long long kMaxScalePoints = 101;
+
+/// Parses `--scale MIN-MAX` (whole numbers, MIN < MAX, at most kMaxScalePoints points, negative
+/// bounds allowed: `-3-3`).
 std::pair<int, int> parse_scale(std::string_view text);
 
 /// Parses `--labels "Strongly disagree=1,Disagree=2,..."` (CSV quoting allowed for labels that
