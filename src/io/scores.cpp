@@ -329,6 +329,8 @@ NumericColumn load_numeric_column(const std::string& path, const std::string& co
   out.by = by;
   const int iv = require_column(reader, column, "--column");
   const int ib = by.empty() ? -1 : require_column(reader, by, "--by");
+  out.column = std::string(trim(reader.header()[static_cast<std::size_t>(iv)]));  // as in the file
+  if (ib >= 0) out.by = std::string(trim(reader.header()[static_cast<std::size_t>(ib)]));
   std::map<std::string, std::size_t> index;
   while (reader.next()) {
     std::string group;

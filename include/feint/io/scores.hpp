@@ -70,8 +70,8 @@ ScoresProvenance read_scores_provenance(const std::string& scores_path);
 /// One numeric column of any CSV, optionally split by a grouping column (`feint describe`).
 struct NumericColumn {
   std::string path;
-  std::string column;                ///< as named on the command line
-  std::string by;                    ///< grouping column, "" for none
+  std::string column;                ///< as written in the file's header
+  std::string by;                    ///< grouping column as in the header, "" for none
   std::vector<std::string> groups;   ///< group names in order of first appearance ({""} if no by)
   std::vector<std::vector<double>> values;  ///< per group, file order
   std::vector<std::size_t> missing;  ///< empty cells per group (excluded)

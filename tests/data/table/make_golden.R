@@ -40,3 +40,21 @@ for (m in names(refs)) {
 num <- sapply(g, is.numeric)
 g[num] <- lapply(g[num], function(v) ifelse(is.na(v), "", sprintf("%.17g", v)))
 write.csv(g, "golden_table1.csv", row.names = FALSE, quote = FALSE)
+
+# golden_describe.csv: what `feint describe scores_small.csv --column error --by condition` must
+# print (sd n-1, quantile type 7, t CI, lag-1 autocorrelation in file order as acf()).
+rows <- list()
+for (cond in c("adaptive", "random")) {
+  x <- d$error[d$condition == cond]
+  x <- x[!is.na(x)]
+  n <- length(x); m <- mean(x); s <- sd(x); q <- quantile(x, c(0.25, 0.5, 0.75), type = 7)
+  ci <- t.test(x)$conf.int
+  r1 <- acf(x, lag.max = 1, plot = FALSE)$acf[2]
+  rows[[length(rows) + 1]] <- data.frame(group = cond, n = n, mean = m, sd = s, se = s / sqrt(n),
+    min = min(x), q1 = q[[1]], median = q[[2]], q3 = q[[3]], max = max(x),
+    conf_low = ci[1], conf_high = ci[2], autocorr_lag1 = r1)
+}
+dd <- do.call(rbind, rows)
+num <- sapply(dd, is.numeric)
+dd[num] <- lapply(dd[num], function(v) sprintf("%.17g", v))
+write.csv(dd, "golden_describe.csv", row.names = FALSE, quote = FALSE)
