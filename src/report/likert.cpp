@@ -351,11 +351,18 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
         "t-tests against 3.5) is the t-test column; for single items the Wilcoxon column is the "
         "recommended one.");
   }
-  notes.push_back(
-      "Rank-test p-values are exact when n < 50 with no ties and no responses equal to the null "
-      "value, otherwise from the normal approximation with continuity and tie corrections (R's "
-      "rules; column 'dist' of the table, 'exact' of the CSV/JSON, says which ran). Responses equal to R are dropped by the signed-rank "
-      "test, as in R.");
+  if (a.two_sample) {
+    notes.push_back(
+        "Mann-Whitney p-values are exact when both groups have fewer than 50 answers and there are "
+        "no ties, otherwise from the normal approximation with continuity and tie corrections (R's "
+        "rules; column 'dist' of the table, 'exact' of the CSV/JSON, says which ran).");
+  } else {
+    notes.push_back(
+        "Signed-rank p-values are exact when n < 50 with no ties and no answers equal to R, "
+        "otherwise from the normal approximation with continuity and tie corrections (R's rules; "
+        "column 'dist' of the table, 'exact' of the CSV/JSON, says which ran). Answers equal to R "
+        "are dropped by the signed-rank test, as in R.");
+  }
   notes.push_back(fmt::format(
       "Labels: {0} when p < {1} (rank tests: direction of r; t-tests: of the mean difference); "
       "{2} = not significantly different at alpha = {1}, which is not evidence of equality.",
@@ -370,7 +377,10 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
         to_string(settings.p_adjust), a.names.size(), members.empty() ? "" : " and composites",
         blocks.size() > 1 ? " and condition" : ""));
   }
-  notes.push_back("Empty answers are missing: excluded from that item only and counted (miss).");
+  notes.push_back(a.two_sample ? "Empty answers are missing: excluded from that item only (n A and "
+                                 "n B count the answers; --summary counts the missing)."
+                               : "Empty answers are missing: excluded from that item only and "
+                                 "counted (miss).");
   std::vector<std::string> rev;
   for (std::size_t i = 0; i < n_items; ++i) {
     if (a.reversed[i]) rev.push_back(q.items[i]);
