@@ -69,45 +69,70 @@ AdaptiveState::AdaptiveState(int states) : k(states) {
   for (int i = 0; i < k; ++i) p[static_cast<std::size_t>(i)] = 1.0 / k;
 }
 
-bool AdaptiveState::observe(int chosen, double lambda) noexcept {
+namespace {
+
+// The update and the draw with the number of states as a compile-time constant where it is the
+// paper's K = 4 (the simulator's hot loop), else K = k at run time; both give identical results.
+// Written without data-dependent branches; adding 0.0 to a probability that is not in L leaves it
+// bit-for-bit unchanged.
+template <int KC>
+bool observe_impl(AdaptiveState& st, int kk, int chosen, double lambda) noexcept {
+  const int k = KC > 0 ? KC : kk;
   const auto ci = static_cast<std::size_t>(chosen);
-  c[ci] += 1;
+  const int count = ++st.c[ci];
+  std::array<bool, kMaxStates> in_less{};
   int n_less = 0;
+  int min_count = count;
   for (int j = 0; j < k; ++j) {
-    if (j != chosen && c[static_cast<std::size_t>(j)] < c[ci]) ++n_less;
+    const auto uj = static_cast<std::size_t>(j);
+    in_less[uj] = j != chosen && st.c[uj] < count;
+    n_less += in_less[uj] ? 1 : 0;
+    min_count = std::min(min_count, st.c[uj]);
   }
   if (n_less > 0) {
-    const double moved = lambda * p[ci];
-    p[ci] -= moved;
+    const double moved = lambda * st.p[ci];
     const double share = moved / n_less;
     for (int j = 0; j < k; ++j) {
       const auto uj = static_cast<std::size_t>(j);
-      if (j != chosen && c[uj] < c[ci]) p[uj] += share;
+      st.p[uj] += in_less[uj] ? share : 0.0;
     }
+    st.p[ci] -= moved;
   }
-  int min_count = c[0];
-  for (int j = 1; j < k; ++j) min_count = std::min(min_count, c[static_cast<std::size_t>(j)]);
-  if (min_count >= 1) {
-    for (int j = 0; j < k; ++j) c[static_cast<std::size_t>(j)] -= 1;
+  if (min_count >= 1) {  // every state has occurred: "reset to one iteration back"
+    for (int j = 0; j < k; ++j) st.c[static_cast<std::size_t>(j)] -= 1;
     return true;
   }
   return false;
 }
 
-int AdaptiveState::draw(Rng& rng) const noexcept {
+// Inverse CDF: the chosen state is the number of cumulative sums <= u (states with p = 0 have no
+// width and are never chosen). u can round up to the total: then the last state with p > 0.
+template <int KC>
+int draw_impl(const AdaptiveState& st, int kk, Rng& rng) noexcept {
+  const int k = KC > 0 ? KC : kk;
+  std::array<double, kMaxStates> cum{};
   double total = 0;
-  for (int j = 0; j < k; ++j) total += p[static_cast<std::size_t>(j)];
-  const double u = rng.uniform() * total;
-  double cum = 0;
   int last_positive = 0;
   for (int j = 0; j < k; ++j) {
-    const double pj = p[static_cast<std::size_t>(j)];
-    if (pj <= 0) continue;
-    last_positive = j;
-    cum += pj;
-    if (u < cum) return j;
+    const double pj = st.p[static_cast<std::size_t>(j)];
+    total += pj;
+    cum[static_cast<std::size_t>(j)] = total;
+    last_positive = pj > 0 ? j : last_positive;
   }
-  return last_positive;  // u == total after rounding
+  const double u = rng.uniform() * total;
+  int index = 0;
+  for (int j = 0; j < k; ++j) index += cum[static_cast<std::size_t>(j)] <= u ? 1 : 0;
+  return index < k ? index : last_positive;
+}
+
+}  // namespace
+
+bool AdaptiveState::observe(int chosen, double lambda) noexcept {
+  return k == 4 ? observe_impl<4>(*this, k, chosen, lambda) : observe_impl<0>(*this, k, chosen, lambda);
+}
+
+int AdaptiveState::draw(Rng& rng) const noexcept {
+  return k == 4 ? draw_impl<4>(*this, k, rng) : draw_impl<0>(*this, k, rng);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -72,31 +72,35 @@ class Measurer {
       const double p = static_cast<double>(x) / n;
       term_[x] = -p * std::log2(p);
     }
+    for (std::size_t t = 1; t < inv_.size(); ++t) inv_[t] = 1.0 / static_cast<double>(t);
   }
 
   // states[0..n) in [0, k)
   RunMeasures measure(const std::uint8_t* states, int n, int k) noexcept {
-    std::array<int, kMaxStates> count{};
-    std::array<int, kMaxStates> seen{};
-    std::array<int, kMaxStates * kMaxStates> bigram{};
+    std::array<int, kMaxStates> count;
+    std::fill_n(count.begin(), k, 0);
+    std::fill_n(bigram_.begin(), k * k, 0);
     int repeats = 0;
     double hits = 0;
+    // least-seen guesser: `least` = the smallest count so far, `ties` = how many states have it
+    int least = 0;
+    int ties = k;
     for (int i = 0; i < n; ++i) {
       const int s = states[i];
-      // least-seen guesser, before state s is revealed
-      int least = seen[0];
-      for (int j = 1; j < k; ++j) least = std::min(least, seen[static_cast<std::size_t>(j)]);
-      if (seen[static_cast<std::size_t>(s)] == least) {
-        int ties = 0;
-        for (int j = 0; j < k; ++j) ties += seen[static_cast<std::size_t>(j)] == least ? 1 : 0;
-        hits += 1.0 / ties;
+      int& cs = count[static_cast<std::size_t>(s)];
+      if (cs == least) {
+        hits += inv_[static_cast<std::size_t>(ties)];  // guessed right with probability 1/ties
+        if (--ties == 0) {  // s was the last state at the minimum: the minimum rises by one
+          ++least;
+          for (int j = 0; j < k; ++j) ties += count[static_cast<std::size_t>(j)] == least ? 1 : 0;
+          ties += 1;  // s itself, counted below
+        }
       }
-      ++seen[static_cast<std::size_t>(s)];
-      ++count[static_cast<std::size_t>(s)];
+      ++cs;
       if (i > 0) {
         const int prev = states[i - 1];
-        if (prev == s) ++repeats;
-        ++bigram[static_cast<std::size_t>(prev * kMaxStates + s)];
+        repeats += prev == s ? 1 : 0;
+        ++bigram_[static_cast<std::size_t>(prev * k + s)];
       }
     }
     RunMeasures m;
@@ -117,7 +121,7 @@ class Measurer {
     for (int a = 0; a < k; ++a) {
       int row = 0;
       for (int b = 0; b < k; ++b) {
-        const int nab = bigram[static_cast<std::size_t>(a * kMaxStates + b)];
+        const int nab = bigram_[static_cast<std::size_t>(a * k + b)];
         row += nab;
         cells += xlogx_[static_cast<std::size_t>(nab)];
       }
@@ -130,6 +134,8 @@ class Measurer {
  private:
   std::vector<double> xlogx_;
   std::vector<double> term_;
+  std::array<double, kMaxStates + 1> inv_{};
+  std::array<int, kMaxStates * kMaxStates> bigram_{};
 };
 
 struct ChunkResult {
