@@ -4,11 +4,15 @@
 #include <zlib.h>
 
 #include <filesystem>
+#include <random>
+
+#include <fmt/format.h>
 #include <fstream>
 #include <string>
 #include <vector>
 
 #include "feint/error.hpp"
+#include "feint/io/number.hpp"
 #include "feint/io/trace.hpp"
 
 namespace fs = std::filesystem;
@@ -341,4 +345,30 @@ TEST(ExpandInputs, DirectoriesGlobsAndMissingFiles) {
   EXPECT_THROW(feint::io::expand_inputs({(d / "missing.csv").string()}), feint::IoError);
   fs::create_directories(dir() / "empty");
   EXPECT_THROW(feint::io::expand_inputs({(dir() / "empty").string()}), feint::IoError);
+}
+
+TEST(TraceReader, NumbersAreReadExactlyAsParseDouble) {
+  // The loader's fast decimal path must give the same double as the strict parser, bit for bit.
+  std::mt19937_64 rng(11);
+  std::string content = "participant,iteration,target,t,pad\n";
+  std::vector<std::string> texts;
+  double t = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const int decimals = static_cast<int>(rng() % 17);
+    t += 0.5 + static_cast<double>(rng() % 1000) / 7.0;
+    std::string ts = fmt::format("{:.{}f}", t, decimals);
+    if (i % 50 == 0) ts = fmt::format("{:e}", t);  // exponent: the slow path
+    if (!texts.empty() && !(*feint::io::parse_double(ts) > *feint::io::parse_double(texts.back()))) {
+      continue;
+    }
+    texts.push_back(ts);
+    content += "P1,1,left," + ts + ",0." + std::to_string(rng() % 1000000000) + "\n";
+  }
+  const auto p = write("numbers.csv", content);
+  const auto trials = read_all({p});
+  ASSERT_EQ(trials.size(), 1U);
+  ASSERT_EQ(trials[0].times.size(), texts.size());
+  for (std::size_t i = 0; i < texts.size(); ++i) {
+    ASSERT_EQ(trials[0].times[i], *feint::io::parse_double(texts[i])) << texts[i];
+  }
 }
