@@ -164,6 +164,8 @@ std::string apa_string(const stats::TestResult& r) {
   }
   if (rank) {
     if (r.rank_biserial) out += ", r = " + apa_r(*r.rank_biserial);
+  } else if (f_test) {
+    if (r.r_squared) out += ", \u03b7\u00b2 = " + apa_r(*r.r_squared);  // eta squared = R^2
   } else if (!f_test && !chi2 && t != "tost") {
     if (r.cohen_d) out += ", d = " + apa_two_dec(*r.cohen_d);
   }
@@ -372,6 +374,7 @@ std::string latex_escape(std::string_view text) {
     if (starts("\u03b1")) { out += "\\ensuremath{\\alpha}"; i += 1; continue; }
     if (starts("\u03b4")) { out += "\\ensuremath{\\delta}"; i += 1; continue; }
     if (starts("\u03c7")) { out += "\\ensuremath{\\chi}"; i += 1; continue; }
+    if (starts("\u03b7")) { out += "\\ensuremath{\\eta}"; i += 1; continue; }
     if (starts("\u00b2")) { out += "\\textsuperscript{2}"; i += 1; continue; }
     if (starts("\u2013")) { out += "--"; i += 2; continue; }
     if (starts("\u2014")) { out += "---"; i += 2; continue; }

@@ -165,6 +165,9 @@ TEST(ApaString, FTestsAndKruskalWallis) {
   f.df2 = 57;
   f.p_value = 0.0398;
   EXPECT_EQ(apa_string(f), "F(2, 57) = 3.41, p = .040");
+  f.r_squared = 0.107;
+  EXPECT_EQ(apa_string(f), "F(2, 57) = 3.41, p = .040, \u03b7\u00b2 = .11");
+  f.r_squared.reset();
   f.test = "welch_anova";
   f.df2 = 35.123;
   EXPECT_EQ(apa_string(f), "F(2, 35.12) = 3.41, p = .040");
@@ -295,6 +298,7 @@ TEST(LatexEscape, SpecialCharactersAndApprox) {
   EXPECT_EQ(latex_escape("a_b & 50% #1 {x} $"), "a\\_b \\& 50\\% \\#1 \\{x\\} \\$");
   EXPECT_EQ(latex_escape("M\u2248R"), "M\\ensuremath{\\approx}R");
   EXPECT_EQ(latex_escape("a<b"), "a\\textless{}b");
+  EXPECT_EQ(latex_escape("\u03b7\u00b2"), "\\ensuremath{\\eta}\\textsuperscript{2}");
   EXPECT_EQ(latex_escape("~^\\"), "\\textasciitilde{}\\textasciicircum{}\\textbackslash{}");
 }
 

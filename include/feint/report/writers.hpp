@@ -57,8 +57,8 @@ std::string apa_p(double p);
 
 /// APA-style summary of any TestResult, e.g. `t(29) = 2.93, p = .007, d = 0.53` (t tests; Welch df
 /// with two decimals), `V = 120, p = .003, r = .62` (Wilcoxon signed-rank), `W = 310.5, p = .041,
-/// r = -.27` (Mann-Whitney), `F(2, 57) = 3.41, p = .040` (ANOVA; Welch denominator df with two
-/// decimals), `χ²(2) = 5.21, p = .074` (Kruskal-Wallis), and for TOST
+/// r = -.27` (Mann-Whitney), `F(2, 57) = 3.41, p = .040, η² = .11` (ANOVA, η² = R² when known;
+/// Welch denominator df with two decimals), `χ²(2) = 5.21, p = .074` (Kruskal-Wallis), and for TOST
 /// `TOST: t(29) = 2.10, p = .022`. An adjusted p is added as `, adjusted p = .021`. A test that
 /// could not be computed gives `not computable: <reason>`.
 std::string apa_string(const stats::TestResult& result);
