@@ -1,0 +1,75 @@
+// feint/sim/observer.hpp - a simulated study participant who watches trajectories and moves the pad.
+//
+// The model (docs/simulation.md, "The simulated observer"):
+//   * Goal inference. A naive observer believes the robot goes where it is: its belief in the right
+//     target is n = 0.5 + 0.5 tanh(inference_gain * x / (d/2)) of the robot's position x seen
+//     `reaction_delay` seconds ago.
+//   * Memory. A trace m per (strategy, version): after each trial every trace decays (m *= memory_decay)
+//     and the seen one gains 1. Familiarity f = m^a / (m^a + half^a) (a Hill curve: a few exposures
+//     are needed before learning pays, then it saturates): it grows with how often and how recently a
+//     strategy was seen.
+//   * Recognition. A familiar strategy is recognised: with weight w_same = f(seen version) the observer
+//     expects the true target; with weight w_other = f(other version) (1 - w_same) it expects the other
+//     version's ending, i.e. the false target (familiarity with the main strategy is what a v2 exploits).
+//     For the optimal strategy, w_other = optimal_suspicion f(exaggerating, main) (1 - w_same): it
+//     looks like the start of an exaggeration. Recognition grows linearly over `recognition_time`
+//     seconds after the reaction delay: goal = (1 - R) n + r w_same T + r w_other (1 - T), R = r (w_same + w_other).
+//   * The end is visible: within `capture_radius` metres of a target, belief moves linearly to it.
+//   * Action. Every `decision_interval` seconds the observer picks a pad goal = belief + N(0, noise_sd),
+//     clamped to [0, 1], and moves the pad toward it at `pad_speed` while it is farther than
+//     `move_threshold` (a key is held, or not). The pad starts at 0.5 and stays in [0, 1].
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "feint/sim/rng.hpp"
+#include "feint/sim/selection.hpp"
+#include "feint/sim/trajectory.hpp"
+
+namespace feint::sim {
+
+struct ObserverParams {
+  double reaction_delay = 0.3;     // s
+  double decision_interval = 0.2;  // s between pad-goal decisions
+  double noise_sd = 0.08;          // pad units, on each decided goal
+  double pad_speed = 0.8;          // pad units per second (the GUI's constant key rate)
+  double move_threshold = 0.05;    // pad units: closer than this to the goal, the key is released
+  double inference_gain = 2.5;     // naive goal inference slope
+  double half_familiarity = 3.0;   // memory trace at which familiarity is 1/2
+  double learning_shape = 2.0;     // Hill exponent: f = m^a / (m^a + half^a)
+  double memory_decay = 0.97;      // share of every memory trace kept per trial (recency)
+  double recognition_time = 1.5;   // s for recognition to build up after the reaction delay
+  double optimal_suspicion = 0.6;  // how much familiarity with exaggerating makes optimal suspect
+  double capture_radius = 1.0;     // m: near a target, the observer sees where the robot ends
+};
+
+/// Throws UsageError naming the parameter when a setting is out of range.
+void validate(const ObserverParams& p);
+
+struct PadSample {
+  double t = 0;
+  double pad = 0.5;
+};
+
+class Observer {
+ public:
+  explicit Observer(ObserverParams params = {});
+
+  /// Familiarity in [0, 1) of (strategy, version) now.
+  double familiarity(Strategy s, Variant v) const noexcept;
+  /// Watches one trial and returns the pad trace at the trajectory's sample times (pad positions
+  /// on a 1e-4 grid, so that a logged trace never exceeds pad_speed). Does not update memory.
+  std::vector<PadSample> watch(const std::vector<TrajectorySample>& path, Strategy s, Variant v,
+                               Target true_target, const Geometry& g, Rng& rng) const;
+  /// After the trial: decays every trace and adds one to (s, v).
+  void remember(Strategy s, Variant v) noexcept;
+
+  const ObserverParams& params() const noexcept { return params_; }
+
+ private:
+  ObserverParams params_;
+  std::array<double, 8> memory_{};  // index strategy * 2 + variant
+};
+
+}  // namespace feint::sim

@@ -1,0 +1,65 @@
+// feint/sim/study.hpp - a simulated user study (selection.md "Simulated studies").
+//
+// N simulated participants per condition (adaptive, lambda 0.5; random) each watch a run of N
+// iterations chosen by their condition's algorithm (generate_run), with a fresh Observer; their pad
+// traces are written as pad-trace logs (formats.md), one gzipped CSV per participant, and a wide
+// 1-7 Likert questionnaire (entertainment, deception, intelligence, trust) is derived from each
+// participant's mean error plus noise. Participant i (0-based; the first N adaptive, the next N
+// random) draws everything from Rng::stream(seed, i).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "feint/sim/observer.hpp"
+#include "feint/sim/selection.hpp"
+#include "feint/sim/trajectory.hpp"
+
+namespace feint::sim {
+
+struct StudySettings {
+  int participants = 20;  // per condition
+  int iterations = 20;
+  double lambda = 0.5;    // of the adaptive condition
+  std::uint64_t seed = 1;
+  Geometry geometry;
+  ObserverParams observer;
+};
+
+struct TrialRecord {
+  int iteration = 0;  // 1-based
+  Strategy strategy = Strategy::optimal;
+  Variant variant = Variant::main;
+  Target target = Target::left;
+  std::vector<PadSample> pad;
+  double error = 0;  // trial_error() of the trace
+};
+
+struct ParticipantRecord {
+  std::string id;  // P01, P02, ...
+  Algorithm condition = Algorithm::adaptive;
+  std::vector<TrialRecord> trials;
+  double mean_error = 0;
+  std::array<int, 4> likert{};  // entertainment, deception, intelligence, trust (1-7)
+};
+
+/// Error of a trial (paper eq. 3), for checks on simulated data: the time-weighted mean of
+/// |T - pad(t)| over the window [t0 + trim tau, t_end - trim tau] of the piecewise-linear trace
+/// (trapezoids; exact because T is 0 or 1 and the pad stays in [0, 1]).
+double trial_error(const std::vector<PadSample>& pad, double target, double trim = 0.05);
+
+/// Participant `index` (0-based over both conditions) of a study.
+ParticipantRecord simulate_participant(const StudySettings& settings, int index);
+
+/// Conditions in order: adaptive, random.
+inline constexpr std::array<Algorithm, 2> kStudyConditions = {Algorithm::adaptive, Algorithm::random};
+
+/// Writes DIR/logs/<participant>.csv.gz (columns participant, condition, iteration, strategy,
+/// variant, target, t, pad, pad_speed) and DIR/questionnaire.csv (participant, condition,
+/// entertainment, deception, intelligence, trust). Files are written to temporaries and renamed.
+/// Returns the participants (for a summary). Throws IoError when a file cannot be written.
+std::vector<ParticipantRecord> write_study(const StudySettings& settings, const std::string& dir);
+
+}  // namespace feint::sim

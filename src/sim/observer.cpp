@@ -1,0 +1,123 @@
+// The simulated observer (see feint/sim/observer.hpp and docs/simulation.md).
+#include "feint/sim/observer.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "feint/error.hpp"
+
+namespace feint::sim {
+
+void validate(const ObserverParams& p) {
+  auto nonneg = [](double v, const char* name) {
+    if (!(v >= 0) || !std::isfinite(v)) throw UsageError(fmt::format("observer: {} must be >= 0, got {}", name, v));
+  };
+  auto positive = [](double v, const char* name) {
+    if (!(v > 0) || !std::isfinite(v)) throw UsageError(fmt::format("observer: {} must be > 0, got {}", name, v));
+  };
+  nonneg(p.reaction_delay, "reaction_delay");
+  positive(p.decision_interval, "decision_interval");
+  nonneg(p.noise_sd, "noise_sd");
+  positive(p.pad_speed, "pad_speed");
+  nonneg(p.move_threshold, "move_threshold");
+  positive(p.inference_gain, "inference_gain");
+  positive(p.half_familiarity, "half_familiarity");
+  positive(p.learning_shape, "learning_shape");
+  positive(p.recognition_time, "recognition_time");
+  positive(p.capture_radius, "capture_radius");
+  if (!(p.memory_decay >= 0 && p.memory_decay <= 1)) {
+    throw UsageError(fmt::format("observer: memory_decay must be in [0, 1], got {}", p.memory_decay));
+  }
+  if (!(p.optimal_suspicion >= 0 && p.optimal_suspicion <= 1)) {
+    throw UsageError(fmt::format("observer: optimal_suspicion must be in [0, 1], got {}", p.optimal_suspicion));
+  }
+}
+
+Observer::Observer(ObserverParams params) : params_(params) { validate(params_); }
+
+namespace {
+std::size_t slot(Strategy s, Variant v) noexcept {
+  return static_cast<std::size_t>(s) * 2 + static_cast<std::size_t>(v);
+}
+constexpr double kGrid = 1e4;  // pad positions are whole multiples of 1e-4
+
+/// Robot position at time t (linear between samples; the start before t = 0).
+Point position_at(const std::vector<TrajectorySample>& path, double t) noexcept {
+  if (t <= path.front().t) return {path.front().x, path.front().y};
+  if (t >= path.back().t) return {path.back().x, path.back().y};
+  const auto it = std::upper_bound(path.begin(), path.end(), t,
+                                   [](double v, const TrajectorySample& s) { return v < s.t; });
+  const auto& b = *it;
+  const auto& a = *(it - 1);
+  const double f = (t - a.t) / (b.t - a.t);
+  return {a.x + f * (b.x - a.x), a.y + f * (b.y - a.y)};
+}
+}  // namespace
+
+double Observer::familiarity(Strategy s, Variant v) const noexcept {
+  // Hill curve: learning needs a few exposures before it pays (convex start), then saturates.
+  const double m = std::pow(memory_[slot(s, v)], params_.learning_shape);
+  return m / (m + std::pow(params_.half_familiarity, params_.learning_shape));
+}
+
+void Observer::remember(Strategy s, Variant v) noexcept {
+  for (auto& m : memory_) m *= params_.memory_decay;
+  memory_[slot(s, v)] += 1.0;
+}
+
+std::vector<PadSample> Observer::watch(const std::vector<TrajectorySample>& path, Strategy s,
+                                       Variant v, Target true_target, const Geometry& g,
+                                       Rng& rng) const {
+  const auto& P = params_;
+  const double T = true_target == Target::left ? 0.0 : 1.0;
+  // Recognition weights (see the header).
+  const double w_same = familiarity(s, v);
+  double w_other = 0;
+  if (s == Strategy::optimal) {
+    w_other = P.optimal_suspicion * familiarity(Strategy::exaggerating, Variant::main) * (1 - w_same);
+  } else {
+    w_other = familiarity(s, v == Variant::main ? Variant::v2 : Variant::main) * (1 - w_same);
+  }
+  const double half = g.target_distance / 2;
+  auto belief = [&](double t) {
+    const Point seen = position_at(path, t - P.reaction_delay);
+    const double naive = 0.5 + 0.5 * std::tanh(P.inference_gain * seen.x / half);
+    const double r = std::clamp((t - P.reaction_delay) / P.recognition_time, 0.0, 1.0);
+    double b = (1 - r * (w_same + w_other)) * naive + r * w_same * T + r * w_other * (1 - T);
+    const double dl = std::hypot(seen.x + half, seen.y - g.target_height);
+    const double dr = std::hypot(seen.x - half, seen.y - g.target_height);
+    const double c = std::clamp(1 - std::min(dl, dr) / P.capture_radius, 0.0, 1.0);
+    return (1 - c) * b + c * (dl < dr ? 0.0 : 1.0);
+  };
+
+  std::vector<PadSample> out;
+  out.reserve(path.size());
+  long pad = static_cast<long>(0.5 * kGrid);
+  long goal = pad;
+  const long threshold = std::lround(P.move_threshold * kGrid);
+  double next_decision = 0;
+  double prev_t = path.front().t;
+  for (const auto& smp : path) {
+    const double dt = smp.t - prev_t;
+    prev_t = smp.t;
+    // move during (prev_t, t] toward the current goal at pad speed (whole grid steps only, so the
+    // logged trace never exceeds the stated speed)
+    if (std::labs(goal - pad) > threshold) {
+      const long max_step = static_cast<long>(std::floor(P.pad_speed * dt * kGrid + 1e-9));
+      const long diff = goal - pad;
+      pad += diff > 0 ? std::min(max_step, diff) : -std::min(max_step, -diff);
+    }
+    out.push_back({smp.t, static_cast<double>(pad) / kGrid});
+    if (smp.t >= next_decision) {
+      const double noisy = std::clamp(belief(smp.t) + P.noise_sd * rng.normal(), 0.0, 1.0);
+      goal = std::lround(noisy * kGrid);
+      next_decision += P.decision_interval;
+      while (next_decision <= smp.t) next_decision += P.decision_interval;
+    }
+  }
+  return out;
+}
+
+}  // namespace feint::sim
