@@ -80,7 +80,8 @@ void run(const LikertArgs& args) {
   }
   s.paper = args.paper;
   if (s.paper && s.compare) {
-    throw UsageError("--paper is the paper's one-sample analysis; it does not combine with --compare");
+    throw UsageError(
+        "--paper is the paper's one-sample analysis; it does not combine with --compare");
   }
   s.test = r.test;
   s.alpha = r.alpha;
@@ -107,12 +108,15 @@ void add_likert_command(CLI::App& app) {
       "Likert questionnaire analyses: per item and composite scale, descriptives, the Wilcoxon "
       "signed-rank test against a reference (primary) and the one-sample t-test (the paper's), or "
       "Mann-Whitney and Welch between two conditions; Cronbach's alpha of composites.");
-  cmd->add_option("file", args->file, "Questionnaire CSV (long or wide; Qualtrics exports; .gz; - = stdin)")
+  cmd->add_option("file", args->file,
+                  "Questionnaire CSV (long or wide; Qualtrics exports; .gz; - = stdin)")
       ->required();
-  cmd->add_option("--layout", args->layout, "long, wide or auto (long when the header has the item "
-                                             "and response columns)")
+  cmd->add_option("--layout", args->layout,
+                  "long, wide or auto (long when the header has the item "
+                  "and response columns)")
       ->capture_default_str();
-  cmd->add_option("--scale", args->scale, "Scale bounds MIN-MAX (whole numbers)")->capture_default_str();
+  cmd->add_option("--scale", args->scale, "Scale bounds MIN-MAX (whole numbers)")
+      ->capture_default_str();
   cmd->add_option("--labels", args->labels,
                   "Map text answers to scale points: \"Strongly disagree=1,Disagree=2,...\" "
                   "(default: built-in agree/disagree map for 5- and 7-point scales)");
@@ -126,7 +130,8 @@ void add_likert_command(CLI::App& app) {
   cmd->add_option("--condition-column", args->condition_column,
                   "Condition column (optional in the file)")
       ->capture_default_str();
-  cmd->add_option("--item-column", args->item_column, "Long layout: item column")->capture_default_str();
+  cmd->add_option("--item-column", args->item_column, "Long layout: item column")
+      ->capture_default_str();
   cmd->add_option("--response-column", args->response_column, "Long layout: response column")
       ->capture_default_str();
   cmd->add_option("--reverse", args->reverse,
@@ -141,16 +146,18 @@ void add_likert_command(CLI::App& app) {
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
       ->allow_extra_args(false);
-  cmd->add_option("--reference", args->reference,
-                  "Reference value of the one-sample tests (default: the scale midpoint; --paper: 3.5)");
+  cmd->add_option(
+      "--reference", args->reference,
+      "Reference value of the one-sample tests (default: the scale midpoint; --paper: 3.5)");
   cmd->add_option("--condition", args->condition, "Only this condition (default: each condition)");
   cmd->add_option("--compare", args->compare,
                   "Two conditions A,B: Mann-Whitney U (primary) and Welch's t-test");
   cmd->add_flag("--paper", args->paper,
                 "The paper's analysis: items entertainment, deception, intelligence, trust against "
                 "3.5 (t-test column; Wilcoxon primary)");
-  cmd->add_option("--summary", args->summary,
-                  "Also write per-item descriptives and counts per scale point as CSV to this file");
+  cmd->add_option(
+      "--summary", args->summary,
+      "Also write per-item descriptives and counts per scale point as CSV to this file");
   add_report_options(*cmd, args->report);
   cmd->callback([args] { run(*args); });
 }

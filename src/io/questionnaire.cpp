@@ -25,7 +25,9 @@ struct Record {
   std::vector<std::string> fields;
 };
 
-bool iequals(std::string_view a, std::string_view b) { return to_lower(trim(a)) == to_lower(trim(b)); }
+bool iequals(std::string_view a, std::string_view b) {
+  return to_lower(trim(a)) == to_lower(trim(b));
+}
 
 /// Column metadata written by survey platforms, never an item unless named in --items.
 constexpr std::array<std::string_view, 23> kPlatformColumns = {
@@ -159,9 +161,12 @@ std::string who(const Questionnaire& q, const std::string& participant,
 
 std::string_view to_string(QuestionnaireLayout layout) noexcept {
   switch (layout) {
-    case QuestionnaireLayout::long_format: return "long";
-    case QuestionnaireLayout::wide_format: return "wide";
-    case QuestionnaireLayout::automatic: break;
+    case QuestionnaireLayout::long_format:
+      return "long";
+    case QuestionnaireLayout::wide_format:
+      return "wide";
+    case QuestionnaireLayout::automatic:
+      break;
   }
   return "auto";
 }
@@ -202,9 +207,10 @@ std::pair<int, int> parse_scale(std::string_view text) {
   // The separating '-' is the first one after the first character (MIN may be negative).
   const auto dash = t.size() > 1 ? t.find('-', 1) : std::string_view::npos;
   const auto fail = [&]() -> std::pair<int, int> {
-    throw UsageError(fmt::format("--scale '{}': expected MIN-MAX with whole numbers MIN < MAX, "
-                                 "e.g. 1-7",
-                                 text));
+    throw UsageError(
+        fmt::format("--scale '{}': expected MIN-MAX with whole numbers MIN < MAX, "
+                    "e.g. 1-7",
+                    text));
   };
   if (dash == std::string_view::npos) return fail();
   const auto lo = parse_integer(t.substr(0, dash));
@@ -246,16 +252,20 @@ std::vector<LabelEntry> builtin_agree_labels(int scale_min, int scale_max) {
   const long long points = static_cast<long long>(scale_max) - scale_min + 1;
   const int m = scale_min;
   if (points == 5) {
-    return {{"Strongly disagree", m},         {"Disagree", m + 1},
-            {"Somewhat disagree", m + 1},     {"Neither agree nor disagree", m + 2},
-            {"Neutral", m + 2},               {"Agree", m + 3},
-            {"Somewhat agree", m + 3},        {"Strongly agree", m + 4}};
+    return {{"Strongly disagree", m},     {"Disagree", m + 1},
+            {"Somewhat disagree", m + 1}, {"Neither agree nor disagree", m + 2},
+            {"Neutral", m + 2},           {"Agree", m + 3},
+            {"Somewhat agree", m + 3},    {"Strongly agree", m + 4}};
   }
   if (points == 7) {
-    return {{"Strongly disagree", m},      {"Disagree", m + 1},
-            {"Somewhat disagree", m + 2},  {"Neither agree nor disagree", m + 3},
-            {"Neutral", m + 3},            {"Somewhat agree", m + 4},
-            {"Agree", m + 5},              {"Strongly agree", m + 6}};
+    return {{"Strongly disagree", m},
+            {"Disagree", m + 1},
+            {"Somewhat disagree", m + 2},
+            {"Neither agree nor disagree", m + 3},
+            {"Neutral", m + 3},
+            {"Somewhat agree", m + 4},
+            {"Agree", m + 5},
+            {"Strongly agree", m + 6}};
   }
   return {};
 }
@@ -348,9 +358,9 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
 
   if (q.layout == QuestionnaireLayout::long_format) {
     if (item_col < 0 || resp_col < 0) {
-      throw InvalidData(fmt::format(
-          "{}: the long layout needs columns '{}' and '{}' (columns: {})", file,
-          options.item_column, options.response_column, detail::list_names(header)));
+      throw InvalidData(fmt::format("{}: the long layout needs columns '{}' and '{}' (columns: {})",
+                                    file, options.item_column, options.response_column,
+                                    detail::list_names(header)));
     }
     // --items selects items (rows of other items are skipped, unread) and sets their order.
     const auto selected = [&](const std::string& item) {
@@ -380,9 +390,9 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
       const auto [resp, inserted] = respondents.find_or_add(participant, condition, r.line);
       (void)inserted;
       if (const auto prev = seen.find({resp, it}); prev != seen.end()) {
-        parser.fail(r.line, fmt::format("{} answered item '{}' twice (first at line {})",
-                                        detail::who(q, participant, condition), item,
-                                        prev->second));
+        parser.fail(r.line,
+                    fmt::format("{} answered item '{}' twice (first at line {})",
+                                detail::who(q, participant, condition), item, prev->second));
       }
       seen.emplace(std::make_pair(resp, it), r.line);
       q.responses[it][resp] =
@@ -437,14 +447,14 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
       }
     }
     if (cols.empty()) {
-      throw InvalidData(fmt::format("{}: no item columns (columns: {})", file,
-                                    detail::list_names(header)));
+      throw InvalidData(
+          fmt::format("{}: no item columns (columns: {})", file, detail::list_names(header)));
     }
     for (const auto c : cols) {
       for (const auto& prev : q.items) {
         if (detail::iequals(prev, header[c])) {
-          throw InvalidData(fmt::format("{}: item column '{}' appears twice in the header", file,
-                                        prev));
+          throw InvalidData(
+              fmt::format("{}: item column '{}' appears twice in the header", file, prev));
         }
       }
       q.items.emplace_back(trim(header[c]));
@@ -480,8 +490,8 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
   for (const auto& name : options.reverse) {
     const auto i = q.item_index(name);
     if (!i) {
-      throw UsageError(fmt::format("--reverse: no item '{}' (items: {})", name,
-                                   detail::list_names(q.items)));
+      throw UsageError(
+          fmt::format("--reverse: no item '{}' (items: {})", name, detail::list_names(q.items)));
     }
     if (q.reversed[*i]) throw UsageError(fmt::format("--reverse: item '{}' is named twice", name));
     q.reversed[*i] = true;

@@ -110,10 +110,11 @@ LikertComposite parse_composite(std::string_view text) {
     }
     c.items.push_back(name);
   }
-  if (c.name.empty()) throw UsageError(fmt::format("--composite '{}': the scale has no name", text));
+  if (c.name.empty())
+    throw UsageError(fmt::format("--composite '{}': the scale has no name", text));
   if (c.items.size() < 2) {
-    throw UsageError(fmt::format("--composite '{}': a multi-item scale needs at least two items",
-                                 text));
+    throw UsageError(
+        fmt::format("--composite '{}': a multi-item scale needs at least two items", text));
   }
   return c;
 }
@@ -128,8 +129,8 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
   a.scale_min = q.scale_min;
   a.scale_max = q.scale_max;
   a.neutral = (q.scale_min + q.scale_max) / 2.0;
-  a.reference = settings.reference ? *settings.reference
-                                   : (settings.paper ? kPaperReference : a.neutral);
+  a.reference =
+      settings.reference ? *settings.reference : (settings.paper ? kPaperReference : a.neutral);
   if (!std::isfinite(a.reference)) throw UsageError("--reference: expected a finite number");
 
   // Items, then composites (indices into the items).
@@ -143,8 +144,8 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
   for (const auto& c : settings.composites) {
     for (const auto& n : a.names) {
       if (detail::iequals(n, c.name)) {
-        throw UsageError(fmt::format("--composite {}: the name is already an item or a composite",
-                                     c.name));
+        throw UsageError(
+            fmt::format("--composite {}: the name is already an item or a composite", c.name));
       }
     }
     std::vector<std::size_t> idx;
@@ -216,7 +217,8 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
     const auto& [ga, gb] = *settings.compare;
     check_condition(ga, "--compare");
     check_condition(gb, "--compare");
-    if (ga == gb) throw UsageError(fmt::format("--compare {},{}: a condition against itself", ga, gb));
+    if (ga == gb)
+      throw UsageError(fmt::format("--compare {},{}: a condition against itself", ga, gb));
     Block b{ga, gb, respondents_in(ga), respondents_in(gb)};
     std::set<std::string> in_a;
     for (const auto r : b.resp1) in_a.insert(q.participants[r]);
@@ -252,8 +254,9 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
       rel.group = a.two_sample ? b.group1 + "+" + b.group2 : b.group1;
       std::vector<std::vector<double>> cols(members[c].size());
       for (const auto r : everyone) {
-        const bool complete = std::all_of(members[c].begin(), members[c].end(),
-                                          [&](std::size_t i) { return q.responses[i][r].has_value(); });
+        const bool complete = std::all_of(members[c].begin(), members[c].end(), [&](std::size_t i) {
+          return q.responses[i][r].has_value();
+        });
         if (!complete) continue;
         for (std::size_t j = 0; j < members[c].size(); ++j) {
           cols[j].push_back(*q.responses[members[c][j]][r]);
@@ -280,8 +283,8 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
       primary.group2 = paper.group2 = b.group2;
       if (a.two_sample) {
         auto [y, miss_y] = values_of(k, b.resp2);
-        a.summaries.push_back(detail::summarize(a.names[k], comp, b.group2, y, miss_y,
-                                                q.scale_min, q.scale_max, a.neutral));
+        a.summaries.push_back(detail::summarize(a.names[k], comp, b.group2, y, miss_y, q.scale_min,
+                                                q.scale_max, a.neutral));
         primary.result = stats::mann_whitney(x, y, settings.test);
         paper.result = stats::t_test_welch(x, y, settings.test);
       } else {
@@ -369,11 +372,13 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
       a.two_sample ? "A>B / A<B" : "M>R / M<R", detail::fmt_number(settings.alpha),
       a.two_sample ? fmt::format("A{}B", kApprox) : fmt::format("M{}R", kApprox)));
   if (settings.test.alternative != stats::Alternative::two_sided) {
-    notes.push_back(fmt::format("Alternative hypothesis: {}.", to_string(settings.test.alternative)));
+    notes.push_back(
+        fmt::format("Alternative hypothesis: {}.", to_string(settings.test.alternative)));
   }
   if (settings.p_adjust != stats::PAdjustMethod::none) {
     notes.push_back(fmt::format(
-        "p-values adjusted ({}) across the {} items{} of each test{}; the labels use the adjusted p.",
+        "p-values adjusted ({}) across the {} items{} of each test{}; the labels use the adjusted "
+        "p.",
         to_string(settings.p_adjust), a.names.size(), members.empty() ? "" : " and composites",
         blocks.size() > 1 ? " and condition" : ""));
   }
@@ -430,9 +435,10 @@ LikertAnalysis analyze_likert_file(const std::string& path, const LikertSettings
     q = io::load_questionnaire(path, load);
   } catch (const UsageError& e) {
     // Say why items the user did not type are looked for.
-    throw UsageError(fmt::format("--paper analyses the paper's items ({}; name others with "
-                                 "--items): {}",
-                                 detail::join(paper_items()), e.what()));
+    throw UsageError(
+        fmt::format("--paper analyses the paper's items ({}; name others with "
+                    "--items): {}",
+                    detail::join(paper_items()), e.what()));
   }
   return analyze_likert(*q, settings);
 }

@@ -85,8 +85,8 @@ TextTable main_table(const LikertAnalysis& a) {
   if (a.two_sample) {
     const auto& ga = a.settings.compare->first;
     const auto& gb = a.settings.compare->second;
-    t.caption = fmt::format("Likert items: {} (A) against {} (B), scale {}-{}", ga, gb,
-                            a.scale_min, a.scale_max);
+    t.caption = fmt::format("Likert items: {} (A) against {} (B), scale {}-{}", ga, gb, a.scale_min,
+                            a.scale_max);
     for (const char* h : {"n A", "n B", "Mdn A", "Mdn B", "IQR A", "IQR B", "M A", "M B"}) {
       head.emplace_back(h);
     }
@@ -191,8 +191,9 @@ TextTable distribution_table(const LikertAnalysis& a) {
   // Per-point columns for the usual short scales; long ones (e.g. 0-100) only get < = >.
   const auto points = static_cast<std::size_t>(a.scale_max - a.scale_min + 1);
   const bool per_point = points <= kMaxPointColumns;
-  if (!per_point) t.caption = fmt::format("Responses: % of n below / at / above the neutral point {}",
-                                          io::format_double(a.neutral));
+  if (!per_point)
+    t.caption = fmt::format("Responses: % of n below / at / above the neutral point {}",
+                            io::format_double(a.neutral));
   for (int v = a.scale_min; per_point && v <= a.scale_max; ++v) {
     t.header.push_back(std::to_string(v));
   }
@@ -225,9 +226,9 @@ TextTable distribution_table(const LikertAnalysis& a) {
       if (s.composite || s.n == 0) {
         cells.emplace_back("");
       } else {
-        cells.push_back(fmt::format("{} ({:.0f}%)", s.counts[v],
-                                    100.0 * static_cast<double>(s.counts[v]) /
-                                        static_cast<double>(s.n)));
+        cells.push_back(
+            fmt::format("{} ({:.0f}%)", s.counts[v],
+                        100.0 * static_cast<double>(s.counts[v]) / static_cast<double>(s.n)));
       }
     }
     cells.push_back(pct(s.pct_below));
@@ -301,8 +302,9 @@ std::string render_likert(const LikertAnalysis& a, OutputFormat format) {
 }
 
 std::string likert_summary_csv(const LikertAnalysis& a) {
-  std::vector<std::string> names{"group", "name", "kind", "n", "missing", "mean", "sd", "median",
-                                 "q1", "q3", "iqr", "pct_below", "pct_at", "pct_above"};
+  std::vector<std::string> names{"group", "name",      "kind",   "n",        "missing",
+                                 "mean",  "sd",        "median", "q1",       "q3",
+                                 "iqr",   "pct_below", "pct_at", "pct_above"};
   for (int v = a.scale_min; v <= a.scale_max; ++v) names.push_back(fmt::format("n_{}", v));
   for (int v = a.scale_min; v <= a.scale_max; ++v) names.push_back(fmt::format("pct_{}", v));
   std::vector<std::string_view> columns(names.begin(), names.end());

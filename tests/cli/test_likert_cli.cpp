@@ -54,7 +54,8 @@ TEST(LikertCli, ThePapersAnalysisIsOneCommand) {
 TEST(LikertCli, OutOfRangeResponseIsInvalidDataWithThePreciseMessage) {
   const auto r = likert_on("participant,trust\nP01,3\nP07,9\n");
   EXPECT_EQ(r.exit_code, 65);
-  EXPECT_EQ(r.err, "feint: error: FILE:3: column 'trust': 9 is outside the scale 1-7 (participant P07)\n");
+  EXPECT_EQ(r.err,
+            "feint: error: FILE:3: column 'trust': 9 is outside the scale 1-7 (participant P07)\n");
   // The same answer is fine on a 0-10 scale.
   EXPECT_EQ(likert_on("participant,trust\nP01,3\nP07,9\n", "--scale 0-10").exit_code, 0);
 }
@@ -160,8 +161,9 @@ TEST(LikertCli, QualtricsExportEndToEnd) {
       << csv;
   // The text table says what was mapped and skipped.
   const auto t = run_feint("likert " + data("qualtrics.csv"));
-  EXPECT_NE(t.out.find("Qualtrics export: the question-text and ImportId header rows were skipped."),
-            std::string::npos)
+  EXPECT_NE(
+      t.out.find("Qualtrics export: the question-text and ImportId header rows were skipped."),
+      std::string::npos)
       << t.out;
   EXPECT_NE(t.out.find("11 text answers mapped to scale points by the built-in 7-point agree"),
             std::string::npos);
@@ -222,11 +224,12 @@ TEST(LikertCli, SummaryFileAndStdin) {
 TEST(LikertCli, PaperModeOnAFileWithoutThePapersItemsSaysWhy) {
   const auto r = likert_on("participant,fun,trust\nP1,3,4\n", "--paper");
   EXPECT_EQ(r.exit_code, 64);
-  EXPECT_EQ(r.err.rfind("feint: error: --paper analyses the paper's items (entertainment, deception, "
-                        "intelligence, trust; name others with --items): --items: no column "
-                        "'entertainment'",
-                        0),
-            0u)
+  EXPECT_EQ(
+      r.err.rfind("feint: error: --paper analyses the paper's items (entertainment, deception, "
+                  "intelligence, trust; name others with --items): --items: no column "
+                  "'entertainment'",
+                  0),
+      0u)
       << r.err;
   // With --items the paper's settings (reference 3.5) apply to the study's own items.
   const auto ok = likert_on("participant,fun,trust\nP1,3,4\nP2,5,2\n", "--paper --items fun,trust");
@@ -236,9 +239,10 @@ TEST(LikertCli, PaperModeOnAFileWithoutThePapersItemsSaysWhy) {
 
 TEST(LikertCli, ListOptionsAreRepeatableAndDoNotSwallowTheFile) {
   // A list option before the file, and options after it: the file stays the positional argument.
-  const auto r = run_feint("likert --reverse trust --reverse deception --items entertainment,trust "
-                           "--items deception " +
-                           data("wide.csv") + " --condition adaptive --format csv");
+  const auto r = run_feint(
+      "likert --reverse trust --reverse deception --items entertainment,trust "
+      "--items deception " +
+      data("wide.csv") + " --condition adaptive --format csv");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(lines(r.out), 1u + 3u * 2u);
   EXPECT_EQ(r.out.find("intelligence"), std::string::npos);

@@ -3,11 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 #include "feint/error.hpp"
 
@@ -30,9 +30,8 @@ class TempCsv {
  public:
   explicit TempCsv(const std::string& content) {
     static int counter = 0;
-    path_ = (fs::temp_directory_path() /
-             ("feint-questionnaire-" + std::to_string(::getpid()) + "-" +
-              std::to_string(counter++) + ".csv"))
+    path_ = (fs::temp_directory_path() / ("feint-questionnaire-" + std::to_string(::getpid()) +
+                                          "-" + std::to_string(counter++) + ".csv"))
                 .string();
     std::ofstream(path_, std::ios::binary) << content;
   }
@@ -74,7 +73,8 @@ TEST(Questionnaire, WideLayoutIsDetectedFromTheHeader) {
   EXPECT_EQ(q.layout, QuestionnaireLayout::wide_format);
   EXPECT_FALSE(q.qualtrics);
   EXPECT_TRUE(q.has_condition);
-  ASSERT_EQ(q.items, (std::vector<std::string>{"entertainment", "deception", "intelligence", "trust"}));
+  ASSERT_EQ(q.items,
+            (std::vector<std::string>{"entertainment", "deception", "intelligence", "trust"}));
   EXPECT_EQ(q.respondents(), 10u);
   EXPECT_EQ(q.rows_read, 10u);
   EXPECT_EQ(q.condition_names(), (std::vector<std::string>{"adaptive", "random"}));
@@ -144,12 +144,12 @@ TEST(Questionnaire, BuiltInFivePointMapFollowsTheScale) {
   QuestionnaireOptions o;
   o.scale_min = 1;
   o.scale_max = 5;
-  TempCsv f("participant,x\nP1,Strongly disagree\nP2,Somewhat disagree\nP3,Neutral\nP4,agree\n"
-            "P5,Strongly Agree\n");
+  TempCsv f(
+      "participant,x\nP1,Strongly disagree\nP2,Somewhat disagree\nP3,Neutral\nP4,agree\n"
+      "P5,Strongly Agree\n");
   const auto q = load_questionnaire(f.path(), o);
   EXPECT_EQ(q.label_map, "built-in 5-point agree");
-  EXPECT_EQ(q.responses[0],
-            (std::vector<std::optional<int>>{1, 2, 3, 4, 5}));
+  EXPECT_EQ(q.responses[0], (std::vector<std::optional<int>>{1, 2, 3, 4, 5}));
   // A 6-point scale has no built-in map: text is invalid and the message says what to do.
   o.scale_max = 6;
   EXPECT_EQ(invalid_message("participant,x\nP1,Agree\n", o),
@@ -228,9 +228,10 @@ TEST(Questionnaire, FractionalResponseIsInvalid) {
 TEST(Questionnaire, LongLayoutErrorsNameTheItem) {
   EXPECT_EQ(invalid_message("participant,item,response\nP07,trust,8\n"),
             "FILE:2: column 'response': 8 is outside the scale 1-7 (participant P07, item trust)");
-  EXPECT_EQ(invalid_message("participant,item,response\nP07,trust,nan\n"),
-            "FILE:2: column 'response': 'nan' is not a number or a known label (participant P07, "
-            "item trust); expected a whole number 1-7 or a label of the built-in 7-point agree map");
+  EXPECT_EQ(
+      invalid_message("participant,item,response\nP07,trust,nan\n"),
+      "FILE:2: column 'response': 'nan' is not a number or a known label (participant P07, "
+      "item trust); expected a whole number 1-7 or a label of the built-in 7-point agree map");
   EXPECT_EQ(invalid_message("participant,item,response\nP07,trust,3\nP08,trust,3\nP07,trust,4\n"),
             "FILE:4: participant P07 answered item 'trust' twice (first at line 2)");
   EXPECT_EQ(invalid_message("participant,item,response\nP07,,3\n"),
@@ -254,7 +255,8 @@ TEST(Questionnaire, MissingColumnsAndEmptyFilesAreInvalid) {
   EXPECT_EQ(invalid_message("who,trust\nP01,3\n"),
             "FILE: no column 'participant' (the respondent id); name the study's column with "
             "--id-column (columns: who, trust)");
-  EXPECT_EQ(invalid_message("participant,trust\n"), "FILE: no responses (a header but no data rows)");
+  EXPECT_EQ(invalid_message("participant,trust\n"),
+            "FILE: no responses (a header but no data rows)");
   EXPECT_EQ(invalid_message("participant,condition\nP1,a\n"),
             "FILE: no item columns (columns: participant, condition)");
   EXPECT_EQ(invalid_message("participant,trust\nP01,3,4\n"),
@@ -299,8 +301,9 @@ TEST(Questionnaire, ScaleAndLabelOptionsParse) {
 TEST(Questionnaire, ItemsSelectAndOrderLongLayoutItems) {
   QuestionnaireOptions o;
   o.items = {"Trust", "entertainment"};
-  TempCsv f("participant,item,response\nP1,entertainment,5\nP1,notes,free text\nP1,trust,2\n"
-            "P2,trust,3\n");
+  TempCsv f(
+      "participant,item,response\nP1,entertainment,5\nP1,notes,free text\nP1,trust,2\n"
+      "P2,trust,3\n");
   const auto q = load_questionnaire(f.path(), o);
   EXPECT_EQ(q.items, (std::vector<std::string>{"trust", "entertainment"}));
   EXPECT_EQ(q.responses[0], (std::vector<std::optional<int>>{2, 3}));

@@ -3,13 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 
 #include "feint/error.hpp"
 
@@ -99,8 +99,9 @@ TEST(LikertAnalysis, CompareNeedsIndependentGroups) {
     ADD_FAILURE() << "expected InvalidData";
   } catch (const InvalidData& e) {
     EXPECT_EQ(std::string(e.what()),
-              path + ": participant P1 answered in both conditions a and b; Mann-Whitney and "
-                     "Welch compare independent groups");
+              path +
+                  ": participant P1 answered in both conditions a and b; Mann-Whitney and "
+                  "Welch compare independent groups");
   }
   std::remove(path.c_str());
 }

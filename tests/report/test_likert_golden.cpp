@@ -72,8 +72,9 @@ const feint::report::LikertSummary* find_summary(const LikertAnalysis& a, const 
 }
 
 /// The value feint computed for a golden quantity; nullopt when it has none (a failure).
-std::optional<double> feint_value(const LikertAnalysis& a, const Golden& g, const std::string& group,
-                                  const std::string& rank_test, const std::string& t_test) {
+std::optional<double> feint_value(const LikertAnalysis& a, const Golden& g,
+                                  const std::string& group, const std::string& rank_test,
+                                  const std::string& t_test) {
   const auto* s = find_summary(a, g.name, group);
   const auto* rank = find_row(a, g.name, group, rank_test);
   const auto* t = find_row(a, g.name, group, t_test);

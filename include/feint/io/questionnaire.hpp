@@ -53,7 +53,7 @@ struct QuestionnaireOptions {
 /// A loaded questionnaire: one column of responses per item, one entry per respondent.
 /// A respondent is a (participant, condition) pair.
 struct Questionnaire {
-  std::string source;  ///< file name as given
+  std::string source;                                             ///< file name as given
   QuestionnaireLayout layout = QuestionnaireLayout::wide_format;  ///< the layout actually read
   bool qualtrics = false;  ///< the two extra Qualtrics header rows were recognised and skipped
   int scale_min = 1;
@@ -69,9 +69,9 @@ struct Questionnaire {
   /// long layout no row for that item).
   std::vector<std::vector<std::optional<int>>> responses;
 
-  std::size_t rows_read = 0;           ///< data rows read (Qualtrics' extra header rows excluded)
-  std::size_t text_answers_mapped = 0; ///< answers given as text and mapped by the label map
-  std::string label_map;               ///< "", "user", "built-in 5-point agree", "built-in 7-point agree"
+  std::size_t rows_read = 0;            ///< data rows read (Qualtrics' extra header rows excluded)
+  std::size_t text_answers_mapped = 0;  ///< answers given as text and mapped by the label map
+  std::string label_map;  ///< "", "user", "built-in 5-point agree", "built-in 7-point agree"
 
   /// Index of an item (case-insensitive); nullopt when absent.
   std::optional<std::size_t> item_index(std::string_view name) const;

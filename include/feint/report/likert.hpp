@@ -40,12 +40,12 @@ std::vector<std::string> paper_items();
 inline constexpr double kPaperReference = 3.5;
 
 struct LikertSettings {
-  io::QuestionnaireOptions load;             ///< layout, scale, columns, labels, items, reverse
+  io::QuestionnaireOptions load;  ///< layout, scale, columns, labels, items, reverse
   std::vector<LikertComposite> composites;
-  std::optional<double> reference;           ///< default: the scale midpoint (min + max) / 2
-  std::string condition;                     ///< one-sample mode: only this condition ("" = each)
+  std::optional<double> reference;  ///< default: the scale midpoint (min + max) / 2
+  std::string condition;            ///< one-sample mode: only this condition ("" = each)
   std::optional<std::pair<std::string, std::string>> compare;  ///< two-sample mode: (A, B)
-  stats::TestOptions test;                   ///< alternative, conf_level
+  stats::TestOptions test;                                     ///< alternative, conf_level
   double alpha = 0.05;
   stats::PAdjustMethod p_adjust = stats::PAdjustMethod::none;
   bool apa = false;    ///< fill TidyRow::apa (CSV/JSON column "apa", APA lines under the table)
@@ -60,7 +60,7 @@ struct LikertSummary {
   std::size_t n = 0;
   std::size_t missing = 0;
   std::optional<double> mean, sd, median, q1, q3, iqr;
-  std::vector<std::size_t> counts;  ///< per scale point min..max (items only)
+  std::vector<std::size_t> counts;                     ///< per scale point min..max (items only)
   std::optional<double> pct_below, pct_at, pct_above;  ///< % of n, against the neutral point
 };
 
@@ -86,7 +86,7 @@ struct LikertAnalysis {
   std::vector<std::string> groups;  ///< one-sample: analysed conditions ("" = no condition column)
   std::vector<std::string> names;   ///< items, then composites
   std::vector<bool> is_composite;
-  std::vector<bool> reversed;       ///< per name (composites: false)
+  std::vector<bool> reversed;                  ///< per name (composites: false)
   std::vector<LikertSummary> summaries;        ///< per group, per name
   std::vector<LikertReliability> reliability;  ///< per group, per composite
   /// Per group (two-sample: one block), per name: the primary rank test, then the t-test.
@@ -97,7 +97,8 @@ struct LikertAnalysis {
 /// Assembles the analysis. Throws UsageError for options that do not fit the data (unknown
 /// condition/item, composite naming an unknown item), InvalidData when two-sample groups share a
 /// participant (Mann-Whitney and Welch need independent groups).
-LikertAnalysis analyze_likert(const io::Questionnaire& questionnaire, const LikertSettings& settings);
+LikertAnalysis analyze_likert(const io::Questionnaire& questionnaire,
+                              const LikertSettings& settings);
 
 /// Loads with settings.load (plus --paper's items) and analyses.
 LikertAnalysis analyze_likert_file(const std::string& path, const LikertSettings& settings);
@@ -107,7 +108,8 @@ LikertAnalysis analyze_likert_file(const std::string& path, const LikertSettings
 std::string render_likert(const LikertAnalysis& analysis, OutputFormat format);
 
 /// Per group and item/composite descriptives as CSV: group, name, kind, n, missing, mean, sd,
-/// median, q1, q3, iqr, pct_below, pct_at, pct_above, then n_<point> and pct_<point> per scale point.
+/// median, q1, q3, iqr, pct_below, pct_at, pct_above, then n_<point> and pct_<point> per scale
+/// point.
 std::string likert_summary_csv(const LikertAnalysis& analysis);
 
 /// Library entry point (used by `feint analyze` on a study folder): load `path`, analyse, render
