@@ -515,6 +515,16 @@ std::string render_table1(const Table1& t, OutputFormat format) {
     }
   }
   tt.notes = table1_note(t);
+  if (o.apa) {  // --apa in a table for people: one line per test under the note
+    tt.notes.emplace_back("APA-style results:");
+    for (const auto& r : t.rows) {
+      std::string where;
+      if (!r.group2.empty()) where = " (" + r.group1 + " vs " + r.group2 + ")";
+      else if (t.blocks.size() > 1) where = " (" + r.group1 + ")";
+      tt.notes.push_back(fmt::format("{}, iteration {}{}: {}", r.metric, r.iteration.value_or(0),
+                                     where, r.apa));
+    }
+  }
   if (format == OutputFormat::latex) {  // the LaTeX cells already read 1.5 x 10^-4
     for (auto& n : tt.notes) {
       if (n.rfind("Means to 4 decimals", 0) == 0) {

@@ -318,3 +318,15 @@ TEST(Table1Render, LatexIsBooktabsAndBalanced) {
   EXPECT_EQ(begins, ends);
   EXPECT_EQ(s.find("\\hline"), std::string::npos);
 }
+
+TEST(Table1Render, ApaStringsAreListedUnderTheTableForPeople) {
+  Table1Options o;
+  o.compare = std::make_pair(std::string("adaptive"), std::string("random"));
+  o.apa = true;
+  const auto t = build_table1(small_scores(), o);
+  for (const auto& r : t.rows) EXPECT_EQ(r.apa, apa_string(r.result));
+  const std::string text = render_table1(t, OutputFormat::text);
+  EXPECT_NE(text.find("\nAPA-style results:\n"), std::string::npos);
+  EXPECT_NE(text.find("\nerror, iteration 2 (adaptive vs random): t("), std::string::npos) << text;
+  EXPECT_NE(render_table1(t, OutputFormat::csv).find(",apa\n"), std::string::npos);
+}
