@@ -105,11 +105,12 @@ ScoresTable load_scores(const std::string& path, const ScoresOptions& options) {
                                     rec.line, reader.header()[static_cast<std::size_t>(ic)],
                                     rec.participant));
     }
-    const auto iteration = parse_integer(it_text);
+    auto iteration = parse_integer(it_text);
+    if (iteration && (*iteration < 0 || *iteration > 1000000000)) iteration.reset();
     if (!iteration) {
       throw InvalidData(fmt::format(
-          "{}:{}: column '{}': '{}' is not a whole number (participant {}{}; expected the "
-          "iteration number)",
+          "{}:{}: column '{}': '{}' is not an iteration number (participant {}{}; expected a "
+          "whole number from 0 to 1e9)",
           path, rec.line, reader.header()[static_cast<std::size_t>(ii)], it_text, rec.participant,
           table.has_condition ? "/" + rec.condition : std::string()));
     }

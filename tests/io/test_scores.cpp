@@ -114,8 +114,11 @@ TEST_F(ScoresFile, NonNumericMetricNamesLineColumnValueAndTrial) {
 TEST_F(ScoresFile, NonIntegerIteration) {
   const auto p = write("s.csv", "participant,condition,iteration,error,confusion\nP01,a,3.5,0.5,0.5\n");
   EXPECT_EQ(invalid_message([&] { load_scores(p); }),
-            p + ":2: column 'iteration': '3.5' is not a whole number (participant P01/a; expected "
-                "the iteration number)");
+            p + ":2: column 'iteration': '3.5' is not an iteration number (participant P01/a; "
+                "expected a whole number from 0 to 1e9)");
+  const auto q = write("q.csv", "participant,iteration,error,confusion\nP01,99999999999,0.5,0.5\n");
+  EXPECT_NE(invalid_message([&] { load_scores(q); }).find("'99999999999' is not an iteration number"),
+            std::string::npos);
 }
 
 TEST_F(ScoresFile, EmptyParticipantOrCondition) {

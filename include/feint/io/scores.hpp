@@ -50,16 +50,16 @@ struct ScoresTable {
 };
 
 /// Loads a scores CSV (gzip, `-`, delimiters as io::CsvReader). Throws IoError when unreadable and
-/// InvalidData for: a missing required or metric column, an empty participant, a non-integer
-/// iteration, a non-numeric metric value, a duplicate (participant, condition, iteration), or no
-/// data rows at all.
+/// InvalidData for: a missing required or metric column, an empty participant or condition, an
+/// iteration that is not a whole number in [0, 1e9], a non-numeric metric value, a duplicate
+/// (participant, condition, iteration), or no data rows at all.
 ScoresTable load_scores(const std::string& path, const ScoresOptions& options = {});
 
 /// What the scores' sidecar (written by `feint score` beside its output) says about how the
 /// numbers were made. Every field is empty when unknown.
 struct ScoresProvenance {
   std::string sidecar_path;            ///< the file read, "" when none was found
-  std::string confusion_normalisation; ///< e.g. "divided by the maximum possible (0.25)"
+  std::string confusion_normalisation; ///< e.g. "speed (confusion in fraction of ...)"
   std::vector<std::pair<std::string, std::string>> settings;  ///< every key/value found
 };
 
