@@ -330,3 +330,49 @@ TEST(Table1Render, ApaStringsAreListedUnderTheTableForPeople) {
   EXPECT_NE(text.find("\nerror, iteration 2 (adaptive vs random): t("), std::string::npos) << text;
   EXPECT_NE(render_table1(t, OutputFormat::csv).find(",apa\n"), std::string::npos);
 }
+
+// The paper's own Table 1 numbers (M and p per iteration, one-sample, 30 participants) rendered
+// through the writers: the cells read as the paper prints them (4-decimal means and p, 1.5e-04 for
+// 1.5*10^-4). Labels follow statistics.md; the paper's iteration 1 and 3 confusion labels ("M>R"
+// for M < R) disagree with its own numbers, and feint does not copy that.
+TEST(Table1Render, ThePapersNumbersReadAsInThePaper) {
+  const double error_m[] = {0.5703, 0.5403, 0.5112, 0.5295};
+  const double error_p[] = {0.0066, 0.0992, 0.7479, 0.4494};
+  const double conf_m[] = {0.8504, 0.8726, 0.7239, 0.5426};
+  const double conf_p[] = {0.2109, 0.5241, 0.0201, 1.5e-4};
+  Table1 t;
+  t.source = "paper";
+  t.options.condition = "adaptive";
+  Table1Block blk;
+  blk.group1 = "adaptive";
+  for (int i = 0; i < 4; ++i) {
+    blk.iterations.push_back(i + 1);
+    std::vector<Table1Cell> cells;
+    for (int m = 0; m < 2; ++m) {
+      TidyRow row;
+      row.metric = m == 0 ? "error" : "confusion";
+      row.iteration = i + 1;
+      row.group1 = "adaptive";
+      row.result.test = "one_sample_t";
+      row.result.mu = m == 0 ? 0.5 : 0.95;
+      row.result.n1 = 30;
+      row.result.mean1 = row.result.estimate = m == 0 ? error_m[i] : conf_m[i];
+      row.result.p_value = m == 0 ? error_p[i] : conf_p[i];
+      row.label = one_sample_label(row.result, 0.05);
+      cells.push_back({t.rows.size(), std::nullopt});
+      t.rows.push_back(row);
+    }
+    blk.cells.push_back(cells);
+  }
+  t.blocks.push_back(blk);
+  const std::string text = render_table1(t, OutputFormat::text);
+  EXPECT_NE(text.find("        1    0.5703  0.0066  M>R          0.8504   0.2109  M\u2248R\n"),
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("        3    0.5112  0.7479  M\u2248R          0.7239   0.0201  M<R\n"),
+            std::string::npos);
+  EXPECT_NE(text.find("        4    0.5295  0.4494  M\u2248R          0.5426  1.5e-04  M<R\n"),
+            std::string::npos);
+  EXPECT_NE(render_table1(t, OutputFormat::latex).find("$1.5 \\times 10^{-4}$ & $M < R$"),
+            std::string::npos);
+}
