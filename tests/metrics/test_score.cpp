@@ -5,6 +5,9 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
+
+#include <sys/stat.h>
 #include <string>
 #include <vector>
 
@@ -148,4 +151,26 @@ TEST_F(ScoreLib, SettingsAreCheckedBeforeAnythingIsRead) {
   s = {};
   EXPECT_THROW(feint::metrics::score_to_file({p}, s, p), feint::UsageError);  // output = input
   EXPECT_TRUE(listing() == std::vector<std::string>{"log.csv"});
+}
+
+TEST_F(ScoreLib, ASpecialFileIsWrittenInPlaceNeverReplaced) {
+  // Renaming a temporary over /dev/null or a FIFO would replace the device: write into it instead,
+  // and put no sidecar beside it. (A FIFO stands in for /dev/null here.)
+  const auto p = write("log.csv", kHeader + example_e("P1,adaptive,1"));
+  const auto fifo = dir_ / "pipe";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::string captured;
+  std::thread reader([&] {
+    std::ifstream in(fifo, std::ios::binary);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    captured = ss.str();
+  });
+  const auto summary = feint::metrics::score_to_file({p}, ScoreSettings{}, fifo.string());
+  reader.join();
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_EQ(summary.sidecar_path, "");
+  EXPECT_EQ(captured.substr(0, 24), "participant,condition,it");
+  EXPECT_NE(captured.find("\nP1,adaptive,1,"), std::string::npos) << captured;
+  EXPECT_TRUE((listing() == std::vector<std::string>{"log.csv", "pipe"}));
 }
