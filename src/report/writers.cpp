@@ -364,6 +364,7 @@ std::string tidy_json(std::span<const TidyRow> rows, std::span<const std::string
 
 std::string latex_escape(std::string_view text) {
   std::string out;
+  bool open_quote = false;  // "x" -> ``x'' (a straight quote prints as a closing one in OT1)
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char ch = text[i];
     const std::string_view rest = text.substr(i);
@@ -381,6 +382,10 @@ std::string latex_escape(std::string_view text) {
     if (starts("\u2265")) { out += "\\ensuremath{\\geq}"; i += 2; continue; }
     if (starts("\u2264")) { out += "\\ensuremath{\\leq}"; i += 2; continue; }
     switch (ch) {
+      case '"':
+        out += open_quote ? "''" : "``";
+        open_quote = !open_quote;
+        break;
       case '&': out += "\\&"; break;
       case '%': out += "\\%"; break;
       case '$': out += "\\$"; break;

@@ -137,7 +137,8 @@ std::string tidy_json(std::span<const TidyRow> rows, std::span<const std::string
 
 /// JSON string literal with escapes (quotes included).
 std::string json_quote(std::string_view text);
-/// Escapes LaTeX special characters (& % $ # _ { } ~ ^ \) in plain text.
+/// Escapes LaTeX special characters (& % $ # _ { } ~ ^ \ < >) in plain text; "x" becomes ``x''
+/// and a few symbols (≈ ± × α δ η χ ² – — ≤ ≥) their LaTeX forms.
 std::string latex_escape(std::string_view text);
 /// Display width of UTF-8 text in a terminal (code points; "≈" counts 1).
 std::size_t display_width(std::string_view utf8) noexcept;
