@@ -1,0 +1,88 @@
+// End-to-end tests of `feint simulate study` (runs the feint binary, FEINT_EXE).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cli_helpers.hpp"
+#include "feint/io/csv.hpp"
+#include "feint/io/number.hpp"
+
+using feint::test::read_text;
+using feint::test::run_feint;
+using feint::test::shell_quote;
+using feint::test::TempDir;
+using feint::test::write_text;
+
+namespace {
+/// All records of a (possibly gzipped) CSV file, header first, joined as text.
+std::string slurp_csv(const std::filesystem::path& p) {
+  feint::io::CsvReader r(p.string());
+  std::string out;
+  for (const auto& h : r.header()) out += h + ",";
+  out += "\n";
+  while (r.next()) {
+    for (const auto& f : r.fields()) out += std::string(f) + ",";
+    out += "\n";
+  }
+  return out;
+}
+}  // namespace
+
+TEST(SimulateStudyCli, WritesOneGzippedLogPerParticipantAndAQuestionnaire) {
+  TempDir dir;
+  const auto out = dir / "study";
+  const auto r = run_feint("simulate study --out " + shell_quote(out.string()) +
+                           " --participants 2 --iterations 4 --seed 9");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("4 participants"), std::string::npos) << r.out;
+  for (const char* id : {"P01", "P02", "P03", "P04"}) {
+    const auto log = out / "logs" / (std::string(id) + ".csv.gz");
+    ASSERT_TRUE(std::filesystem::exists(log)) << log;
+    feint::io::CsvReader csv(log.string());
+    EXPECT_TRUE(csv.compressed());
+    ASSERT_EQ(csv.header().size(), 9u);
+    EXPECT_EQ(csv.header()[7], "pad");
+    std::vector<std::string> iterations;
+    while (csv.next()) {
+      EXPECT_EQ(csv.field(0), id);
+      const std::string cond(csv.field(1));
+      EXPECT_EQ(cond, std::string(id) <= "P02" ? "adaptive" : "random");
+      if (iterations.empty() || iterations.back() != csv.field(2)) iterations.emplace_back(csv.field(2));
+      EXPECT_EQ(csv.field(8), "0.8");
+    }
+    EXPECT_EQ(iterations, (std::vector<std::string>{"1", "2", "3", "4"}));
+  }
+  const std::string q = read_text(out / "questionnaire.csv");
+  EXPECT_EQ(q.substr(0, q.find('\n')), "participant,condition,entertainment,deception,intelligence,trust");
+  EXPECT_EQ(std::count(q.begin(), q.end(), '\n'), 5);
+}
+
+TEST(SimulateStudyCli, SameSeedSameDataDifferentSeedDifferentData) {
+  TempDir dir;
+  const auto a = dir / "a", b = dir / "b", c = dir / "c";
+  for (const auto& [path, seed] : {std::pair{a, "1"}, std::pair{b, "1"}, std::pair{c, "2"}}) {
+    const auto r = run_feint("simulate study --participants 1 --iterations 3 --seed " + std::string(seed) +
+                             " --out " + shell_quote(path.string()));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  EXPECT_EQ(slurp_csv(a / "logs" / "P01.csv.gz"), slurp_csv(b / "logs" / "P01.csv.gz"));
+  EXPECT_EQ(read_text(a / "questionnaire.csv"), read_text(b / "questionnaire.csv"));
+  EXPECT_NE(slurp_csv(a / "logs" / "P01.csv.gz"), slurp_csv(c / "logs" / "P01.csv.gz"));
+}
+
+TEST(SimulateStudyCli, BadOptionsAreUsageErrorsAndAFileInTheWayIsAnIoError) {
+  TempDir dir;
+  for (const std::string args : {"simulate study", "simulate study --out x --participants 0",
+                                 "simulate study --out x --lambda 2", "simulate study --out x --iterations 0",
+                                 "simulate study --out x --sample-rate 0"}) {
+    const auto r = run_feint(args);
+    EXPECT_EQ(r.exit_code, 64) << args << "\n" << r.err;
+  }
+  const auto blocker = dir / "file";
+  write_text(blocker, "not a directory");
+  const auto r = run_feint("simulate study --participants 1 --iterations 1 --out " + shell_quote(blocker.string()));
+  EXPECT_EQ(r.exit_code, 74) << r.err;
+}
