@@ -93,7 +93,8 @@ void add_table_command(CLI::App& app) {
       ->required();
   cmd->add_option("--metric", args->metrics,
                   "Metric column and reference mean, NAME=REF (repeatable; default error=0.5 "
-                  "confusion=0.95)");
+                  "confusion=0.95)")
+      ->allow_extra_args(false);  // one value per --metric, so SCORES may follow it
   cmd->add_option("--condition", args->condition,
                   "One-sample mode: only this condition (default: every condition, one block each)");
   cmd->add_option("--compare", args->compare,

@@ -136,6 +136,17 @@ TEST(TableCli, PairedAndAlternativeOptions) {
   EXPECT_NE(r.out.find(",paired_t,Paired t-test,greater,"), std::string::npos);
 }
 
+TEST(TableCli, MetricOptionsTakeOneValueEachAndMayPrecedeTheInput) {
+  const auto r = run_feint("table --metric confusion=0.9 --metric error " + shell_quote(kSmall) +
+                           " --condition random --format csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\nconfusion,1,one_sample_t,One Sample t-test,two.sided,0.9,random,"),
+            std::string::npos);
+  EXPECT_NE(r.out.find("\nerror,1,one_sample_t,One Sample t-test,two.sided,0.5,random,"),
+            std::string::npos);
+  EXPECT_LT(r.out.find("\nconfusion,1,"), r.out.find("\nerror,1,"));  // in the order given
+}
+
 TEST(TableCli, AnyNumericColumnCanBeTabulated) {
   TempDir dir;
   const auto in = dir / "s.csv";
