@@ -183,3 +183,23 @@ TEST(AtomicOutput, NothingAppearsUntilCommit) {
 TEST(AtomicOutput, UnwritableDirectoryIsAnIoError) {
   EXPECT_THROW(feint::io::AtomicOutput("/nonexistent/feint/out.csv"), feint::IoError);
 }
+
+TEST(CsvReader, BackgroundReadingKeepsEveryRecordAcrossManyBlocks) {
+  // Larger than several 1 MB read-ahead blocks; records straddle block boundaries.
+  std::string content = "i,text\n";
+  for (int i = 0; i < 200000; ++i) content += std::to_string(i) + ",row number " + std::to_string(i) + "\n";
+  const auto p = temp_file("blocks.csv", content);
+  CsvReader r(p.string());
+  long expected = 0;
+  while (r.next()) {
+    ASSERT_EQ(r.field(0), std::to_string(expected));
+    ++expected;
+  }
+  EXPECT_EQ(expected, 200000);
+  EXPECT_EQ(r.bytes_consumed(), content.size());
+  // A reader abandoned early (an error in the middle of a file) stops its thread cleanly.
+  for (int k = 0; k < 20; ++k) {
+    CsvReader early(p.string());
+    ASSERT_TRUE(early.next());
+  }
+}
