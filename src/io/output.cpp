@@ -9,6 +9,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <mutex>
@@ -58,6 +59,8 @@ struct AtomicOutput::Impl {
   std::ofstream file;
   std::atomic<const char*>* slot = nullptr;
   bool to_stdout = false;
+  bool direct = false;  // an existing device or FIFO (/dev/null, a pipe): written in place
+  std::string target;   // the file renamed over (the path, or the file a symbolic link names)
   bool done = false;
 
   void discard() noexcept {
@@ -75,10 +78,27 @@ AtomicOutput::AtomicOutput(std::string path) : impl_(std::make_unique<Impl>()) {
     impl_->to_stdout = true;
     return;
   }
+  // Renaming over a device or FIFO would replace it (as root, even /dev/null) with a regular file:
+  // such targets are written in place. A symbolic link is followed, so the file it names is
+  // replaced and the link stays.
+  struct stat st {};
+  std::string target = impl_->path;
+  if (::stat(target.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    if (S_ISDIR(st.st_mode)) throw IoError(fmt::format("cannot write '{}': it is a folder", target));
+    impl_->direct = true;
+    impl_->file.open(target, std::ios::binary | std::ios::out);
+    if (!impl_->file) throw IoError(fmt::format("cannot write '{}'", target));
+    return;
+  }
+  std::error_code ec;
+  if (std::filesystem::is_symlink(target, ec)) {
+    const auto resolved = std::filesystem::weakly_canonical(target, ec);
+    if (!ec) target = resolved.string();
+  }
   install_handlers();
-  const auto slash = impl_->path.find_last_of('/');
-  const std::string dir = slash == std::string::npos ? "" : impl_->path.substr(0, slash + 1);
-  const std::string base = slash == std::string::npos ? impl_->path : impl_->path.substr(slash + 1);
+  const auto slash = target.find_last_of('/');
+  const std::string dir = slash == std::string::npos ? "" : target.substr(0, slash + 1);
+  const std::string base = slash == std::string::npos ? target : target.substr(slash + 1);
   std::string templ = dir + "." + base + ".feint-tmp-XXXXXX";
   const int fd = ::mkstemp(templ.data());
   if (fd < 0) {
@@ -86,6 +106,7 @@ AtomicOutput::AtomicOutput(std::string path) : impl_(std::make_unique<Impl>()) {
   }
   ::close(fd);
   impl_->tmp = templ;
+  impl_->target = target;
   impl_->slot = register_pending(impl_->tmp.c_str());
   impl_->file.open(impl_->tmp, std::ios::binary | std::ios::trunc);
   if (!impl_->file) {
@@ -95,7 +116,7 @@ AtomicOutput::AtomicOutput(std::string path) : impl_(std::make_unique<Impl>()) {
 }
 
 AtomicOutput::~AtomicOutput() {
-  if (!impl_->done && !impl_->to_stdout) impl_->discard();
+  if (!impl_->done && !impl_->to_stdout && !impl_->direct) impl_->discard();
 }
 
 std::ostream& AtomicOutput::stream() noexcept {
@@ -110,6 +131,14 @@ void AtomicOutput::commit() {
     if (!std::cout) throw IoError("cannot write to standard output");
     return;
   }
+  if (impl_->direct) {
+    impl_->file.flush();
+    const bool ok = static_cast<bool>(impl_->file);
+    impl_->file.close();
+    impl_->done = true;
+    if (!ok) throw IoError(fmt::format("cannot write '{}'", impl_->path));
+    return;
+  }
   impl_->file.flush();
   const bool ok = static_cast<bool>(impl_->file);
   impl_->file.close();
@@ -121,7 +150,7 @@ void AtomicOutput::commit() {
   const mode_t mask = ::umask(0);
   ::umask(mask);
   ::chmod(impl_->tmp.c_str(), 0666 & ~mask);
-  if (std::rename(impl_->tmp.c_str(), impl_->path.c_str()) != 0) {
+  if (std::rename(impl_->tmp.c_str(), impl_->target.c_str()) != 0) {
     const int err = errno;
     impl_->discard();
     throw IoError(fmt::format("cannot write '{}': {}", impl_->path, std::strerror(err)));

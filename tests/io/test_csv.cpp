@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <zlib.h>
 
 #include <cmath>
@@ -6,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <thread>
 
 #include "feint/error.hpp"
 #include "feint/io/csv.hpp"
@@ -202,4 +204,42 @@ TEST(CsvReader, BackgroundReadingKeepsEveryRecordAcrossManyBlocks) {
     CsvReader early(p.string());
     ASSERT_TRUE(early.next());
   }
+}
+
+TEST(AtomicOutput, WritesDevicesAndFifosInPlaceInsteadOfReplacingThem) {
+  const fs::path dir = fs::temp_directory_path() / "feint-test-out-fifo";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path fifo = dir / "pipe";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::string received;
+  std::thread reader([&] {
+    std::ifstream in(fifo);
+    std::getline(in, received);
+  });
+  {
+    feint::io::AtomicOutput out(fifo.string());
+    out.stream() << "through the pipe\n";
+    out.commit();
+  }
+  reader.join();
+  EXPECT_EQ(received, "through the pipe");
+  EXPECT_TRUE(fs::is_fifo(fifo)) << "the FIFO was replaced by a regular file";
+  EXPECT_THROW(feint::io::AtomicOutput(dir.string()), feint::IoError);  // a folder
+}
+
+TEST(AtomicOutput, FollowsASymbolicLinkAndKeepsIt) {
+  const fs::path dir = fs::temp_directory_path() / "feint-test-out-link";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::ofstream(dir / "real.csv") << "old\n";
+  fs::create_symlink("real.csv", dir / "link.csv");
+  feint::io::AtomicOutput out((dir / "link.csv").string());
+  out.stream() << "new\n";
+  out.commit();
+  EXPECT_TRUE(fs::is_symlink(dir / "link.csv"));
+  std::ifstream in(dir / "real.csv");
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "new");
 }
