@@ -163,6 +163,7 @@ void AtomicOutput::commit() {
 
 const std::string& AtomicOutput::path() const noexcept { return impl_->path; }
 bool AtomicOutput::is_stdout() const noexcept { return impl_->to_stdout; }
+bool AtomicOutput::in_place() const noexcept { return impl_->direct; }
 
 void write_file_atomically(const std::string& path, const std::string& content) {
   AtomicOutput out(path);

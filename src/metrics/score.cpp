@@ -46,8 +46,8 @@ std::string json_number(double v) {
   return std::isfinite(v) ? io::format_double(v) : std::string("null");
 }
 
-// An existing path that is not a regular file (/dev/null, a FIFO, a terminal): it must be written
-// in place, never replaced by renaming a temporary over it, and it gets no sidecar beside it.
+// An existing path that is not a regular file (/dev/null, a FIFO, a terminal) is written in place
+// by AtomicOutput; it gets no sidecar beside it.
 bool is_special(const std::string& path) {
   if (path == "-") return false;
   std::error_code ec;
@@ -58,47 +58,6 @@ bool is_special(const std::string& path) {
 std::string default_sidecar(const std::string& output) {
   return output == "-" || is_special(output) ? std::string() : output + ".meta.json";
 }
-
-// Small files (sidecar, rejects): atomically, or in place for a special file.
-void write_small(const std::string& path, const std::string& content) {
-  if (!is_special(path)) {
-    io::write_file_atomically(path, content);
-    return;
-  }
-  std::ofstream f(path, std::ios::binary);
-  f << content;
-  f.flush();
-  if (!f) throw IoError(fmt::format("cannot write '{}'", path));
-}
-
-// The scores table: an AtomicOutput, or (for a special file) the file itself.
-class TableOutput {
- public:
-  explicit TableOutput(const std::string& path) : path_(path) {
-    if (is_special(path)) {
-      direct_.open(path, std::ios::binary);
-      if (!direct_) throw IoError(fmt::format("cannot write '{}'", path));
-    } else {
-      atomic_ = std::make_unique<io::AtomicOutput>(path);
-    }
-  }
-  std::ostream& stream() { return atomic_ ? atomic_->stream() : direct_; }
-  // Keep the whole table until success when the destination cannot be rolled back.
-  bool buffer_all() const { return !atomic_ || atomic_->is_stdout(); }
-  void commit() {
-    if (atomic_) {
-      atomic_->commit();
-      return;
-    }
-    direct_.flush();
-    if (!direct_) throw IoError(fmt::format("cannot write '{}'", path_));
-  }
-
- private:
-  std::string path_;
-  std::unique_ptr<io::AtomicOutput> atomic_;
-  std::ofstream direct_;
-};
 
 std::string rejects_for(const ScoreSettings& s, const std::string& output) {
   if (s.on_error != OnError::skip) return {};
@@ -243,7 +202,7 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
     }
   }
 
-  TableOutput out(output_path);
+  io::AtomicOutput out(output_path);
   std::string buf;
   buf.reserve(1 << 16);
   {
@@ -269,7 +228,7 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
       v_max = std::max(v_max, *t.pad_speed);
     }
     // Standard output cannot be rolled back: keep the (small) table until the run has succeeded.
-    if (!out.buffer_all() && buf.size() >= (1 << 16) - 512) {
+    if (!out.is_stdout() && !out.in_place() && buf.size() >= (1 << 16) - 512) {
       os.write(buf.data(), static_cast<std::streamsize>(buf.size()));
       buf.clear();
     }
@@ -281,7 +240,7 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
   } catch (const InvalidData&) {
     // Zero valid trials in skip mode: the rejects list is the explanation, so it is still written.
     if (!rejects.empty() && settings.on_error == OnError::skip && !rejects_csv.empty()) {
-      write_small(rejects, rejects_csv);
+      io::write_file_atomically(rejects, rejects_csv);
     }
     throw;
   }
@@ -343,9 +302,9 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
                                         : "\"pad units (paper's eq. 4, unnormalised)\"";
     j += ", \"target\": \"pad coordinate (0 = left, 1 = right)\"}\n}\n";
     // The scores are committed last: a scores file never exists without its sidecar.
-    write_small(sidecar, j);
+    io::write_file_atomically(sidecar, j);
   }
-  if (!rejects.empty()) write_small(rejects, rejects_csv);
+  if (!rejects.empty()) io::write_file_atomically(rejects, rejects_csv);
   out.commit();
   return summary;
 }

@@ -2,7 +2,8 @@
 //
 // formats.md: a failed or interrupted run never leaves a half-written table. Output goes to a
 // hidden temporary file beside the target, renamed into place by commit(); destruction without
-// commit (an exception) removes the temporary, and so does SIGINT/SIGTERM.
+// commit (an exception) removes the temporary, and so does SIGINT/SIGTERM. A device or FIFO
+// (/dev/null, a named pipe) is written in place, never replaced.
 #pragma once
 
 #include <memory>
@@ -26,6 +27,9 @@ class AtomicOutput {
   void commit();
   const std::string& path() const noexcept;
   bool is_stdout() const noexcept;
+  /// True when the target is an existing device or FIFO (e.g. /dev/null), written in place: such
+  /// output cannot be rolled back, so callers that must not emit half a table buffer it first.
+  bool in_place() const noexcept;
 
  private:
   struct Impl;
