@@ -224,7 +224,7 @@ SimulationSummary simulate_selection(const SimulationSettings& settings) {
     for (;;) {
       const std::uint64_t c = next_chunk.fetch_add(1, std::memory_order_relaxed);
       if (c >= n_chunks) break;
-      ChunkResult& res = chunks[c];
+      ChunkResult res;  // local: neighbouring chunks of other threads share cache lines
       const std::uint64_t first = c * chunk;
       const std::uint64_t last = std::min(runs, first + chunk);
       double batch_sum = 0;
@@ -260,6 +260,7 @@ SimulationSummary simulate_selection(const SimulationSettings& settings) {
           batch_sum = 0;
         }
       }
+      chunks[c] = res;
     }
   };
 
