@@ -6,13 +6,13 @@
 // `questionnaire.csv` (Likert), and optionally `feint.toml`, whose settings have the names of this
 // command's options (read through CLI11's TOML/INI config reader). The command line wins over the
 // file, so a script can change one setting without editing the study.
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "commands.hpp"
 #include "feint/error.hpp"
@@ -66,11 +66,16 @@ struct AnalyzeArgs {
 
 std::string extension(report::OutputFormat format) {
   switch (format) {
-    case report::OutputFormat::text: return "txt";
-    case report::OutputFormat::markdown: return "md";
-    case report::OutputFormat::latex: return "tex";
-    case report::OutputFormat::csv: return "csv";
-    case report::OutputFormat::json: return "json";
+    case report::OutputFormat::text:
+      return "txt";
+    case report::OutputFormat::markdown:
+      return "md";
+    case report::OutputFormat::latex:
+      return "tex";
+    case report::OutputFormat::csv:
+      return "csv";
+    case report::OutputFormat::json:
+      return "json";
   }
   return "txt";
 }
@@ -81,7 +86,8 @@ std::pair<std::string, std::string> parse_pair(const std::string& text, const ch
       text.find(',', comma + 1) != std::string::npos) {
     throw UsageError(fmt::format("{} '{}': expected two conditions A,B", option, text));
   }
-  return {std::string(io::trim(text.substr(0, comma))), std::string(io::trim(text.substr(comma + 1)))};
+  return {std::string(io::trim(text.substr(0, comma))),
+          std::string(io::trim(text.substr(comma + 1)))};
 }
 
 // Applies the study's settings file to every option the command line left unset.
@@ -101,8 +107,10 @@ void apply_config(CLI::App& cmd, const std::string& path) {
     if (item.name == "++" || item.name == "--") continue;  // section markers of CLI11's parser
     CLI::Option* opt = cmd.get_option_no_throw("--" + item.name);
     if (opt == nullptr || item.name == "config" || item.name == "help") {
-      throw InvalidData(fmt::format("{}: unknown setting '{}' (settings are the options of "
-                                    "'feint analyze --help', without the dashes)", path, item.name));
+      throw InvalidData(
+          fmt::format("{}: unknown setting '{}' (settings are the options of "
+                      "'feint analyze --help', without the dashes)",
+                      path, item.name));
     }
     if (opt->count() > 0) continue;  // the command line wins
     try {
@@ -117,7 +125,8 @@ void apply_config(CLI::App& cmd, const std::string& path) {
 std::vector<report::OutputFormat> resolve_formats(const std::vector<std::string>& names) {
   std::vector<report::OutputFormat> out;
   for (const auto& n : names) out.push_back(report::parse_output_format(n));
-  if (out.empty()) throw UsageError("--formats: name at least one of text, markdown, latex, csv, json");
+  if (out.empty())
+    throw UsageError("--formats: name at least one of text, markdown, latex, csv, json");
   return out;
 }
 
@@ -142,8 +151,10 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
   for (const auto& l : a.logs) logs.push_back(in_study(l));
   if (logs.empty()) {
     if (!fs::is_directory(study / "logs")) {
-      throw InvalidData(fmt::format("{}: no logs/ folder (put the pad-trace logs there, or name "
-                                    "them with --logs)", a.study));
+      throw InvalidData(
+          fmt::format("{}: no logs/ folder (put the pad-trace logs there, or name "
+                      "them with --logs)",
+                      a.study));
     }
     logs.push_back((study / "logs").string());
   }
@@ -255,6 +266,14 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
 
 }  // namespace
 
+// CLI11 2.1: a list option otherwise swallows the positional STUDY that follows it
+// (`--metric error=0.5 data/demo`); each occurrence takes one value (or one comma list).
+CLI::Option* one_per_use(CLI::Option* opt) {
+  return opt->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->allow_extra_args(false);
+}
+
 void add_analyze_command(CLI::App& app) {
   auto args = std::make_shared<AnalyzeArgs>();
   auto* cmd = app.add_subcommand(
@@ -270,55 +289,89 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("--config", args->config,
                   "Settings file (TOML/INI; default STUDY/feint.toml when present)");
   auto* score = "Scoring (see feint score)";
-  cmd->add_option("--logs", args->logs,
-                  "Pad-trace logs: files, folders or globs, relative to STUDY (default: STUDY/logs)")
+  one_per_use(
+      cmd->add_option(
+          "--logs", args->logs,
+          "Pad-trace logs: files, folders or globs, relative to STUDY (default: STUDY/logs)"))
       ->group(score);
-  cmd->add_option("--trim", args->trim, "Fraction of each trial's duration cut at both ends "
-                  "(default 0.05)")->group(score);
+  cmd->add_option("--trim", args->trim,
+                  "Fraction of each trial's duration cut at both ends "
+                  "(default 0.05)")
+      ->group(score);
   cmd->add_option("--trim-start", args->trim_start, "Fraction cut at the start")->group(score);
   cmd->add_option("--trim-end", args->trim_end, "Fraction cut at the end")->group(score);
-  cmd->add_option("--deadband", args->deadband, "Pad movement (pad units) below which a segment "
-                  "has no direction")->capture_default_str()->group(score);
-  cmd->add_option("--confusion-norm", args->norm, "speed (bounded, default) or raw (the paper's "
-                  "equation literally)")->capture_default_str()->group(score);
-  cmd->add_option("--pad-speed", args->pad_speed, "Pad speed in pad units per second (overrides "
-                  "the logs' pad_speed column)")->group(score);
-  cmd->add_option("--map", args->maps, "NAME=COLUMN: the study's own column names (repeatable)")
+  cmd->add_option("--deadband", args->deadband,
+                  "Pad movement (pad units) below which a segment "
+                  "has no direction")
+      ->capture_default_str()
       ->group(score);
-  cmd->add_option("--on-error", args->on_error, "strict (stop at the first invalid trial) or skip "
-                  "(list it in scores.csv.rejects.csv)")->capture_default_str()->group(score);
+  cmd->add_option("--confusion-norm", args->norm,
+                  "speed (bounded, default) or raw (the paper's "
+                  "equation literally)")
+      ->capture_default_str()
+      ->group(score);
+  cmd->add_option("--pad-speed", args->pad_speed,
+                  "Pad speed in pad units per second (overrides "
+                  "the logs' pad_speed column)")
+      ->group(score);
+  one_per_use(cmd->add_option("--map", args->maps,
+                              "NAME=COLUMN: the study's own column names (repeatable)"))
+      ->group(score);
+  cmd->add_option("--on-error", args->on_error,
+                  "strict (stop at the first invalid trial) or skip "
+                  "(list it in scores.csv.rejects.csv)")
+      ->capture_default_str()
+      ->group(score);
   auto* tables = "Tables (see feint table)";
-  cmd->add_option("--metric", args->metrics, "NAME=REF: metric column and reference mean "
-                  "(default error=0.5 confusion=0.95)")->group(tables);
-  cmd->add_option("--compare", args->compare, "A,B: also compare condition A with B (tables and "
-                  "questionnaire), e.g. adaptive,random")->group(tables);
+  one_per_use(cmd->add_option("--metric", args->metrics,
+                              "NAME=REF: metric column and reference mean "
+                              "(default error=0.5 confusion=0.95)"))
+      ->group(tables);
+  cmd->add_option("--compare", args->compare,
+                  "A,B: also compare condition A with B (tables and "
+                  "questionnaire), e.g. adaptive,random")
+      ->group(tables);
   cmd->add_flag("--var-equal", args->var_equal, "Student's t instead of Welch's")->group(tables);
   cmd->add_flag("--paired", args->paired, "Paired t (same participants in both)")->group(tables);
   cmd->add_option("--equivalence", args->equivalence, "TOST margin: '≈' must be earned")
       ->group(tables);
   auto* likert = "Questionnaire (see feint likert)";
-  cmd->add_option("--questionnaire", args->questionnaire, "Likert file, relative to STUDY "
-                  "(default STUDY/questionnaire.csv when present)")->group(likert);
-  cmd->add_option("--likert-reference", args->likert_reference, "Reference of the one-sample "
-                  "tests (default: the scale midpoint; the paper used 3.5)")->group(likert);
-  cmd->add_option("--likert-scale", args->likert_scale, "MIN-MAX")->capture_default_str()
+  cmd->add_option("--questionnaire", args->questionnaire,
+                  "Likert file, relative to STUDY "
+                  "(default STUDY/questionnaire.csv when present)")
       ->group(likert);
-  cmd->add_option("--composite", args->composites, "NAME=ITEM,ITEM,...: a multi-item scale "
-                  "(repeatable)")->group(likert);
-  cmd->add_option("--reverse", args->reverse, "Items to reverse-code")->delimiter(',')
+  cmd->add_option("--likert-reference", args->likert_reference,
+                  "Reference of the one-sample "
+                  "tests (default: the scale midpoint; the paper used 3.5)")
+      ->group(likert);
+  cmd->add_option("--likert-scale", args->likert_scale, "MIN-MAX")
+      ->capture_default_str()
+      ->group(likert);
+  one_per_use(cmd->add_option("--composite", args->composites,
+                              "NAME=ITEM,ITEM,...: a multi-item scale "
+                              "(repeatable)"))
+      ->group(likert);
+  one_per_use(cmd->add_option("--reverse", args->reverse, "Items to reverse-code")->delimiter(','))
       ->group(likert);
   auto* out = "Output";
-  cmd->add_option("--formats", args->formats, "Formats written for every table")
-      ->delimiter(',')->capture_default_str()->group(out);
+  one_per_use(cmd->add_option("--formats", args->formats, "Formats written for every table")
+                  ->delimiter(',')
+                  ->capture_default_str())
+      ->group(out);
   cmd->add_flag("--apa", args->report.apa, "Add APA-style strings")->group(out);
-  cmd->add_option("--alpha", args->report.alpha, "Significance level")->capture_default_str()
+  cmd->add_option("--alpha", args->report.alpha, "Significance level")
+      ->capture_default_str()
       ->group(out);
   cmd->add_option("--alternative", args->report.alternative, "two.sided, greater or less")
-      ->capture_default_str()->group(out);
+      ->capture_default_str()
+      ->group(out);
   cmd->add_option("--conf-level", args->report.conf_level, "Confidence level")
-      ->capture_default_str()->group(out);
-  cmd->add_option("--p-adjust", args->report.p_adjust, "none, bonferroni, holm, hochberg, hommel, "
-                  "BH or BY (family: one metric column / the items)")->capture_default_str()
+      ->capture_default_str()
+      ->group(out);
+  cmd->add_option("--p-adjust", args->report.p_adjust,
+                  "none, bonferroni, holm, hochberg, hommel, "
+                  "BH or BY (family: one metric column / the items)")
+      ->capture_default_str()
       ->group(out);
   cmd->callback([cmd, args] { run(*cmd, *args); });
 }

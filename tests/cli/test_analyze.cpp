@@ -63,7 +63,8 @@ std::vector<std::map<std::string, std::string>> read_rows(const fs::path& path) 
   std::vector<std::map<std::string, std::string>> rows;
   while (r.next()) {
     std::map<std::string, std::string> row;
-    for (std::size_t i = 0; i < r.header().size(); ++i) row[r.header()[i]] = std::string(r.field(i));
+    for (std::size_t i = 0; i < r.header().size(); ++i)
+      row[r.header()[i]] = std::string(r.field(i));
     rows.push_back(std::move(row));
   }
   return rows;
@@ -102,7 +103,8 @@ TEST(Analyze, WritesEveryTableAndTheTablesAgreeWithTheScores) {
   ASSERT_EQ(n, 5);
   bool found = false;
   for (const auto& row : read_rows(out / "table1.csv")) {
-    if (row.at("metric") == "error" && row.at("iteration") == "2" && row.at("group1") == "adaptive") {
+    if (row.at("metric") == "error" && row.at("iteration") == "2" &&
+        row.at("group1") == "adaptive") {
       found = true;
       EXPECT_EQ(row.at("test"), "one_sample_t");
       EXPECT_NEAR(*feint::io::parse_double(row.at("mean1")), sum / n, 1e-12);
@@ -123,7 +125,8 @@ TEST(Analyze, ReadsSettingsFromTheStudyAndTheCommandLineWins) {
              "# settings of this study\nformats = [\"csv\"]\nlikert-reference = 3.5\n"
              "[analyze]\nalternative = \"greater\"\n");
   const auto out = dir / "out";
-  auto r = run_feint("analyze " + shell_quote(dir.path().string()) + " -o " + shell_quote(out.string()));
+  auto r =
+      run_feint("analyze " + shell_quote(dir.path().string()) + " -o " + shell_quote(out.string()));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(out / "table1.csv"));
   EXPECT_FALSE(fs::exists(out / "table1.txt"));
@@ -135,12 +138,25 @@ TEST(Analyze, ReadsSettingsFromTheStudyAndTheCommandLineWins) {
   EXPECT_EQ(likert.front().at("mu"), "3.5");
 
   const auto out2 = dir / "out2";
-  r = run_feint("analyze " + shell_quote(dir.path().string()) + " -o " + shell_quote(out2.string()) +
-                " --formats json --alternative less");
+  r = run_feint("analyze " + shell_quote(dir.path().string()) + " -o " +
+                shell_quote(out2.string()) + " --formats json --alternative less");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(fs::exists(out2 / "table1.json"));
   EXPECT_FALSE(fs::exists(out2 / "table1.csv"));
   EXPECT_NE(read_text(out2 / "table1.json").find("\"less\""), std::string::npos);
+}
+
+TEST(Analyze, ListOptionsBeforeTheStudyDoNotSwallowIt) {
+  TempDir dir;
+  make_study(dir.path(), false);
+  const auto out = dir / "out";
+  const auto r = run_feint("analyze --metric error=0.4 --formats csv,json " +
+                           shell_quote(dir.path().string()) + " -o " + shell_quote(out.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "table1.json"));
+  const auto table = read_rows(out / "table1.csv");
+  ASSERT_FALSE(table.empty());
+  for (const auto& row : table) EXPECT_EQ(row.at("mu"), "0.4");
 }
 
 TEST(Analyze, WorksWithoutAQuestionnaire) {
