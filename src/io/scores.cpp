@@ -340,6 +340,7 @@ NumericColumn load_numeric_column(const std::string& path, const std::string& co
     if (inserted) {
       out.groups.push_back(group);
       out.values.emplace_back();
+      out.texts.emplace_back();
       out.missing.push_back(0);
     }
     const std::size_t g = it->second;
@@ -358,6 +359,7 @@ NumericColumn load_numeric_column(const std::string& path, const std::string& co
                   : std::string()));
     }
     out.values[g].push_back(*v);
+    out.texts[g].emplace_back(trim(text));
   }
   if (out.groups.empty()) {
     throw InvalidData(fmt::format("{}: no data rows (expected at least one row after the header)",

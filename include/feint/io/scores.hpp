@@ -74,6 +74,9 @@ struct NumericColumn {
   std::string by;                    ///< grouping column as in the header, "" for none
   std::vector<std::string> groups;   ///< group names in order of first appearance ({""} if no by)
   std::vector<std::vector<double>> values;  ///< per group, file order
+  /// The same values as written (trimmed): statistics read from the decimal text exactly are
+  /// accurate beyond what a double-rounded value allows (NIST StRD NumAcc4).
+  std::vector<std::vector<std::string>> texts;
   std::vector<std::size_t> missing;  ///< empty cells per group (excluded)
 };
 
