@@ -131,21 +131,6 @@ std::vector<std::string> summary_cells(const sim::SimulationSummary& r) {
           d(r.batch_entropy_pooled_q025), d(r.batch_entropy_pooled_q975)};
 }
 
-std::string json_string(std::string_view s) {
-  std::string o = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      o += '\\';
-      o += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      o += fmt::format("\\u{:04x}", static_cast<unsigned>(static_cast<unsigned char>(c)));
-    } else {
-      o += c;
-    }
-  }
-  return o + "\"";
-}
-
 std::string render_csv(const std::vector<sim::SimulationSummary>& rows) {
   std::string out;
   const auto& cols = summary_columns();
@@ -166,9 +151,9 @@ std::string render_json(const std::vector<sim::SimulationSummary>& rows) {
     const auto cells = summary_cells(rows[r]);
     out += "  {";
     for (std::size_t i = 0; i < cells.size(); ++i) {
-      out += (i ? ", " : "") + json_string(cols[i].name) + ": ";
+      out += (i ? ", " : "") + io::json_quote(cols[i].name) + ": ";
       if (cols[i].text) {
-        out += json_string(cells[i]);
+        out += io::json_quote(cells[i]);
       } else {
         out += cells[i].empty() ? "null" : cells[i];
       }

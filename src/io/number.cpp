@@ -48,6 +48,32 @@ std::optional<long long> parse_integer(std::string_view text) noexcept {
   return value;
 }
 
+std::string json_quote(std::string_view text) {
+  std::string out = "\"";
+  for (const char ch : text) {
+    const auto u = static_cast<unsigned char>(ch);
+    switch (ch) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\r': out += "\\r"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (u < 0x20) {
+          out += fmt::format("\\u{:04x}", static_cast<unsigned>(u));
+        } else {
+          out += ch;
+        }
+    }
+  }
+  out += '"';
+  return out;
+}
+
+std::string json_number(double value) {
+  return std::isfinite(value) ? format_double(value) : std::string("null");
+}
+
 std::string format_double(double value) {
   if (std::isnan(value)) return {};
   return fmt::format("{}", value);  // fmt's default is the shortest round-trip representation

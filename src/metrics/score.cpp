@@ -21,31 +21,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string json_string(std::string_view s) {
-  std::string out = "\"";
-  for (const char ch : s) {
-    const auto c = static_cast<unsigned char>(ch);
-    switch (ch) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (c < 0x20) {
-          out += fmt::format("\\u{:04x}", c);
-        } else {
-          out.push_back(ch);
-        }
-    }
-  }
-  return out + "\"";
-}
-
-std::string json_number(double v) {
-  return std::isfinite(v) ? io::format_double(v) : std::string("null");
-}
-
 // An existing path that is not a regular file (/dev/null, a FIFO, a terminal) is written in place
 // by AtomicOutput; it gets no sidecar beside it.
 bool is_special(const std::string& path) {
@@ -253,39 +228,39 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
     const auto& m = settings.metrics;
     std::string j = "{\n";
     j += fmt::format("  \"tool\": \"feint score\",\n  \"feint_version\": {},\n",
-                     json_string(settings.tool_version));
-    j += fmt::format("  \"output\": {},\n", json_string(output_path));
+                     io::json_quote(settings.tool_version));
+    j += fmt::format("  \"output\": {},\n", io::json_quote(output_path));
     j += "  \"settings\": {\n";
-    j += fmt::format("    \"trim_start\": {},\n    \"trim_end\": {},\n", json_number(m.trim_start),
-                     json_number(m.trim_end));
-    j += fmt::format("    \"deadband\": {},\n", json_number(m.deadband));
-    j += fmt::format("    \"confusion_norm\": {},\n", json_string(to_string(m.norm)));
+    j += fmt::format("    \"trim_start\": {},\n    \"trim_end\": {},\n", io::json_number(m.trim_start),
+                     io::json_number(m.trim_end));
+    j += fmt::format("    \"deadband\": {},\n", io::json_number(m.deadband));
+    j += fmt::format("    \"confusion_norm\": {},\n", io::json_quote(to_string(m.norm)));
     if (m.pad_speed) {
       j += fmt::format("    \"pad_speed\": {{\"source\": \"option\", \"value\": {}}},\n",
-                       json_number(*m.pad_speed));
+                       io::json_number(*m.pad_speed));
     } else if (v_min <= v_max) {
       j += fmt::format("    \"pad_speed\": {{\"source\": \"column\", \"min\": {}, \"max\": {}}},\n",
-                       json_number(v_min), json_number(v_max));
+                       io::json_number(v_min), io::json_number(v_max));
     } else {
       j += "    \"pad_speed\": {\"source\": \"none\"},\n";
     }
-    j += fmt::format("    \"overspeed_tolerance\": {},\n", json_number(kOverspeedTolerance));
+    j += fmt::format("    \"overspeed_tolerance\": {},\n", io::json_number(kOverspeedTolerance));
     j += fmt::format("    \"on_error\": \"{}\",\n",
                      settings.on_error == OnError::strict ? "strict" : "skip");
     j += fmt::format("    \"unsorted\": {},\n", settings.unsorted ? "true" : "false");
     j += fmt::format("    \"delimiter\": {},\n",
                      settings.delimiter == 0 ? std::string("\"auto\"")
-                                             : json_string(std::string(1, settings.delimiter)));
+                                             : io::json_quote(std::string(1, settings.delimiter)));
     j += "    \"column_map\": {";
     bool first = true;
     for (const auto& [k, v] : settings.column_map) {
-      j += fmt::format("{}{}: {}", first ? "" : ", ", json_string(k), json_string(v));
+      j += fmt::format("{}{}: {}", first ? "" : ", ", io::json_quote(k), io::json_quote(v));
       first = false;
     }
     j += "}\n  },\n";
     j += "  \"inputs\": [";
     for (std::size_t i = 0; i < files.size(); ++i) {
-      j += fmt::format("{}{}", i ? ", " : "", json_string(files[i] == "-" ? "<stdin>" : files[i]));
+      j += fmt::format("{}{}", i ? ", " : "", io::json_quote(files[i] == "-" ? "<stdin>" : files[i]));
     }
     j += "],\n";
     j += fmt::format(
@@ -295,7 +270,7 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
         summary.files, summary.rows_read, summary.rows_scored, summary.rows_rejected,
         summary.trials_scored, summary.trials_rejected, summary.overspeed_trials);
     j += fmt::format("  \"rejects\": {},\n",
-                     rejects.empty() ? std::string("null") : json_string(rejects));
+                     rejects.empty() ? std::string("null") : io::json_quote(rejects));
     j += "  \"units\": {\"duration\": \"s\", \"reversal_time\": \"s since the trial's first sample\", "
          "\"error\": \"pad units, [0, 1]\", \"confusion\": ";
     j += m.norm == ConfusionNorm::speed ? "\"fraction of full-speed movement, [0, 1]\""

@@ -304,30 +304,6 @@ std::string write_csv(std::span<const std::string_view> columns, std::span<const
   return out;
 }
 
-std::string json_quote(std::string_view text) {
-  std::string out = "\"";
-  for (const char ch : text) {
-    const auto u = static_cast<unsigned char>(ch);
-    switch (ch) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      case '\b': out += "\\b"; break;
-      case '\f': out += "\\f"; break;
-      default:
-        if (u < 0x20) {
-          out += fmt::format("\\u{:04x}", static_cast<unsigned>(u));
-        } else {
-          out += ch;
-        }
-    }
-  }
-  out += '"';
-  return out;
-}
-
 std::string write_json(std::span<const std::string_view> columns, std::span<const Record> records) {
   if (records.empty()) return "[]\n";
   std::string out = "[\n";
@@ -335,13 +311,13 @@ std::string write_json(std::span<const std::string_view> columns, std::span<cons
     out += "  {";
     for (std::size_t i = 0; i < columns.size(); ++i) {
       if (i > 0) out += ", ";
-      out += json_quote(columns[i]);
+      out += io::json_quote(columns[i]);
       out += ": ";
       const Cell empty;
       const Cell& cell = i < records[r].size() ? records[r][i] : empty;
       switch (cell.kind) {
         case Cell::Kind::empty: out += "null"; break;
-        case Cell::Kind::text: out += json_quote(cell.text); break;
+        case Cell::Kind::text: out += io::json_quote(cell.text); break;
         case Cell::Kind::number:
         case Cell::Kind::boolean: out += cell.text; break;
       }

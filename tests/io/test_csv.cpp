@@ -243,3 +243,11 @@ TEST(AtomicOutput, FollowsASymbolicLinkAndKeepsIt) {
   std::getline(in, line);
   EXPECT_EQ(line, "new");
 }
+
+TEST(Json, QuotesStringsAndWritesNumbersOrNull) {
+  EXPECT_EQ(feint::io::json_quote("a\"b\\c\nd\te\x01"), "\"a\\\"b\\\\c\\nd\\te\\u0001\"");
+  EXPECT_EQ(feint::io::json_quote("≈ M"), "\"≈ M\"");
+  EXPECT_EQ(feint::io::json_number(0.1), "0.1");
+  EXPECT_EQ(feint::io::json_number(std::nan("")), "null");
+  EXPECT_EQ(feint::io::json_number(HUGE_VAL), "null");
+}

@@ -135,8 +135,6 @@ std::string write_json(std::span<const std::string_view> columns, std::span<cons
 std::string tidy_csv(std::span<const TidyRow> rows, std::span<const std::string_view> columns);
 std::string tidy_json(std::span<const TidyRow> rows, std::span<const std::string_view> columns);
 
-/// JSON string literal with escapes (quotes included).
-std::string json_quote(std::string_view text);
 /// Escapes LaTeX special characters (& % $ # _ { } ~ ^ \ < >) in plain text; "x" becomes ``x''
 /// and a few symbols (≈ ± × α δ η χ ² – — ≤ ≥) their LaTeX forms.
 std::string latex_escape(std::string_view text);
