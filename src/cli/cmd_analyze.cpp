@@ -25,6 +25,7 @@
 #include "feint/report/writers.hpp"
 #include "feint/stats/p_adjust.hpp"
 #include "report_options.hpp"
+#include "score_options.hpp"
 
 #ifndef FEINT_VERSION
 #define FEINT_VERSION "dev"
@@ -42,11 +43,7 @@ struct AnalyzeArgs {
   std::string config;  // default: STUDY/feint.toml when it exists
   // Scoring.
   std::vector<std::string> logs;  // default: STUDY/logs
-  std::optional<double> trim, trim_start, trim_end, pad_speed;
-  double deadband = 1e-9;
-  std::string norm = "speed";
-  std::vector<std::string> maps;
-  std::string on_error = "strict";
+  ScoreOptions scoring;
   // Tables.
   std::vector<std::string> metrics;
   std::string compare;
@@ -170,26 +167,7 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
   std::vector<std::string> written;
 
   // 1. Score every trial.
-  metrics::ScoreSettings s;
-  if (a.trim) s.metrics.trim_start = s.metrics.trim_end = *a.trim;
-  if (a.trim_start) s.metrics.trim_start = *a.trim_start;
-  if (a.trim_end) s.metrics.trim_end = *a.trim_end;
-  s.metrics.deadband = a.deadband;
-  const auto norm = metrics::parse_confusion_norm(a.norm);
-  if (!norm) throw UsageError(fmt::format("--confusion-norm '{}': expected speed or raw", a.norm));
-  s.metrics.norm = *norm;
-  s.metrics.pad_speed = a.pad_speed;
-  for (const auto& m : a.maps) {
-    const auto eq = m.find('=');
-    if (eq == std::string::npos || eq == 0 || eq + 1 == m.size()) {
-      throw UsageError(fmt::format("--map '{}': expected NAME=COLUMN", m));
-    }
-    s.column_map[io::to_lower(io::trim(m.substr(0, eq)))] = std::string(io::trim(m.substr(eq + 1)));
-  }
-  if (a.on_error != "strict" && a.on_error != "skip") {
-    throw UsageError(fmt::format("--on-error '{}': expected strict or skip", a.on_error));
-  }
-  s.on_error = a.on_error == "skip" ? metrics::OnError::skip : metrics::OnError::strict;
+  metrics::ScoreSettings s = score_settings(a.scoring);
   s.tool_version = FEINT_VERSION;
   const std::string scores_path = (out / "scores.csv").string();
   const metrics::ScoreSummary scored = metrics::score_to_file(logs, s, scores_path);
@@ -294,34 +272,7 @@ void add_analyze_command(CLI::App& app) {
           "--logs", args->logs,
           "Pad-trace logs: files, folders or globs, relative to STUDY (default: STUDY/logs)"))
       ->group(score);
-  cmd->add_option("--trim", args->trim,
-                  "Fraction of each trial's duration cut at both ends "
-                  "(default 0.05)")
-      ->group(score);
-  cmd->add_option("--trim-start", args->trim_start, "Fraction cut at the start")->group(score);
-  cmd->add_option("--trim-end", args->trim_end, "Fraction cut at the end")->group(score);
-  cmd->add_option("--deadband", args->deadband,
-                  "Pad movement (pad units) below which a segment "
-                  "has no direction")
-      ->capture_default_str()
-      ->group(score);
-  cmd->add_option("--confusion-norm", args->norm,
-                  "speed (bounded, default) or raw (the paper's "
-                  "equation literally)")
-      ->capture_default_str()
-      ->group(score);
-  cmd->add_option("--pad-speed", args->pad_speed,
-                  "Pad speed in pad units per second (overrides "
-                  "the logs' pad_speed column)")
-      ->group(score);
-  one_per_use(cmd->add_option("--map", args->maps,
-                              "NAME=COLUMN: the study's own column names (repeatable)"))
-      ->group(score);
-  cmd->add_option("--on-error", args->on_error,
-                  "strict (stop at the first invalid trial) or skip "
-                  "(list it in scores.csv.rejects.csv)")
-      ->capture_default_str()
-      ->group(score);
+  add_score_options(*cmd, args->scoring, score);
   auto* tables = "Tables (see feint table)";
   one_per_use(cmd->add_option("--metric", args->metrics,
                               "NAME=REF: metric column and reference mean "

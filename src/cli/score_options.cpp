@@ -1,0 +1,98 @@
+#include "score_options.hpp"
+
+#include <fmt/format.h>
+
+#include "feint/error.hpp"
+#include "feint/io/number.hpp"
+
+namespace feint::cli {
+
+namespace {
+
+char parse_delimiter(const std::string& text) {
+  const std::string d = io::to_lower(text);
+  if (d.empty() || d == "auto") return 0;
+  if (d == "," || d == "comma") return ',';
+  if (d == ";" || d == "semicolon") return ';';
+  if (d == "\t" || d == "\\t" || d == "tab") return '\t';
+  if (d == "|" || d == "pipe") return '|';
+  throw UsageError(fmt::format("--delimiter '{}': expected , ; tab | or auto", text));
+}
+
+}  // namespace
+
+void add_score_options(CLI::App& cmd, ScoreOptions& o, const std::string& group) {
+  std::vector<CLI::Option*> added;
+  auto* trim = cmd.add_option("--trim", o.trim,
+                              "Fraction of each trial's duration excluded at BOTH ends, in [0, 1) "
+                              "(default 0.05)");
+  added.push_back(trim);
+  added.push_back(
+      cmd.add_option("--trim-start", o.trim_start,
+                     "Fraction of the duration excluded at the start, in [0, 1) (default 0.05)")
+          ->excludes(trim));
+  added.push_back(
+      cmd.add_option("--trim-end", o.trim_end,
+                     "Fraction of the duration excluded at the end, in [0, 1) (default 0.05)")
+          ->excludes(trim));
+  added.push_back(cmd.add_option("--deadband", o.deadband,
+                                 "Dead band eps in pad units: a segment moving <= eps has no "
+                                 "direction for the reversal rule (default 1e-9)"));
+  added.push_back(cmd.add_option("--confusion-norm", o.norm,
+                                 "Confusion normalisation: 'speed' = moving fraction at the pad "
+                                 "speed, in [0, 1] (default); 'raw' = the paper's eq. 4 as printed "
+                                 "(unbounded)")
+                      ->check(CLI::IsMember({"speed", "raw"}, CLI::ignore_case)));
+  added.push_back(cmd.add_option("--pad-speed", o.pad_speed,
+                                 "Pad speed v in pad units per second for every trial; replaces a "
+                                 "pad_speed column (needed by --confusion-norm speed when the logs "
+                                 "have none)"));
+  // One value per use: CLI11 2.1 would otherwise let a list option swallow a positional argument.
+  added.push_back(cmd.add_option("--map", o.maps,
+                                 "NAME=COLUMN: read field NAME (participant, condition, iteration, "
+                                 "strategy, variant, target, t, pad, pad_speed) from the study's "
+                                 "column COLUMN; repeatable")
+                      ->allow_extra_args(false)
+                      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll));
+  added.push_back(cmd.add_option("--delimiter", o.delimiter,
+                                 "Field separator: , ; tab | (default: detected per file from its "
+                                 "header)"));
+  added.push_back(cmd.add_option("--on-error", o.on_error,
+                                 "strict = stop at the first invalid trial (default); skip = leave "
+                                 "invalid trials out and list them in the rejects file")
+                      ->check(CLI::IsMember({"strict", "skip"})));
+  if (!group.empty()) {
+    for (auto* opt : added) opt->group(group);
+  }
+}
+
+metrics::ScoreSettings score_settings(const ScoreOptions& o) {
+  metrics::ScoreSettings s;
+  if (o.trim) s.metrics.trim_start = s.metrics.trim_end = *o.trim;
+  if (o.trim_start) s.metrics.trim_start = *o.trim_start;
+  if (o.trim_end) s.metrics.trim_end = *o.trim_end;
+  s.metrics.deadband = o.deadband;
+  const auto norm = metrics::parse_confusion_norm(o.norm);
+  if (!norm) throw UsageError(fmt::format("--confusion-norm '{}': expected speed or raw", o.norm));
+  s.metrics.norm = *norm;
+  s.metrics.pad_speed = o.pad_speed;
+  for (const auto& m : o.maps) {
+    const auto eq = m.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == m.size()) {
+      throw UsageError(fmt::format("--map '{}': expected NAME=COLUMN, e.g. --map pad=position", m));
+    }
+    const std::string name = io::to_lower(io::trim(m.substr(0, eq)));
+    if (s.column_map.count(name) != 0) {
+      throw UsageError(fmt::format("--map: '{}' is mapped twice", name));
+    }
+    s.column_map[name] = std::string(io::trim(m.substr(eq + 1)));
+  }
+  s.delimiter = parse_delimiter(o.delimiter);
+  if (o.on_error != "strict" && o.on_error != "skip") {
+    throw UsageError(fmt::format("--on-error '{}': expected strict or skip", o.on_error));
+  }
+  s.on_error = o.on_error == "skip" ? metrics::OnError::skip : metrics::OnError::strict;
+  return s;
+}
+
+}  // namespace feint::cli

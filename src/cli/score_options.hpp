@@ -1,0 +1,32 @@
+// src/cli/score_options.hpp - the scoring options shared by `feint score` and `feint analyze`.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "feint/metrics/score.hpp"
+
+namespace feint::cli {
+
+/// The raw values of the scoring options as CLI11 parses them.
+struct ScoreOptions {
+  std::optional<double> trim, trim_start, trim_end;
+  double deadband = 1e-9;
+  std::string norm = "speed";
+  std::optional<double> pad_speed;
+  std::vector<std::string> maps;
+  std::string delimiter;
+  std::string on_error = "strict";
+};
+
+/// Registers --trim, --trim-start, --trim-end, --deadband, --confusion-norm, --pad-speed, --map,
+/// --delimiter and --on-error on `cmd` (in help group `group`, if not empty), bound to `options`.
+void add_score_options(CLI::App& cmd, ScoreOptions& options, const std::string& group = "");
+
+/// The settings they stand for (trims, dead band, normalisation, pad speed, column map,
+/// delimiter, error mode). Throws UsageError naming the option for a malformed value.
+metrics::ScoreSettings score_settings(const ScoreOptions& options);
+
+}  // namespace feint::cli
