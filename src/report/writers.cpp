@@ -551,12 +551,15 @@ std::string render_markdown(const TextTable& t) {
 
 std::string render_latex(const TextTable& t) {
   const std::size_t n = column_count(t);
-  std::string out = "% Needs \\usepackage{booktabs} in the preamble.\n";
+  std::string out = "% Needs \\usepackage{booktabs} and \\usepackage{graphicx} in the preamble.\n";
   out += "\\begin{table}[htbp]\n  \\centering\n";
   if (!t.caption.empty()) out += "  \\caption{" + latex_escape(t.caption) + "}\n";
   if (!t.latex_label.empty()) out += "  \\label{" + t.latex_label + "}\n";
   std::string spec;
   for (std::size_t i = 0; i < n; ++i) spec += right_at(t, i) ? 'r' : 'l';
+  // Wide tables (Likert with three test blocks, two-sample Table 1) shrink to the line width;
+  // narrower ones keep their natural size.
+  out += "  \\resizebox{\\ifdim\\width>\\linewidth\\linewidth\\else\\width\\fi}{!}{%\n";
   out += "  \\begin{tabular}{" + spec + "}\n    \\toprule\n";
   if (!t.groups.empty()) {
     std::string l = "   ";
@@ -597,7 +600,7 @@ std::string render_latex(const TextTable& t) {
     }
     first = false;
   }
-  out += "    \\bottomrule\n  \\end{tabular}\n";
+  out += "    \\bottomrule\n  \\end{tabular}}\n";
   if (!t.notes.empty()) {
     out += "  \\par\\smallskip\n  \\begin{minipage}{\\linewidth}\n    \\footnotesize\n";
     for (std::size_t i = 0; i < t.notes.size(); ++i) {

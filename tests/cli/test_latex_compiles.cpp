@@ -1,0 +1,55 @@
+// The LaTeX tables must compile as fragments of a paper (issue #3). Needs pdflatex with booktabs
+// (Debian: texlive-latex-base, texlive-latex-recommended); skips with a message where TeX is
+// absent, as it is on CI (TeX is not a dependency of feint).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "cli/cli_helpers.hpp"
+
+namespace fs = std::filesystem;
+using feint::test::read_text;
+using feint::test::run_feint;
+using feint::test::shell_quote;
+using feint::test::TempDir;
+using feint::test::write_text;
+
+namespace {
+
+bool have_latex() {
+  return std::system(
+             "command -v pdflatex >/dev/null 2>&1 && kpsewhich booktabs.sty >/dev/null 2>&1") == 0;
+}
+
+}  // namespace
+
+TEST(LatexTables, CompileAsFragmentsOfAPaper) {
+  if (!have_latex())
+    GTEST_SKIP() << "pdflatex with booktabs not installed: LaTeX compile check skipped";
+  const fs::path demo = fs::path(FEINT_SOURCE_DIR) / "data" / "demo";
+  TempDir dir;
+  const auto out = dir / "out";
+  auto r = run_feint("analyze " + shell_quote(demo.string()) + " -o " + shell_quote(out.string()) +
+                     " --formats latex --apa --equivalence 0.1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* table : {"table1", "table1_compare", "likert", "likert_compare"}) {
+    const auto doc = dir / (std::string("paper_") + table + ".tex");
+    write_text(doc, std::string("\\documentclass{article}\n\\usepackage[T1]{fontenc}\n"
+                                "\\usepackage{booktabs}\n\\usepackage{graphicx}\n"
+                                "\\usepackage{amsmath}\n\\begin{document}\n"
+                                "Some text of the paper.\n\\input{") +
+                        (out / (std::string(table) + ".tex")).string() + "}\n\\end{document}\n");
+    const std::string cmd = "cd " + shell_quote(dir.path().string()) +
+                            " && pdflatex -interaction=nonstopmode -halt-on-error " +
+                            shell_quote(doc.filename().string()) + " > " +
+                            shell_quote((dir / (std::string(table) + ".out")).string()) + " 2>&1";
+    const int rc = std::system(cmd.c_str());
+    EXPECT_EQ(rc, 0) << table << ":\n" << read_text(dir / (std::string(table) + ".out"));
+    // Wide tables are scaled to the line, so nothing runs off the page.
+    EXPECT_EQ(read_text(dir / (std::string("paper_") + table + ".log")).find("Overfull \\hbox"),
+              std::string::npos)
+        << table;
+  }
+}
