@@ -77,16 +77,6 @@ std::string extension(report::OutputFormat format) {
   return "txt";
 }
 
-std::pair<std::string, std::string> parse_pair(const std::string& text, const char* option) {
-  const auto comma = text.find(',');
-  if (comma == std::string::npos || comma == 0 || comma + 1 == text.size() ||
-      text.find(',', comma + 1) != std::string::npos) {
-    throw UsageError(fmt::format("{} '{}': expected two conditions A,B", option, text));
-  }
-  return {std::string(io::trim(text.substr(0, comma))),
-          std::string(io::trim(text.substr(comma + 1)))};
-}
-
 // Applies the study's settings file to every option the command line left unset.
 void apply_config(CLI::App& cmd, const std::string& path) {
   std::vector<CLI::ConfigItem> items;
@@ -177,10 +167,7 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
 
   // 2. Table 1: one-sample per condition, and A against B when asked.
   report::Table1Options t;
-  if (!a.metrics.empty()) {
-    t.metrics.clear();
-    for (const auto& m : a.metrics) t.metrics.push_back(report::parse_metric_spec(m));
-  }
+  t.metrics = parse_metric_specs(a.metrics);
   t.alpha = report_opts.alpha;
   t.test = report_opts.test;
   t.p_adjust = report_opts.p_adjust;
@@ -202,7 +189,7 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
   write_all("table1", [&](report::OutputFormat f) { return report::render_table1(one_sample, f); });
   if (!a.compare.empty()) {
     report::Table1Options c = t;
-    c.compare = parse_pair(a.compare, "--compare");
+    c.compare = parse_compare(a.compare);
     c.var_equal = a.var_equal;
     c.paired = a.paired;
     const report::Table1 two_sample = report::build_table1(scores, c);
@@ -230,7 +217,7 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
     written.push_back(summary);
     if (!a.compare.empty()) {
       report::LikertSettings lc = l;
-      lc.compare = parse_pair(a.compare, "--compare");
+      lc.compare = parse_compare(a.compare);
       const report::LikertAnalysis between = report::analyze_likert_file(questionnaire, lc);
       write_all("likert_compare",
                 [&](report::OutputFormat f) { return report::render_likert(between, f); });

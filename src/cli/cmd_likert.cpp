@@ -69,11 +69,7 @@ void run(const LikertArgs& args) {
   s.reference = args.reference;
   s.condition = args.condition;
   if (!args.compare.empty()) {
-    const auto parts = io::split_csv_line(args.compare, ',');
-    if (parts.size() != 2 || io::trim(parts[0]).empty() || io::trim(parts[1]).empty()) {
-      throw UsageError(fmt::format("--compare '{}': expected two conditions A,B", args.compare));
-    }
-    s.compare = std::make_pair(std::string(io::trim(parts[0])), std::string(io::trim(parts[1])));
+    s.compare = parse_compare(args.compare);
     if (!s.condition.empty()) {
       throw UsageError("--compare and --condition do not combine: --compare names both groups");
     }

@@ -1,7 +1,6 @@
 // feint table SCORES.csv: the paper's Table 1 (see docs/tables.md).
 #include <memory>
 #include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -37,25 +36,10 @@ struct TableArgs {
 void run_table(const TableArgs& a) {
   const ResolvedReportOptions r = resolve_report_options(a.report);
   report::Table1Options o;
-  if (!a.metrics.empty()) {
-    o.metrics.clear();
-    std::set<std::string> seen;
-    for (const auto& m : a.metrics) {
-      auto spec = report::parse_metric_spec(m);
-      if (!seen.insert(io::to_lower(spec.column)).second) {
-        throw UsageError(fmt::format("--metric '{}': metric '{}' given twice", m, spec.column));
-      }
-      o.metrics.push_back(std::move(spec));
-    }
-  }
+  o.metrics = parse_metric_specs(a.metrics);
   o.condition = a.condition;
   if (!a.compare.empty()) {
-    const auto parts = io::split_csv_line(a.compare);
-    if (parts.size() != 2 || io::trim(parts[0]).empty() || io::trim(parts[1]).empty()) {
-      throw UsageError(
-          fmt::format("--compare '{}': expected two conditions A,B (e.g. adaptive,random)", a.compare));
-    }
-    o.compare = std::make_pair(std::string(io::trim(parts[0])), std::string(io::trim(parts[1])));
+    o.compare = parse_compare(a.compare);
     if (!a.condition.empty()) throw UsageError("--condition and --compare exclude each other");
   }
   o.var_equal = a.var_equal;

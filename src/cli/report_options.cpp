@@ -1,10 +1,13 @@
 #include "report_options.hpp"
 
-#include <cmath>
-
 #include <fmt/format.h>
 
+#include <cmath>
+#include <set>
+
 #include "feint/error.hpp"
+#include "feint/io/csv.hpp"
+#include "feint/io/number.hpp"
 #include "feint/io/output.hpp"
 
 namespace feint::cli {
@@ -52,14 +55,15 @@ ResolvedReportOptions resolve_report_options(const ReportOptions& o) {
   try {
     r.test.alternative = stats::parse_alternative(o.alternative);
   } catch (const UsageError&) {
-    throw UsageError(fmt::format("--alternative '{}': expected two.sided, greater or less",
-                                 o.alternative));
+    throw UsageError(
+        fmt::format("--alternative '{}': expected two.sided, greater or less", o.alternative));
   }
   try {
     r.p_adjust = stats::parse_p_adjust(o.p_adjust);
   } catch (const UsageError&) {
-    throw UsageError(fmt::format(
-        "--p-adjust '{}': expected none, bonferroni, holm, hochberg, hommel, BH or BY", o.p_adjust));
+    throw UsageError(
+        fmt::format("--p-adjust '{}': expected none, bonferroni, holm, hochberg, hommel, BH or BY",
+                    o.p_adjust));
   }
   return r;
 }
@@ -68,6 +72,29 @@ void write_report(const std::string& path, std::string_view content) {
   io::AtomicOutput out(path);
   out.stream().write(content.data(), static_cast<std::streamsize>(content.size()));
   out.commit();
+}
+
+std::pair<std::string, std::string> parse_compare(const std::string& text) {
+  const auto parts = io::split_csv_line(text);
+  if (parts.size() != 2 || io::trim(parts[0]).empty() || io::trim(parts[1]).empty()) {
+    throw UsageError(
+        fmt::format("--compare '{}': expected two conditions A,B (e.g. adaptive,random)", text));
+  }
+  return {std::string(io::trim(parts[0])), std::string(io::trim(parts[1]))};
+}
+
+std::vector<report::MetricSpec> parse_metric_specs(const std::vector<std::string>& texts) {
+  if (texts.empty()) return report::default_metrics();
+  std::vector<report::MetricSpec> specs;
+  std::set<std::string> seen;
+  for (const auto& m : texts) {
+    auto spec = report::parse_metric_spec(m);
+    if (!seen.insert(io::to_lower(spec.column)).second) {
+      throw UsageError(fmt::format("--metric '{}': metric '{}' given twice", m, spec.column));
+    }
+    specs.push_back(std::move(spec));
+  }
+  return specs;
 }
 
 }  // namespace feint::cli

@@ -11,11 +11,13 @@
 //   });
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
-#include <CLI/CLI.hpp>
-
+#include "feint/report/table1.hpp"
 #include "feint/report/writers.hpp"
 #include "feint/stats/htest.hpp"
 #include "feint/stats/p_adjust.hpp"
@@ -56,6 +58,13 @@ struct ResolvedReportOptions {
 /// Validates: format name, alpha and conf-level in (0, 1), alternative, p-adjust method. Throws
 /// UsageError (exit 64) naming the option and the accepted values.
 ResolvedReportOptions resolve_report_options(const ReportOptions& options);
+
+/// Parses `--compare A,B` (the two conditions, trimmed). Throws UsageError otherwise.
+std::pair<std::string, std::string> parse_compare(const std::string& text);
+
+/// Parses repeated `--metric NAME[=REF]`; empty input gives the paper's defaults. Throws
+/// UsageError for a malformed spec or a metric named twice.
+std::vector<report::MetricSpec> parse_metric_specs(const std::vector<std::string>& texts);
 
 /// Writes `content` to `path` atomically (temporary file + rename; `-` = standard output).
 void write_report(const std::string& path, std::string_view content);

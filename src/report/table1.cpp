@@ -241,25 +241,22 @@ Table1 build_table1(const io::ScoresTable& scores, const Table1Options& options)
             tost = stats::tost_two_sample(x, y, *o.equivalence, o.var_equal, o.test);
           }
         }
-        TidyRow row;
-        row.metric = spec.column;
-        row.iteration = static_cast<int>(it);
-        row.group1 = blk.group1;
-        row.group2 = blk.group2;
-        row.result = std::move(diff);
-        blk.cells[ii][m].difference_row = t.rows.size();
-        family.push_back(t.rows.size());
-        t.rows.push_back(std::move(row));
+        // Appends the tidy row of one test of this cell; returns its index.
+        auto add_row = [&](stats::TestResult result) {
+          TidyRow row;
+          row.metric = spec.column;
+          row.iteration = static_cast<int>(it);
+          row.group1 = blk.group1;
+          row.group2 = blk.group2;
+          row.result = std::move(result);
+          t.rows.push_back(std::move(row));
+          return t.rows.size() - 1;
+        };
+        blk.cells[ii][m].difference_row = add_row(std::move(diff));
+        family.push_back(blk.cells[ii][m].difference_row);
         if (o.equivalence) {
-          TidyRow trow;
-          trow.metric = spec.column;
-          trow.iteration = static_cast<int>(it);
-          trow.group1 = blk.group1;
-          trow.group2 = blk.group2;
-          trow.result = std::move(tost);
-          blk.cells[ii][m].tost_row = t.rows.size();
-          tost_family.push_back(t.rows.size());
-          t.rows.push_back(std::move(trow));
+          blk.cells[ii][m].tost_row = add_row(std::move(tost));
+          tost_family.push_back(*blk.cells[ii][m].tost_row);
         }
       }
       adjust_family(t.rows, family, o.p_adjust);
