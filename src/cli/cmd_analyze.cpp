@@ -86,6 +86,7 @@ void apply_config(CLI::App& cmd, const std::string& path) {
     throw IoError(fmt::format("cannot read settings '{}': {}", path, e.what()));
   }
   for (const auto& item : items) {
+    if (!item.parents.empty() && item.parents[0] == "collect") continue;  // feint collect's own
     // Top-level keys, or keys under an [analyze] section.
     if (!item.parents.empty() && !(item.parents.size() == 1 && item.parents[0] == "analyze")) {
       throw InvalidData(fmt::format("{}: section [{}] is not a feint analyze section", path,

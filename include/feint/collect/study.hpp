@@ -1,0 +1,176 @@
+// feint/collect/study.hpp - the state of a running data-collection study (docs/collect.md).
+//
+// A `Study` owns the study folder while `feint collect` runs. Everything it knows is in files, so
+// a server killed at any moment and restarted rebuilds the same state:
+//   STUDY/collect/assignment.csv   participant, index, condition, assigned_utc (append only)
+//   STUDY/logs/<participant>.csv   the analysed rounds, formats.md pad-trace layout (append only)
+//   STUDY/practice/<participant>.csv  the practice rounds, same layout, outside logs/ so that
+//                                  `feint analyze` never reads them
+//   STUDY/questionnaire.csv        wide Likert layout: participant, condition, <item>... (1-7)
+//   STUDY/questionnaire_yesno.csv  participant, condition, <yes/no item>: yes | no
+//   STUDY/collect/events.csv       time_utc, participant, event, detail (audit trail)
+// Every append is one write() of whole lines followed by fdatasync() before it is acknowledged.
+// A round is complete when its last row has t = the round's duration (the page always ends a round
+// with that sample), so a round cut short by a crash is recognised from the log alone; the log is
+// then rebuilt from its complete rounds and the damaged original kept in STUDY/collect/damaged/.
+//
+// Rounds are chosen by the server: participant i (0-based, in order of arrival) gets the condition
+// of block i / C (a permutation of the C conditions drawn from Rng::stream(seed, block)), and its
+// run is sim::generate_run() under Rng::stream(seed, 1000003 + i) - the `feint simulate` code.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "feint/sim/selection.hpp"
+#include "feint/sim/trajectory.hpp"
+
+namespace feint::collect {
+
+/// One experimental condition: its name in the logs and the selection algorithm behind it.
+struct Condition {
+  std::string name;  // e.g. "adaptive", "random", "adaptive-0.3"
+  sim::Algorithm algorithm = sim::Algorithm::adaptive;
+  double lambda = 0.5;
+};
+
+/// Parses `adaptive`, `random`, `fixed-block`, `fixed-balanced`, optionally `:LAMBDA`
+/// (`adaptive:0.3` is named `adaptive-0.3`). Throws UsageError.
+Condition parse_condition(const std::string& text, double default_lambda);
+
+struct Settings {
+  std::vector<Condition> conditions{{"adaptive", sim::Algorithm::adaptive, 0.5},
+                                    {"random", sim::Algorithm::random, 0.5}};
+  int iterations = 20;       // analysed rounds per participant
+  int practice = 2;          // practice rounds (optimal strategy), logged apart, not analysed
+  double pad_speed = 0.8;    // pad units per second while an arrow key is held
+  sim::Geometry geometry;    // trajectories (robot speed is geometry.speed)
+  std::uint64_t seed = 1;    // assignment and rounds
+  std::vector<std::string> items{"entertainment", "deception", "intelligence", "trust"};
+  std::vector<std::string> item_questions{
+      "How entertaining was the game?", "How deceptive was the robot?",
+      "How intelligent did the robot seem?", "How much did you trust the robot?"};
+  std::string yes_no_item = "intentional";  // empty: no yes/no question
+  std::string yes_no_question = "Did the robot's movement look intentional?";
+  std::string consent;         // shown before the first round when not empty
+  std::string completion_url;  // the completion page links (and redirects) here when not empty
+  std::size_t max_samples = 20000;  // per round
+};
+
+/// Throws UsageError naming the setting when one is out of range.
+void validate(const Settings& s);
+
+/// Relative tolerance of the pad-speed check: a step may be at most pad_speed * dt * (1 + 1e-6),
+/// the same tolerance `feint score` uses to count overspeed segments, so that an accepted round
+/// never shows an overspeed segment there.
+inline constexpr double kSpeedTolerance = 1e-6;
+
+/// A participant ID is 1-64 characters of [A-Za-z0-9_-], not starting with '-'.
+bool valid_participant_id(const std::string& id) noexcept;
+
+/// A refused request: the HTTP status and a stable code (e.g. "out_of_order") for the page.
+class Rejection : public std::runtime_error {
+ public:
+  Rejection(int status, std::string code, const std::string& message)
+      : std::runtime_error(message), status_(status), code_(std::move(code)) {}
+  int status() const noexcept { return status_; }
+  const std::string& code() const noexcept { return code_; }
+
+ private:
+  int status_;
+  std::string code_;
+};
+
+enum class RoundKind { practice, main };
+std::string_view to_string(RoundKind k) noexcept;
+
+/// One round as the server plans it.
+struct Round {
+  RoundKind kind = RoundKind::main;
+  int iteration = 1;  // 1-based within its kind
+  sim::Strategy strategy = sim::Strategy::optimal;
+  sim::Variant variant = sim::Variant::main;
+  sim::Target target = sim::Target::left;
+  std::vector<sim::TrajectorySample> path;
+  double duration() const noexcept { return path.empty() ? 0.0 : path.back().t; }
+};
+
+/// What comes next for a participant.
+enum class Stage { consent, rounds, questionnaire, done };
+
+struct ParticipantStatus {
+  std::string id;
+  std::string condition;
+  int practice_saved = 0;
+  int rounds_saved = 0;
+  bool questionnaire_done = false;
+  std::int64_t last_seen_unix = 0;  // 0 = not since the server started
+  int interruptions = 0;
+};
+
+struct PadSample {
+  double t = 0;
+  double pad = 0.5;
+};
+
+class Study {
+ public:
+  /// Opens (creating as needed) the study folder and rebuilds the state from its files.
+  /// Throws IoError / InvalidData when the folder cannot be used.
+  Study(std::filesystem::path dir, Settings settings);
+  ~Study();
+  Study(const Study&) = delete;
+  Study& operator=(const Study&) = delete;
+
+  const Settings& settings() const noexcept { return settings_; }
+  const std::filesystem::path& dir() const noexcept { return dir_; }
+
+  /// Joins (or re-joins) a participant; an empty `id` generates one. Throws Rejection (400) for an
+  /// unsafe ID.
+  ParticipantStatus join(const std::string& id);
+  /// The round a participant plays next (the first not yet saved). Records `round_shown`, and
+  /// `interrupted` when that round had been shown before without being saved. Throws Rejection
+  /// (404 unknown participant, 409 when no round is left).
+  Round start_round(const std::string& id);
+  /// Validates and durably appends a finished round; returns the participant's new status.
+  /// Throws Rejection: 404 unknown, 409 duplicate/out_of_order, 422 invalid trace.
+  ParticipantStatus submit_round(const std::string& id, RoundKind kind, int iteration,
+                                 const std::vector<PadSample>& samples);
+  /// Appends the questionnaire answers (item -> 1..7, yes/no item -> "yes"/"no").
+  ParticipantStatus submit_questionnaire(const std::string& id,
+                                         const std::map<std::string, std::string>& answers);
+  /// Records a rejected request or any other event (append + fdatasync).
+  void record_event(const std::string& participant, const std::string& event,
+                    const std::string& detail);
+
+  std::optional<ParticipantStatus> status(const std::string& id) const;
+  std::vector<ParticipantStatus> overview() const;
+  Stage stage(const ParticipantStatus& s) const noexcept;
+  /// The planned round (kind, iteration) of participant `index` in `condition` (deterministic).
+  Round plan_round(std::size_t index, std::size_t condition, RoundKind kind, int iteration) const;
+
+ private:
+  struct Participant;
+  std::shared_ptr<Participant> find(const std::string& id) const;
+  void rebuild();
+  void recover_log(Participant& p, RoundKind kind);
+  std::filesystem::path log_path(const std::string& id, RoundKind kind) const;
+
+  std::filesystem::path dir_;
+  Settings settings_;
+  mutable std::mutex mu_;  // participants_, assignment file, id generation
+  std::map<std::string, std::shared_ptr<Participant>> participants_;
+  std::mutex events_mu_;
+  std::mutex questionnaire_mu_;
+  std::uint64_t generated_ = 0;
+};
+
+}  // namespace feint::collect

@@ -1,0 +1,299 @@
+// feint collect: the game page (the seed paper's Fig. 8). No external resources.
+// The pad position is integrated from the key state and the elapsed time (performance.now()),
+// and sampled on every animation frame, so a dropped frame never distorts it; each step is at most
+// pad_speed * dt, which the server checks.
+'use strict';
+(function () {
+  const $ = (id) => document.getElementById(id);
+  const params = new URLSearchParams(location.search);
+  let pid = params.get('participant') || params.get('PROLIFIC_PID') || '';
+  let st = null;        // participant status from the server
+  let round = null;     // the round being played
+  const test = { intervals: [], lastTrace: null };  // read by the browser test
+  window.__feint = test;
+
+  // ---- talking to the server: retried until it answers (network errors, 5xx) ----
+  async function call(path, body) {
+    let wait = 250;
+    for (;;) {
+      try {
+        const r = await fetch(path, { method: 'POST', body: body || '', cache: 'no-store',
+                                      headers: { 'Content-Type': 'text/plain' } });
+        const json = await r.json().catch(() => ({}));
+        if (r.status < 500) return { status: r.status, json };
+      } catch (e) { /* network error: retry */ }
+      $('status').textContent = 'Connection problem: retrying…';
+      await new Promise((res) => setTimeout(res, wait));
+      wait = Math.min(wait * 2, 4000);
+    }
+  }
+  const q = (extra) => '?participant=' + encodeURIComponent(pid) + (extra || '');
+
+  function show(id) {
+    for (const s of ['consent', 'game', 'questionnaire', 'done', 'error']) $(s).hidden = s !== id;
+    document.body.dataset.state = id;
+  }
+  function fail(text) { $('error-text').textContent = text; show('error'); }
+
+  function progressText() {
+    if (st.practice_saved < st.practice) return `Practice round ${st.practice_saved + 1} of ${st.practice}`;
+    if (st.rounds_saved < st.iterations) return `Round ${st.rounds_saved + 1} of ${st.iterations}`;
+    return 'Questionnaire';
+  }
+
+  function enter(status) {
+    st = status;
+    $('progress').textContent = progressText();
+    if (st.stage === 'consent') {
+      $('consent-text').textContent = st.consent;
+      show('consent');
+    } else if (st.stage === 'rounds') {
+      show('game');
+      ready();
+    } else if (st.stage === 'questionnaire') {
+      buildQuestionnaire();
+      show('questionnaire');
+    } else {
+      finish();
+    }
+  }
+
+  async function join() {
+    const path = '/api/join' + (pid ? q() : '');
+    const r = await call(path);
+    if (r.status !== 200) return fail(r.json.message || 'The study cannot be joined.');
+    pid = r.json.participant;
+    if (params.get('participant') !== pid) {  // so that a reload resumes this participant
+      params.set('participant', pid);
+      history.replaceState(null, '', location.pathname + '?' + params.toString());
+    }
+    enter(r.json);
+  }
+
+  // ---- the field ----
+  const canvas = $('field');
+  const ctx = canvas.getContext('2d');
+  let pad = 0.5, robot = { x: 0, y: 0 };
+  function scale() {
+    const dpr = window.devicePixelRatio || 1;
+    const w = canvas.clientWidth || 800, h = Math.round(w * 0.7);
+    if (canvas.width !== Math.round(w * dpr)) {
+      canvas.width = Math.round(w * dpr);
+      canvas.height = Math.round(h * dpr);
+    }
+    return dpr;
+  }
+  function draw() {
+    const dpr = scale();
+    const W = canvas.width / dpr, H = canvas.height / dpr;
+    ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+    ctx.clearRect(0, 0, W, H);
+    const d = st.target_distance, h = st.target_height;
+    const top = 110, bottom = H - 40;  // y of the targets' row and of the start
+    const s = Math.min((bottom - top) / h, (W - 160) / d);
+    const cx = W / 2;
+    const X = (x) => cx + x * s, Y = (y) => bottom - y * s;
+    const xl = X(-d / 2), xr = X(d / 2);
+    // pad track across the top; pad 0 is above the left target, 1 above the right one
+    ctx.strokeStyle = '#c3cad6'; ctx.lineWidth = 6; ctx.lineCap = 'round';
+    ctx.beginPath(); ctx.moveTo(xl, 34); ctx.lineTo(xr, 34); ctx.stroke();
+    ctx.fillStyle = '#5b6475'; ctx.font = '13px system-ui, sans-serif'; ctx.textAlign = 'center';
+    ctx.fillText('pad', cx, 18);
+    const px = xl + pad * (xr - xl);
+    ctx.fillStyle = '#1f6feb';
+    ctx.fillRect(px - 40, 24, 80, 20);
+    // targets
+    for (const [x, colour, name] of [[xl, '#d9480f', 'left'], [xr, '#2b8a3e', 'right']]) {
+      ctx.fillStyle = colour;
+      ctx.beginPath(); ctx.arc(x, Y(h), 22, 0, 2 * Math.PI); ctx.fill();
+      ctx.fillStyle = '#fff'; ctx.font = 'bold 13px system-ui, sans-serif';
+      ctx.fillText(name, x, Y(h) + 4);
+    }
+    // start mark and robot
+    ctx.strokeStyle = '#d5dae3'; ctx.lineWidth = 2;
+    ctx.beginPath(); ctx.arc(X(0), Y(0), 18, 0, 2 * Math.PI); ctx.stroke();
+    ctx.fillStyle = '#4a5261';
+    ctx.beginPath(); ctx.arc(X(robot.x), Y(robot.y), 14, 0, 2 * Math.PI); ctx.fill();
+    ctx.fillStyle = '#fff';
+    ctx.beginPath(); ctx.arc(X(robot.x), Y(robot.y) - 5, 4, 0, 2 * Math.PI); ctx.fill();
+  }
+
+  // ---- keys and pad ----
+  const held = { left: false, right: false };
+  let lastNow = 0, endNow = 0, running = false;
+  function advance(now) {  // integrate the pad from lastNow to now at the held direction
+    if (!running) return;
+    now = Math.min(Math.max(now, lastNow), endNow);
+    const dir = (held.right ? 1 : 0) - (held.left ? 1 : 0);
+    if (dir !== 0) pad = Math.min(1, Math.max(0, pad + dir * st.pad_speed * (now - lastNow) / 1000));
+    lastNow = now;
+  }
+  function setKey(which, down) {
+    if (held[which] === down) return;
+    advance(performance.now());
+    held[which] = down;
+    $(which).classList.toggle('held', down);
+  }
+  window.addEventListener('keydown', (e) => {
+    if (e.key === 'ArrowLeft' || e.key === 'ArrowRight') {
+      e.preventDefault();
+      setKey(e.key === 'ArrowLeft' ? 'left' : 'right', true);
+    }
+  });
+  window.addEventListener('keyup', (e) => {
+    if (e.key === 'ArrowLeft' || e.key === 'ArrowRight') {
+      e.preventDefault();
+      setKey(e.key === 'ArrowLeft' ? 'left' : 'right', false);
+    }
+  });
+  window.addEventListener('blur', () => { setKey('left', false); setKey('right', false); });
+  for (const which of ['left', 'right']) {
+    const b = $(which);
+    b.addEventListener('pointerdown', (e) => { e.preventDefault(); b.setPointerCapture(e.pointerId); setKey(which, true); });
+    for (const ev of ['pointerup', 'pointercancel', 'lostpointercapture']) b.addEventListener(ev, () => setKey(which, false));
+  }
+
+  // ---- a round ----
+  function ready() {
+    running = false;
+    pad = 0.5; robot = { x: 0, y: 0 };
+    draw();
+    $('start').disabled = false;
+    $('start').textContent = 'Start';
+    $('status').textContent = st.practice_saved < st.practice ? 'Practice: this round is not counted.' : '';
+    document.body.dataset.round = 'ready';
+  }
+  function robotAt(te) {
+    const t = round.t;
+    if (te >= round.duration) return { x: round.x[t.length - 1], y: round.y[t.length - 1] };
+    let lo = 0, hi = t.length - 1;
+    while (hi - lo > 1) { const m = (lo + hi) >> 1; if (t[m] <= te) lo = m; else hi = m; }
+    const f = (te - t[lo]) / (t[hi] - t[lo]);
+    return { x: round.x[lo] + f * (round.x[hi] - round.x[lo]), y: round.y[lo] + f * (round.y[hi] - round.y[lo]) };
+  }
+  let samples = [], startNow = 0, lastFrame = 0;
+  function frame() {
+    const now = performance.now();
+    if (lastFrame) test.intervals.push(now - lastFrame);
+    lastFrame = now;
+    if (now >= endNow) {
+      advance(endNow);
+      samples.push([round.duration, pad]);  // the last sample is exactly the end of the round
+      robot = robotAt(round.duration);
+      draw();
+      running = false;
+      save();
+      return;
+    }
+    advance(now);
+    const te = (now - startNow) / 1000;
+    if (te > samples[samples.length - 1][0]) samples.push([te, pad]);
+    robot = robotAt(te);
+    draw();
+    requestAnimationFrame(frame);
+  }
+  $('start').addEventListener('click', async () => {
+    $('start').disabled = true;
+    $('status').textContent = '';
+    const r = await call('/api/round/start' + q());
+    if (r.status !== 200) return fail(r.json.message || 'The round cannot start.');
+    round = r.json;
+    pad = 0.5;
+    samples = [[0, 0.5]];
+    startNow = performance.now();
+    lastNow = startNow;
+    endNow = startNow + round.duration * 1000;
+    lastFrame = 0;
+    running = true;
+    document.body.dataset.round = 'running';
+    $('start').textContent = 'Watch the robot';
+    requestAnimationFrame(frame);
+  });
+  async function save() {
+    document.body.dataset.round = 'saving';
+    $('status').textContent = 'Saving…';
+    const body = samples.map((s) => s[0] + ',' + s[1]).join('\n') + '\n';
+    test.lastTrace = { kind: round.kind, iteration: round.iteration, samples: samples.slice() };
+    const r = await call('/api/round/submit' + q(`&kind=${round.kind}&iteration=${round.iteration}`), body);
+    if (r.status === 200) {
+      enter(r.json);
+      $('status').textContent = 'Saved.';
+    } else if (r.status === 409 && r.json.error === 'duplicate') {
+      join();  // saved before (an earlier attempt's answer was lost): carry on
+    } else {
+      $('status').textContent = 'This round could not be saved (' + (r.json.message || r.status) + '). Please play it again.';
+      $('start').disabled = false;
+      document.body.dataset.round = 'ready';
+    }
+  }
+
+  // ---- questionnaire ----
+  function buildQuestionnaire() {
+    const f = $('qform');
+    f.textContent = '';
+    for (const item of st.items) {
+      const div = document.createElement('div');
+      div.className = 'item';
+      const p = document.createElement('p');
+      p.textContent = item.question;
+      div.appendChild(p);
+      const scale = document.createElement('div');
+      scale.className = 'scale';
+      for (let v = 1; v <= 7; v++) {
+        const l = document.createElement('label');
+        const i = document.createElement('input');
+        i.type = 'radio'; i.name = item.name; i.value = String(v); i.id = item.name + '-' + v;
+        l.appendChild(i);
+        l.appendChild(document.createTextNode(String(v)));
+        scale.appendChild(l);
+      }
+      div.appendChild(scale);
+      f.appendChild(div);
+    }
+    if (st.yes_no) {
+      const div = document.createElement('div');
+      div.className = 'item';
+      const p = document.createElement('p');
+      p.textContent = st.yes_no.question;
+      div.appendChild(p);
+      const scale = document.createElement('div');
+      scale.className = 'scale';
+      for (const v of ['yes', 'no']) {
+        const l = document.createElement('label');
+        const i = document.createElement('input');
+        i.type = 'radio'; i.name = st.yes_no.name; i.value = v; i.id = st.yes_no.name + '-' + v;
+        l.appendChild(i);
+        l.appendChild(document.createTextNode(v));
+        scale.appendChild(l);
+      }
+      div.appendChild(scale);
+      f.appendChild(div);
+    }
+  }
+  $('qsubmit').addEventListener('click', async () => {
+    const data = new FormData($('qform'));
+    const names = st.items.map((i) => i.name).concat(st.yes_no ? [st.yes_no.name] : []);
+    const missing = names.filter((n) => !data.get(n));
+    if (missing.length) { $('qstatus').textContent = 'Please answer every question.'; return; }
+    $('qsubmit').disabled = true;
+    $('qstatus').textContent = 'Sending…';
+    const r = await call('/api/questionnaire' + q(), new URLSearchParams(data).toString());
+    $('qsubmit').disabled = false;
+    if (r.status === 200 || (r.status === 409 && r.json.error === 'duplicate')) finish();
+    else $('qstatus').textContent = r.json.message || 'Could not send the answers.';
+  });
+
+  function finish() {
+    $('progress').textContent = 'Finished';
+    show('done');
+    if (st && st.completion_url) {
+      $('completion-link').href = st.completion_url;
+      $('completion').hidden = false;
+      setTimeout(() => { location.href = st.completion_url; }, 3000);
+    }
+  }
+
+  $('agree').addEventListener('click', () => { st.stage = 'rounds'; enter(st); });
+  window.addEventListener('resize', () => { if (st && !$('game').hidden) draw(); });
+  join();
+})();

@@ -1,0 +1,139 @@
+// Append-only, synced file writes for `feint collect` (src/collect/durable.hpp).
+#include "durable.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "feint/error.hpp"
+
+namespace feint::collect::detail {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void fail(const fs::path& path, const char* what) {
+  throw IoError(fmt::format("{}: {}: {}", path.string(), what, std::strerror(errno)));
+}
+
+void write_all(int fd, std::string_view data, const fs::path& path) {
+  while (!data.empty()) {
+    const ssize_t n = ::write(fd, data.data(), data.size());
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      fail(path, "cannot write");
+    }
+    data.remove_prefix(static_cast<std::size_t>(n));
+  }
+}
+
+struct Fd {
+  int fd = -1;
+  ~Fd() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+}  // namespace
+
+void sync_directory(const fs::path& dir) {
+  Fd d{::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC)};
+  if (d.fd < 0) fail(dir, "cannot open folder");
+  if (::fsync(d.fd) != 0) fail(dir, "cannot sync folder");
+}
+
+std::uint64_t append_durably(const fs::path& path, std::string_view header, std::string_view data) {
+  Fd f{::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC)};
+  bool created = false;
+  if (f.fd < 0 && errno == ENOENT) {
+    f.fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    created = f.fd >= 0;
+  }
+  if (f.fd < 0) fail(path, "cannot open for appending");
+  if (created) {
+    // Header and first data in one write: a file is never left with a header alone.
+    std::string first;
+    first.reserve(header.size() + data.size());
+    first.append(header).append(data);
+    write_all(f.fd, first, path);
+  } else {
+    write_all(f.fd, data, path);
+  }
+  if (::fdatasync(f.fd) != 0) fail(path, "cannot sync");
+  struct stat st {};
+  if (::fstat(f.fd, &st) != 0) fail(path, "cannot stat");
+  if (created) sync_directory(path.parent_path());
+  return static_cast<std::uint64_t>(st.st_size);
+}
+
+std::string read_all(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return {};
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(fmt::format("{}: cannot open for reading", path.string()));
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw IoError(fmt::format("{}: cannot read", path.string()));
+  return ss.str();
+}
+
+std::uint64_t file_size_or_zero(const fs::path& path) {
+  std::error_code ec;
+  const auto n = fs::file_size(path, ec);
+  return ec ? 0 : static_cast<std::uint64_t>(n);
+}
+
+void replace_with_prefix(const fs::path& path, std::uint64_t keep, const fs::path& aside) {
+  const std::string content = read_all(path);
+  const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".recovering");
+  std::error_code ec;
+  fs::create_directories(aside.parent_path(), ec);
+  if (ec) throw IoError(fmt::format("{}: cannot create folder: {}", aside.parent_path().string(), ec.message()));
+  fs::remove(tmp, ec);
+  if (keep > 0) {
+    Fd f{::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644)};
+    if (f.fd < 0) fail(tmp, "cannot create");
+    write_all(f.fd, std::string_view(content).substr(0, keep), tmp);
+    if (::fsync(f.fd) != 0) fail(tmp, "cannot sync");
+  }
+  fs::rename(path, aside, ec);
+  if (ec) throw IoError(fmt::format("{}: cannot move aside to {}: {}", path.string(), aside.string(), ec.message()));
+  if (keep > 0) {
+    fs::rename(tmp, path, ec);
+    if (ec) throw IoError(fmt::format("{}: cannot rename into place: {}", path.string(), ec.message()));
+  }
+  sync_directory(path.parent_path());
+  sync_directory(aside.parent_path());
+}
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  return fmt::format("{:04}-{:02}-{:02}T{:02}:{:02}:{:02}Z", tm.tm_year + 1900, tm.tm_mon + 1,
+                     tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec);
+}
+
+std::int64_t unix_now() { return static_cast<std::int64_t>(std::time(nullptr)); }
+
+std::string csv_field(std::string_view text) {
+  if (text.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(text);
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  out += '"';
+  return out;
+}
+
+}  // namespace feint::collect::detail

@@ -1,0 +1,38 @@
+// src/collect/durable.hpp - append-only, synced file writes (details of the collect module).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace feint::collect::detail {
+
+/// Appends `data` to `path` with one write() loop and fdatasync() before returning; creates the
+/// file with `header` first when it does not exist (and syncs its folder). Returns the file size
+/// after the append. Throws IoError.
+std::uint64_t append_durably(const std::filesystem::path& path, std::string_view header,
+                             std::string_view data);
+
+/// The whole file ("" when it does not exist). Throws IoError when it exists but cannot be read.
+std::string read_all(const std::filesystem::path& path);
+
+/// Size of a file (0 when it does not exist).
+std::uint64_t file_size_or_zero(const std::filesystem::path& path);
+
+/// Keeps only the first `keep` bytes of `path` without truncating anything: the prefix is written
+/// to a new file that is synced and renamed into place; the original is moved to `aside`.
+void replace_with_prefix(const std::filesystem::path& path, std::uint64_t keep,
+                         const std::filesystem::path& aside);
+
+/// fsync() of a folder, so that a created or renamed entry survives a crash.
+void sync_directory(const std::filesystem::path& dir);
+
+/// Now as `2026-11-23T16:05:00Z`, and as Unix seconds.
+std::string utc_now();
+std::int64_t unix_now();
+
+/// A CSV field, quoted when it holds a comma, quote or line break (RFC 4180).
+std::string csv_field(std::string_view text);
+
+}  // namespace feint::collect::detail
