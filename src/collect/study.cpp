@@ -260,7 +260,8 @@ void Study::rebuild() {
   keep_complete_lines(dir_ / "questionnaire.csv", damaged);
   keep_complete_lines(dir_ / "questionnaire_yesno.csv", damaged);
 
-  const auto rows = lines_of(detail::read_all(assignment));
+  const std::string assignment_text = detail::read_all(assignment);
+  const auto rows = lines_of(assignment_text);
   for (std::size_t i = 1; i < rows.size(); ++i) {
     const auto f = io::split_csv_line(std::string(rows[i]), ',');
     const auto index = f.size() == 4 ? io::parse_integer(f[1]) : std::nullopt;
@@ -294,7 +295,8 @@ void Study::rebuild() {
     }
   }
   auto read_done = [&](const fs::path& path, std::string_view header, bool Participant::*flag) {
-    const auto lines = lines_of(detail::read_all(path));
+    const std::string text = detail::read_all(path);
+    const auto lines = lines_of(text);
     if (lines.empty()) return;
     if (std::string(lines[0]) + "\n" != header) {
       throw InvalidData(fmt::format("{}:1: the header differs from the configured questionnaire "
