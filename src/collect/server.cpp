@@ -170,7 +170,8 @@ Response admin_page(const Study& study, const std::string& token) {
   }
   std::string conds;
   for (const auto& c : s.conditions) {
-    conds += fmt::format("<li><b>{}</b>: {} participants</li>", html_escape(c.name), per_condition[c.name]);
+    const int n = per_condition[c.name];
+    conds += fmt::format("<li><b>{}</b>: {} participant{}</li>", html_escape(c.name), n, n == 1 ? "" : "s");
   }
   std::string page(asset("admin.html"));
   auto put = [&](std::string_view key, const std::string& value) {

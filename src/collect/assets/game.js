@@ -76,7 +76,7 @@
   let pad = 0.5, robot = { x: 0, y: 0 };
   function scale() {
     const dpr = window.devicePixelRatio || 1;
-    const w = canvas.clientWidth || 800, h = Math.round(w * 0.7);
+    const w = canvas.clientWidth || 800, h = Math.round(w * 0.6);
     if (canvas.width !== Math.round(w * dpr)) {
       canvas.width = Math.round(w * dpr);
       canvas.height = Math.round(h * dpr);

@@ -1,0 +1,287 @@
+#!/usr/bin/env python3
+"""Browser test of `feint collect`: headless Chromium plays a whole session as a person would.
+
+It presses the arrow keys (WebDriver key actions), reloads the page in the middle of a round,
+answers the questionnaire and reaches the completion page. Then it checks the log (20 analysed
+rounds, practice rounds apart, the trace agrees with the keys pressed and the pad speed, `feint
+score` finds no overspeed segment) and runs `feint analyze` on the study folder.
+
+Usage: collect_browser.py FEINT_EXE [--screenshots DIR] [--json FILE]
+Exit 77 (skipped) when chromium, chromedriver or a free loopback port are missing.
+Only python3's standard library is used (urllib + json talk to chromedriver).
+"""
+import base64
+import csv
+import json
+import os
+import shutil
+import signal
+import socket
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.error
+import urllib.request
+
+SKIP = 77
+ARROW = {"right": "\ue014", "left": "\ue012"}
+PAD_SPEED = 0.8
+
+
+def skip(why):
+    print(f"SKIPPED: {why}")
+    sys.exit(SKIP)
+
+
+def free_port():
+    s = socket.socket()
+    s.bind(("127.0.0.1", 0))
+    port = s.getsockname()[1]
+    s.close()
+    return port
+
+
+class WebDriver:
+    def __init__(self, port):
+        self.base = f"http://127.0.0.1:{port}"
+        self.sid = None
+
+    def call(self, method, path, body=None, timeout=60):
+        data = None if body is None else json.dumps(body).encode()
+        req = urllib.request.Request(self.base + path, data=data, method=method,
+                                     headers={"Content-Type": "application/json"})
+        try:
+            with urllib.request.urlopen(req, timeout=timeout) as r:
+                return json.loads(r.read() or b"{}").get("value")
+        except urllib.error.HTTPError as e:
+            raise RuntimeError(f"WebDriver {method} {path}: {e.code} {e.read()[:400]!r}")
+
+    def s(self, method, path, body=None, timeout=60):
+        return self.call(method, f"/session/{self.sid}{path}", body, timeout)
+
+    def start(self, binary, profile, size):
+        caps = {"capabilities": {"alwaysMatch": {"browserName": "chrome", "goog:chromeOptions": {
+            "binary": binary,
+            "args": ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                     "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                     "--disable-dev-shm-usage", f"--user-data-dir={profile}", f"--window-size={size}"]}}}}
+        v = self.call("POST", "/session", caps)
+        self.sid = v["sessionId"]
+
+    def js(self, script, *args):
+        return self.s("POST", "/execute/sync", {"script": script, "args": list(args)})
+
+    def el(self, css):
+        v = self.s("POST", "/element", {"using": "css selector", "value": css})
+        return list(v.values())[0]
+
+    def click(self, css):
+        self.s("POST", f"/element/{self.el(css)}/click", {})
+
+    def keys(self, actions):
+        self.s("POST", "/actions", {"actions": [{"type": "key", "id": "keyboard", "actions": actions}]})
+
+    def release(self):
+        self.s("DELETE", "/actions")
+
+    def wait(self, script, timeout=20.0, what=""):
+        end = time.time() + timeout
+        while time.time() < end:
+            v = self.js(script)
+            if v:
+                return v
+            time.sleep(0.02)
+        raise RuntimeError(f"timed out waiting for {what or script}")
+
+    def screenshot(self, path):
+        with open(path, "wb") as f:
+            f.write(base64.b64decode(self.s("GET", "/screenshot")))
+
+    def quit(self):
+        if self.sid:
+            try:
+                self.call("DELETE", f"/session/{self.sid}")
+            except Exception:
+                pass
+
+
+def read_rows(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def main():
+    if len(sys.argv) < 2:
+        print(__doc__)
+        return 64
+    feint = sys.argv[1]
+    shots = sys.argv[sys.argv.index("--screenshots") + 1] if "--screenshots" in sys.argv else None
+    json_out = sys.argv[sys.argv.index("--json") + 1] if "--json" in sys.argv else None
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    driver_exe = shutil.which("chromedriver")
+    if not chromium or not driver_exe:
+        skip("chromium and chromedriver are needed (Debian: apt-get install chromium chromium-driver)")
+
+    work = tempfile.mkdtemp(prefix="feint-collect-browser-")
+    study = os.path.join(work, "study")
+    os.makedirs(study)
+    with open(os.path.join(study, "feint.toml"), "w") as f:
+        # Fast robot so that 22 rounds take half a minute; everything else as in the paper.
+        f.write('[collect]\nrobot-speed = 6\ncompletion-url = "http://127.0.0.1:9/done?cc=C0DE"\n'
+                'consent = "You may stop at any time."\n')
+    procs = []
+    wd = None
+    try:
+        srv = subprocess.Popen([feint, "collect", study, "--port", "0", "--admin-token", "tok"],
+                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        procs.append(srv)
+        port = None
+        for line in srv.stdout:
+            if line.startswith("port: "):
+                port = int(line.split()[1])
+                break
+        if not port:
+            raise RuntimeError("feint collect did not start")
+        dport = free_port()
+        drv = subprocess.Popen([driver_exe, f"--port={dport}"], stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+        procs.append(drv)
+        wd = WebDriver(dport)
+        for _ in range(100):
+            try:
+                wd.call("GET", "/status", timeout=2)
+                break
+            except Exception:
+                time.sleep(0.1)
+        wd.start(chromium, os.path.join(work, "profile"), "1000,1000")
+        base = f"http://127.0.0.1:{port}"
+        wd.s("POST", "/url", {"url": base + "/?participant=BT1"})
+        wd.wait("return document.body.dataset.state === 'consent'", what="consent")
+        wd.click("#agree")
+
+        plan = {}   # (kind, iteration) -> (direction, hold seconds)
+        intervals = []
+        reloaded = False
+        n = 0
+        while True:
+            state = wd.wait("var s = document.body.dataset.state, r = document.body.dataset.round;"
+                            "return (s === 'game' && r === 'ready' && !document.getElementById('start').disabled)"
+                            " || s === 'questionnaire' ? s : null", what="a round or the questionnaire")
+            if state == "questionnaire":
+                break
+            n += 1
+            direction = "right" if n % 2 else "left"
+            hold = 0.15 + 0.05 * (n % 5)  # 0.15 .. 0.35 s
+            wd.click("#start")
+            rnd = wd.wait("return document.body.dataset.round === 'running' && window.__feint && "
+                          "document.getElementById('progress').textContent", what="round running")
+            if n == 1 and shots:  # a practice round (not checked below): the pad mid-way
+                wd.keys([{"type": "keyDown", "value": ARROW["right"]}, {"type": "pause", "duration": 220}])
+                wd.screenshot(os.path.join(shots, "collect-game.png"))
+                wd.release()
+            if not reloaded and rnd.startswith("Round 5 "):
+                # A reload in the middle of a round: the key is still held when the page goes.
+                wd.keys([{"type": "keyDown", "value": ARROW["right"]}, {"type": "pause", "duration": 150}])
+                wd.s("POST", "/refresh", {})
+                wd.release()
+                reloaded = True
+                continue
+            wd.keys([{"type": "keyDown", "value": ARROW[direction]},
+                     {"type": "pause", "duration": int(hold * 1000)},
+                     {"type": "keyUp", "value": ARROW[direction]}])
+            wd.wait("return document.body.dataset.round !== 'running'", what="round end")
+            trace = wd.js("var t = window.__feint.lastTrace; var i = window.__feint.intervals;"
+                          "window.__feint.intervals = []; return [t && t.kind, t && t.iteration, i];")
+            intervals += trace[2]
+            plan[(trace[0], trace[1])] = (direction, hold)
+        # The questionnaire, as a person fills it in.
+        for item, v in [("entertainment", 6), ("deception", 5), ("intelligence", 7), ("trust", 2)]:
+            wd.click(f"#{item}-{v}")
+        wd.click("#intentional-yes")
+        wd.click("#qsubmit")
+        wd.wait("return document.body.dataset.state === 'done'", what="completion page")
+        href = wd.js("return document.getElementById('completion-link').href")
+        assert href == "http://127.0.0.1:9/done?cc=C0DE", href
+        if shots:
+            for other in ["P02", "P03", "P04"]:  # a few more people, so that the table shows something
+                urllib.request.urlopen(urllib.request.Request(
+                    f"{base}/api/join?participant={other}", data=b"", method="POST")).read()
+            wd.s("POST", "/url", {"url": base + "/admin?token=tok"})
+            wd.wait("return document.querySelector('table') !== null", what="admin page")
+            wd.screenshot(os.path.join(shots, "collect-admin.png"))
+    finally:
+        if wd:
+            wd.quit()
+        for p in reversed(procs):
+            p.send_signal(signal.SIGTERM)
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                p.kill()
+
+    failures = []
+
+    def check(cond, what):
+        if not cond:
+            failures.append(what)
+
+    # ---- the log ----
+    rows = read_rows(os.path.join(study, "logs", "BT1.csv"))
+    iterations = sorted({int(r["iteration"]) for r in rows})
+    check(iterations == list(range(1, 21)), f"20 analysed rounds in logs/BT1.csv, got {iterations}")
+    practice = read_rows(os.path.join(study, "practice", "BT1.csv"))
+    check(sorted({int(r["iteration"]) for r in practice}) == [1, 2], "2 practice rounds in practice/")
+    check({r["strategy"] for r in practice} == {"optimal"}, "practice rounds use the optimal strategy")
+    events = open(os.path.join(study, "collect", "events.csv")).read()
+    check(",BT1,interrupted," in events, "the reload mid-round is recorded as an interruption")
+    worst = 0.0
+    for it in range(1, 21):
+        tr = [r for r in rows if int(r["iteration"]) == it]
+        t = [float(r["t"]) for r in tr]
+        pad = [float(r["pad"]) for r in tr]
+        direction, hold = plan[("main", it)]
+        moved = pad[-1] - 0.5
+        check((moved > 0) == (direction == "right"), f"round {it}: pad moved {moved:+.3f}, key {direction}")
+        # The pad moved at the pad speed for as long as the key was held (WebDriver's timing: +-0.1 s).
+        held = abs(moved) / PAD_SPEED
+        worst = max(worst, abs(held - hold))
+        check(abs(held - hold) < 0.1, f"round {it}: key held {hold:.3f} s, pad moved for {held:.3f} s")
+        steps = [(pad[i + 1] - pad[i]) * (1 if direction == "right" else -1) for i in range(len(pad) - 1)]
+        check(min(steps) >= 0, f"round {it}: the pad moved against the key")
+        speeds = [abs(pad[i + 1] - pad[i]) / (t[i + 1] - t[i]) for i in range(len(t) - 1)]
+        check(max(speeds) <= PAD_SPEED * (1 + 1e-6), f"round {it}: faster than the pad speed")
+        full = sum(1 for s in speeds if abs(s - PAD_SPEED) < 1e-6)
+        check(full >= 3, f"round {it}: only {full} samples at the pad speed while the key was held")
+    # ---- feint score and feint analyze on the folder ----
+    scores = os.path.join(work, "scores.csv")
+    r = subprocess.run([feint, "score", os.path.join(study, "logs"), "-o", scores], capture_output=True, text=True)
+    check(r.returncode == 0, f"feint score: {r.stderr}")
+    if r.returncode == 0:
+        sc = read_rows(scores)
+        check(len(sc) == 20, f"feint score: {len(sc)} trials")
+        check(all(s["overspeed_segments"] == "0" for s in sc), "feint score finds overspeed segments")
+    r = subprocess.run([feint, "analyze", study, "-o", os.path.join(work, "out")], capture_output=True, text=True)
+    check(r.returncode == 0, f"feint analyze: {r.stderr}")
+    check(os.path.exists(os.path.join(work, "out", "likert_summary.csv")), "feint analyze read the questionnaire")
+
+    iv = sorted(intervals)
+    med = statistics.median(iv) if iv else float("nan")
+    p99 = iv[min(len(iv) - 1, int(0.99 * len(iv)))] if iv else float("nan")
+    print(f"sampling interval in headless Chromium: median {med:.2f} ms, p99 {p99:.2f} ms "
+          f"({len(iv)} frames); key-hold timing error at most {worst * 1000:.0f} ms")
+    if json_out:
+        with open(json_out, "w") as f:
+            json.dump({"frames": len(iv), "median_ms": med, "p99_ms": p99}, f)
+    if failures:
+        print("FAILED:\n  " + "\n  ".join(failures))
+        print(f"(study folder kept: {study})")
+        return 1
+    shutil.rmtree(work, ignore_errors=True)
+    print("OK: 20 rounds played with the keys, reload resumed, questionnaire saved, feint analyze ran")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
