@@ -22,7 +22,6 @@
 #include "durable.hpp"
 #include "feint/error.hpp"
 #include "feint/io/number.hpp"
-#include "feint/sim/rng.hpp"
 
 namespace feint::collect {
 
@@ -417,10 +416,8 @@ struct Server::Impl {
 Server::Server(Study& study, ServerOptions options) : impl_(std::make_unique<Impl>(study, std::move(options))) {
   auto& o = impl_->opt;
   if (o.admin_token.empty()) {
-    std::random_device rd;
-    sim::Rng rng((static_cast<std::uint64_t>(rd()) << 32) ^ rd() ^
-                 static_cast<std::uint64_t>(std::chrono::steady_clock::now().time_since_epoch().count()));
-    o.admin_token = fmt::format("{:016x}{:016x}", rng(), rng());
+    std::random_device rd;  // the kernel's generator (getrandom / /dev/urandom): 4 x 32 bits
+    o.admin_token = fmt::format("{:08x}{:08x}{:08x}{:08x}", rd(), rd(), rd(), rd());
   }
   beast::error_code ec;
   const auto address = net::ip::make_address(o.host, ec);
