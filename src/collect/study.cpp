@@ -319,6 +319,24 @@ void Study::rebuild() {
     read_done(dir_ / "questionnaire_yesno.csv",
               "participant,condition," + settings_.yes_no_item + "\n", &Participant::yes_no_done);
   }
+  // The round each participant was last shown: a reload after a restart still counts as an
+  // interruption when that round was never saved.
+  const std::string events_text = detail::read_all(dir_ / "collect" / "events.csv");
+  const auto event_lines = lines_of(events_text);
+  for (std::size_t i = 1; i < event_lines.size(); ++i) {
+    const auto f = io::split_csv_line(std::string(event_lines[i]), ',');
+    if (f.size() != 4 || f[2] != "round_shown") continue;
+    auto p = participants_.find(f[1]);
+    const auto space = f[3].find(' ');
+    const auto it = space == std::string::npos ? std::nullopt : io::parse_integer(f[3].substr(space + 1));
+    if (p == participants_.end() || !it) continue;
+    const RoundKind kind = f[3].substr(0, space) == "practice" ? RoundKind::practice : RoundKind::main;
+    if (*it > p->second->saved[static_cast<int>(kind)]) {
+      p->second->shown = std::make_pair(kind, static_cast<int>(*it));
+    } else {
+      p->second->shown.reset();
+    }
+  }
   if (!participants_.empty()) {
     record_event("", "restart", fmt::format("state rebuilt: {} participants", participants_.size()));
   }

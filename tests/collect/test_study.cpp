@@ -226,8 +226,12 @@ TEST(CollectRestart, RebuildsTheStateFromTheFiles) {
       const Round r = study.start_round("P1");
       study.submit_round("P1", r.kind, r.iteration, valid_trace(r, 0.8));
     }
+    study.start_round("P2");  // P2's first round is on screen when the server goes down
   }
   Study study(dir, fast_settings());
+  study.start_round("P2");  // the page reloads after the restart: the same round again
+  EXPECT_EQ(study.status("P2")->interruptions, 1);
+  EXPECT_NE(slurp(dir / "collect" / "events.csv").find(",P2,interrupted,"), std::string::npos);
   const auto st = *study.status("P1");
   EXPECT_EQ(st.condition, cond);
   EXPECT_EQ(st.practice_saved, 2);
@@ -237,6 +241,7 @@ TEST(CollectRestart, RebuildsTheStateFromTheFiles) {
   const Round r = study.start_round("P1");
   EXPECT_EQ(r.kind, RoundKind::main);
   EXPECT_EQ(r.iteration, 3);
+  EXPECT_EQ(study.status("P1")->interruptions, 0);  // round 3 had not been shown before
   study.join("P3");
   EXPECT_EQ(lines(slurp(dir / "collect" / "assignment.csv")).back().substr(0, 5), "P3,2,");
 }

@@ -187,7 +187,7 @@
     }
     advance(now);
     const te = (now - startNow) / 1000;
-    if (te > samples[samples.length - 1][0]) samples.push([te, pad]);
+    if (te > samples[samples.length - 1][0] && te < round.duration) samples.push([te, pad]);
     robot = robotAt(te);
     draw();
     requestAnimationFrame(frame);
