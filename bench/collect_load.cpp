@@ -13,6 +13,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -20,10 +23,6 @@
 #include <string>
 #include <thread>
 #include <vector>
-
-#include <boost/asio/ip/tcp.hpp>
-#include <boost/beast/core.hpp>
-#include <boost/beast/http.hpp>
 
 #include "feint/collect/server.hpp"
 #include "feint/io/number.hpp"
@@ -87,7 +86,10 @@ int main(int argc, char** argv) {
       Client c(port);
       const std::string id = "L" + std::to_string(i);
       const std::string q = "?participant=" + id;
-      if (c.post("/api/join" + q, "").first != 200) { ++failures; return; }
+      if (c.post("/api/join" + q, "").first != 200) {
+        ++failures;
+        return;
+      }
       std::vector<double> mine;
       for (;;) {
         const auto [st, round] = c.post("/api/round/start" + q, "");
@@ -104,12 +106,18 @@ int main(int argc, char** argv) {
           body += feint::io::format_double(t) + "," + feint::io::format_double(pad) + "\n";
           ++samples;
         }
-        body += feint::io::format_double(dur) + "," + feint::io::format_double(std::min(1.0, 0.5 + 0.8 * dur)) + "\n";
+        body += feint::io::format_double(dur) + "," +
+                feint::io::format_double(std::min(1.0, 0.5 + 0.8 * dur)) + "\n";
         const auto s0 = Clock::now();
-        const auto r = c.post("/api/round/submit" + q + "&kind=" + (practice ? "practice" : "main") +
-                                  "&iteration=" + std::to_string(it), body);
+        const auto r =
+            c.post("/api/round/submit" + q + "&kind=" + (practice ? "practice" : "main") +
+                       "&iteration=" + std::to_string(it),
+                   body);
         mine.push_back(std::chrono::duration<double, std::milli>(Clock::now() - s0).count());
-        if (r.first != 200) { ++failures; break; }
+        if (r.first != 200) {
+          ++failures;
+          break;
+        }
       }
       std::lock_guard lock(mu);
       latencies.insert(latencies.end(), mine.begin(), mine.end());
@@ -121,15 +129,19 @@ int main(int argc, char** argv) {
   srv.join();
   std::sort(latencies.begin(), latencies.end());
   auto q = [&](double p) {
-    return latencies.empty() ? 0.0 : latencies[std::min(latencies.size() - 1, static_cast<std::size_t>(p * latencies.size()))];
+    return latencies.empty() ? 0.0
+                             : latencies[std::min(latencies.size() - 1,
+                                                  static_cast<std::size_t>(p * latencies.size()))];
   };
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
   std::printf("participants %d, rounds saved %zu (%ld samples), failures %d, %.2f s\n", people,
               latencies.size(), samples.load(), failures.load(), secs);
   std::printf("rounds/s %.0f\n", static_cast<double>(latencies.size()) / secs);
-  std::printf("time to durable save: median %.2f ms, p99 %.2f ms, max %.2f ms\n", q(0.5), q(0.99), latencies.empty() ? 0.0 : latencies.back());
-  std::printf("peak memory (server + %d clients, one process): %.1f MB\n", people, ru.ru_maxrss / 1024.0);
+  std::printf("time to durable save: median %.2f ms, p99 %.2f ms, max %.2f ms\n", q(0.5), q(0.99),
+              latencies.empty() ? 0.0 : latencies.back());
+  std::printf("peak memory (server + %d clients, one process): %.1f MB\n", people,
+              ru.ru_maxrss / 1024.0);
   std::filesystem::remove_all(dir);
   return failures.load() == 0 ? 0 : 1;
 }

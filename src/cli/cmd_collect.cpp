@@ -1,12 +1,12 @@
 // `feint collect STUDY`: serves the data-collection game (docs/collect.md). Settings come from the
 // [collect] section of STUDY/feint.toml, each also an option here (the command line wins).
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "commands.hpp"
 #include "feint/collect/server.hpp"
@@ -57,9 +57,10 @@ void apply_config(CLI::App& cmd, const std::string& path) {
     if (item.name == "++" || item.name == "--") continue;
     CLI::Option* opt = cmd.get_option_no_throw("--" + item.name);
     if (opt == nullptr || item.name == "config" || item.name == "help") {
-      throw InvalidData(fmt::format("{}: [collect]: unknown setting '{}' (settings are the options of "
-                                    "'feint collect --help', without the dashes)",
-                                    path, item.name));
+      throw InvalidData(
+          fmt::format("{}: [collect]: unknown setting '{}' (settings are the options of "
+                      "'feint collect --help', without the dashes)",
+                      path, item.name));
     }
     if (opt->count() > 0) continue;
     try {
@@ -82,7 +83,8 @@ std::pair<std::string, std::string> name_and_question(const std::string& text, c
 void run(CLI::App& cmd, CollectArgs& a) {
   const fs::path study(a.study);
   if (!fs::is_directory(study)) {
-    throw IoError(fmt::format("study folder '{}' does not exist or is not a folder (create it first)", a.study));
+    throw IoError(fmt::format(
+        "study folder '{}' does not exist or is not a folder (create it first)", a.study));
   }
   std::string config = a.config;
   if (config.empty() && fs::exists(study / "feint.toml")) config = (study / "feint.toml").string();
@@ -117,7 +119,8 @@ void run(CLI::App& cmd, CollectArgs& a) {
   }
   s.consent = a.consent;
   if (!a.consent_file.empty()) {
-    const fs::path p = fs::path(a.consent_file).is_absolute() ? fs::path(a.consent_file) : study / a.consent_file;
+    const fs::path p =
+        fs::path(a.consent_file).is_absolute() ? fs::path(a.consent_file) : study / a.consent_file;
     std::FILE* f = std::fopen(p.c_str(), "rb");
     if (!f) throw IoError(fmt::format("{}: cannot read the consent text", p.string()));
     char buf[4096];
@@ -140,7 +143,8 @@ void run(CLI::App& cmd, CollectArgs& a) {
   o.threads = a.threads;
   o.stop_on_signals = true;
   collect::Server server(st, o);
-  const std::string shown_host = a.host.find(':') != std::string::npos ? "[" + a.host + "]" : a.host;
+  const std::string shown_host =
+      a.host.find(':') != std::string::npos ? "[" + a.host + "]" : a.host;
   if (a.host != "127.0.0.1" && a.host != "::1" && a.host.rfind("127.", 0) != 0) {
     fmt::print(stderr,
                "feint collect: WARNING: listening on {}: the study is REACHABLE FROM THE NETWORK.\n"
@@ -153,11 +157,12 @@ void run(CLI::App& cmd, CollectArgs& a) {
     for (const auto& x : s.conditions) c += (c.empty() ? "" : ", ") + x.name;
     return c;
   }();
-  fmt::print("feint collect: study {} ({}; {} practice + {} rounds; pad speed {}/s)\n", study.string(),
-             conditions, s.practice, s.iterations, io::format_double(s.pad_speed));
+  fmt::print("feint collect: study {} ({}; {} practice + {} rounds; pad speed {}/s)\n",
+             study.string(), conditions, s.practice, s.iterations, io::format_double(s.pad_speed));
   fmt::print("port: {}\n", server.port());
   fmt::print("participants: http://{}:{}/\n", shown_host, server.port());
-  fmt::print("admin:        http://{}:{}/admin?token={}\n", shown_host, server.port(), server.admin_token());
+  fmt::print("admin:        http://{}:{}/admin?token={}\n", shown_host, server.port(),
+             server.admin_token());
   fmt::print("Stop with Ctrl-C; a restart resumes from the files in {}.\n", study.string());
   std::fflush(stdout);
   server.run();
@@ -172,35 +177,50 @@ void add_collect_command(CLI::App& app) {
       "collect",
       "Run a study: serve the paper's data-collection game (Fig. 8) to participants' browsers, "
       "choose each round's strategy with the condition's algorithm, and write pad-trace logs and "
-      "the questionnaire into STUDY in the layout 'feint analyze STUDY' reads. Settings may also be "
+      "the questionnaire into STUDY in the layout 'feint analyze STUDY' reads. Settings may also "
+      "be "
       "given in the [collect] section of STUDY/feint.toml (see docs/collect.md).");
-  cmd->add_option("study", args->study, "Study folder (created files: logs/, practice/, collect/, questionnaire*.csv)")
+  cmd->add_option("study", args->study,
+                  "Study folder (created files: logs/, practice/, collect/, questionnaire*.csv)")
       ->required();
-  cmd->add_option("--config", args->config, "Settings file (default STUDY/feint.toml when present; section [collect])");
-  cmd->add_option("--host", args->host, "Address to listen on (default 127.0.0.1: this computer only)");
-  cmd->add_option("--port", args->port, "TCP port (default 8080; 0 = any free port, printed at start)");
+  cmd->add_option("--config", args->config,
+                  "Settings file (default STUDY/feint.toml when present; section [collect])");
+  cmd->add_option("--host", args->host,
+                  "Address to listen on (default 127.0.0.1: this computer only)");
+  cmd->add_option("--port", args->port,
+                  "TCP port (default 8080; 0 = any free port, printed at start)");
   cmd->add_option("--conditions", args->conditions,
                   "Conditions: adaptive, random, fixed-block, fixed-balanced, each optionally "
                   ":LAMBDA (default adaptive,random)")
       ->delimiter(',');
-  cmd->add_option("--lambda", args->lambda, "Lambda of adaptive conditions without their own (default 0.5)");
+  cmd->add_option("--lambda", args->lambda,
+                  "Lambda of adaptive conditions without their own (default 0.5)");
   cmd->add_option("--iterations", args->iterations, "Analysed rounds per participant (default 20)");
-  cmd->add_option("--practice", args->practice, "Practice rounds before them, optimal strategy, logged in practice/ (default 2)");
-  cmd->add_option("--pad-speed", args->pad_speed, "Pad speed while an arrow key is held, pad units per second (default 0.8)");
+  cmd->add_option("--practice", args->practice,
+                  "Practice rounds before them, optimal strategy, logged in practice/ (default 2)");
+  cmd->add_option("--pad-speed", args->pad_speed,
+                  "Pad speed while an arrow key is held, pad units per second (default 0.8)");
   cmd->add_option("--robot-speed", args->robot_speed, "Robot speed, m/s (default 1)");
-  cmd->add_option("--target-distance", args->target_distance, "Distance between the targets, m (default 4)");
-  cmd->add_option("--target-height", args->target_height, "Height of the targets above the start, m (default 4)");
-  cmd->add_option("--sample-rate", args->sample_rate, "Trajectory samples per second sent to the page (default 25)");
+  cmd->add_option("--target-distance", args->target_distance,
+                  "Distance between the targets, m (default 4)");
+  cmd->add_option("--target-height", args->target_height,
+                  "Height of the targets above the start, m (default 4)");
+  cmd->add_option("--sample-rate", args->sample_rate,
+                  "Trajectory samples per second sent to the page (default 25)");
   cmd->add_option("--seed", args->seed, "Seed of the assignment and of every round (default 1)");
   cmd->add_option("--item", args->items,
                   "A 1-7 questionnaire item as NAME=QUESTION (repeatable; default the paper's "
                   "entertainment, deception, intelligence, trust)");
   cmd->add_option("--yes-no", args->yes_no, "The yes/no question as NAME=QUESTION ('' for none)");
   cmd->add_option("--consent", args->consent, "Consent text shown before the first round");
-  cmd->add_option("--consent-file", args->consent_file, "File with the consent text (relative to STUDY)");
-  cmd->add_option("--completion-url", args->completion_url, "Where the completion page sends participants (e.g. Prolific's)");
-  cmd->add_option("--admin-token", args->admin_token, "Token of the admin page (default: random, printed at start)");
-  cmd->add_option("--threads", args->threads, "Server threads (default 4)")->check(CLI::Range(1u, 64u));
+  cmd->add_option("--consent-file", args->consent_file,
+                  "File with the consent text (relative to STUDY)");
+  cmd->add_option("--completion-url", args->completion_url,
+                  "Where the completion page sends participants (e.g. Prolific's)");
+  cmd->add_option("--admin-token", args->admin_token,
+                  "Token of the admin page (default: random, printed at start)");
+  cmd->add_option("--threads", args->threads, "Server threads (default 4)")
+      ->check(CLI::Range(1u, 64u));
   cmd->callback([cmd, args] { run(*cmd, *args); });
 }
 

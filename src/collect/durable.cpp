@@ -2,6 +2,7 @@
 #include "durable.hpp"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -10,8 +11,6 @@
 #include <ctime>
 #include <fstream>
 #include <sstream>
-
-#include <fmt/format.h>
 
 #include "feint/error.hpp"
 
@@ -97,7 +96,9 @@ void replace_with_prefix(const fs::path& path, std::uint64_t keep, const fs::pat
   const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".recovering");
   std::error_code ec;
   fs::create_directories(aside.parent_path(), ec);
-  if (ec) throw IoError(fmt::format("{}: cannot create folder: {}", aside.parent_path().string(), ec.message()));
+  if (ec)
+    throw IoError(
+        fmt::format("{}: cannot create folder: {}", aside.parent_path().string(), ec.message()));
   fs::remove(tmp, ec);
   if (keep > 0) {
     Fd f{::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644)};
@@ -106,10 +107,13 @@ void replace_with_prefix(const fs::path& path, std::uint64_t keep, const fs::pat
     if (::fsync(f.fd) != 0) fail(tmp, "cannot sync");
   }
   fs::rename(path, aside, ec);
-  if (ec) throw IoError(fmt::format("{}: cannot move aside to {}: {}", path.string(), aside.string(), ec.message()));
+  if (ec)
+    throw IoError(fmt::format("{}: cannot move aside to {}: {}", path.string(), aside.string(),
+                              ec.message()));
   if (keep > 0) {
     fs::rename(tmp, path, ec);
-    if (ec) throw IoError(fmt::format("{}: cannot rename into place: {}", path.string(), ec.message()));
+    if (ec)
+      throw IoError(fmt::format("{}: cannot rename into place: {}", path.string(), ec.message()));
   }
   sync_directory(path.parent_path());
   sync_directory(aside.parent_path());

@@ -2,21 +2,21 @@
 // Boost.Beast connection loop (modelled on Beast's http_server_async example).
 #include "feint/collect/server.hpp"
 
-#include <algorithm>
-#include <csignal>
-#include <atomic>
-#include <map>
-#include <optional>
-#include <random>
-#include <thread>
-#include <vector>
+#include <fmt/format.h>
 
+#include <algorithm>
+#include <atomic>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/strand.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
-#include <fmt/format.h>
+#include <csignal>
+#include <map>
+#include <optional>
+#include <random>
+#include <thread>
+#include <vector>
 
 #include "assets.hpp"
 #include "durable.hpp"
@@ -74,7 +74,8 @@ std::map<std::string, std::string> parse_form(std::string_view q) {
     if (pair.empty()) continue;
     const auto eq = pair.find('=');
     const auto k = url_decode(pair.substr(0, eq));
-    const auto v = url_decode(eq == std::string_view::npos ? std::string_view() : pair.substr(eq + 1));
+    const auto v =
+        url_decode(eq == std::string_view::npos ? std::string_view() : pair.substr(eq + 1));
     if (!k || !v) throw Rejection(400, "malformed", "a query or form field is not URL-encoded");
     if (out.count(*k)) throw Rejection(400, "malformed", fmt::format("field '{}' given twice", *k));
     out[*k] = *v;
@@ -93,10 +94,14 @@ std::string json_array(const std::vector<double>& v) {
 
 std::string_view stage_name(Stage s) {
   switch (s) {
-    case Stage::consent: return "consent";
-    case Stage::rounds: return "rounds";
-    case Stage::questionnaire: return "questionnaire";
-    case Stage::done: return "done";
+    case Stage::consent:
+      return "consent";
+    case Stage::rounds:
+      return "rounds";
+    case Stage::questionnaire:
+      return "questionnaire";
+    case Stage::done:
+      return "done";
   }
   return "rounds";
 }
@@ -110,12 +115,13 @@ std::string status_json(const Study& study, const ParticipantStatus& st) {
                          io::json_quote(s.item_questions[i]));
   }
   items += "]";
-  const std::string yes_no =
-      s.yes_no_item.empty() ? "null"
-                            : fmt::format("{{\"name\":{},\"question\":{}}}", io::json_quote(s.yes_no_item),
-                                          io::json_quote(s.yes_no_question));
+  const std::string yes_no = s.yes_no_item.empty() ? "null"
+                                                   : fmt::format("{{\"name\":{},\"question\":{}}}",
+                                                                 io::json_quote(s.yes_no_item),
+                                                                 io::json_quote(s.yes_no_question));
   return fmt::format(
-      "{{\"participant\":{},\"stage\":\"{}\",\"practice\":{},\"iterations\":{},\"practice_saved\":{},"
+      "{{\"participant\":{},\"stage\":\"{}\",\"practice\":{},\"iterations\":{},\"practice_saved\":{"
+      "},"
       "\"rounds_saved\":{},\"pad_speed\":{},\"target_distance\":{},\"target_height\":{},"
       "\"consent\":{},\"completion_url\":{},\"items\":{},\"yes_no\":{}}}",
       io::json_quote(st.id), stage_name(study.stage(st)), s.practice, s.iterations,
@@ -128,12 +134,23 @@ std::string html_escape(std::string_view s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&#39;"; break;
-      default: out += c;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&#39;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -158,10 +175,12 @@ Response admin_page(const Study& study, const std::string& token) {
   }
   std::string rows;
   for (const auto& p : all) {
-    const char* state = p.questionnaire_done ? "done"
-                        : (p.rounds_saved == s.iterations ? "questionnaire" : "playing");
+    const char* state = p.questionnaire_done
+                            ? "done"
+                            : (p.rounds_saved == s.iterations ? "questionnaire" : "playing");
     rows += fmt::format(
-        "<tr class=\"{}\"><td>{}</td><td>{}</td><td class=\"n\">{} / {}</td><td class=\"n\">{} / {}</td>"
+        "<tr class=\"{}\"><td>{}</td><td>{}</td><td class=\"n\">{} / {}</td><td class=\"n\">{} / "
+        "{}</td>"
         "<td>{}</td><td class=\"n\">{}</td><td>{}</td></tr>\n",
         state, html_escape(p.id), html_escape(p.condition), p.practice_saved, s.practice,
         p.rounds_saved, s.iterations, p.questionnaire_done ? "yes" : "no", p.interruptions,
@@ -170,7 +189,8 @@ Response admin_page(const Study& study, const std::string& token) {
   std::string conds;
   for (const auto& c : s.conditions) {
     const int n = per_condition[c.name];
-    conds += fmt::format("<li><b>{}</b>: {} participant{}</li>", html_escape(c.name), n, n == 1 ? "" : "s");
+    conds += fmt::format("<li><b>{}</b>: {} participant{}</li>", html_escape(c.name), n,
+                         n == 1 ? "" : "s");
   }
   std::string page(asset("admin.html"));
   auto put = [&](std::string_view key, const std::string& value) {
@@ -213,8 +233,10 @@ std::vector<PadSample> parse_trace(std::string_view body) {
     if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
     if (l.empty()) continue;
     const auto comma = l.find(',');
-    const auto t = comma == std::string_view::npos ? std::nullopt : io::parse_double(l.substr(0, comma));
-    const auto pad = comma == std::string_view::npos ? std::nullopt : io::parse_double(l.substr(comma + 1));
+    const auto t =
+        comma == std::string_view::npos ? std::nullopt : io::parse_double(l.substr(0, comma));
+    const auto pad =
+        comma == std::string_view::npos ? std::nullopt : io::parse_double(l.substr(comma + 1));
     if (!t || !pad) {
       throw Rejection(400, "malformed", fmt::format("trace line {}: expected 't,pad'", line));
     }
@@ -238,16 +260,20 @@ Response handle_request(Study& study, const std::string& admin_token, const std:
   const std::string path = target.substr(0, q);
   std::string participant;
   try {
-    const auto query = parse_form(q == std::string::npos ? std::string_view() : std::string_view(target).substr(q + 1));
+    const auto query = parse_form(q == std::string::npos ? std::string_view()
+                                                         : std::string_view(target).substr(q + 1));
     auto arg = [&](const char* name) {
       auto it = query.find(name);
       return it == query.end() ? std::string() : it->second;
     };
     participant = arg("participant");
     if (method == "GET" || method == "HEAD") {
-      if (path == "/" || path == "/index.html") return {200, "text/html; charset=utf-8", std::string(asset("game.html"))};
-      if (path == "/game.js") return {200, "text/javascript; charset=utf-8", std::string(asset("game.js"))};
-      if (path == "/game.css") return {200, "text/css; charset=utf-8", std::string(asset("game.css"))};
+      if (path == "/" || path == "/index.html")
+        return {200, "text/html; charset=utf-8", std::string(asset("game.html"))};
+      if (path == "/game.js")
+        return {200, "text/javascript; charset=utf-8", std::string(asset("game.js"))};
+      if (path == "/game.css")
+        return {200, "text/css; charset=utf-8", std::string(asset("game.css"))};
       if (path == "/admin" || path == "/api/admin") {
         if (!constant_time_equal(arg("token"), admin_token)) {
           throw Rejection(403, "forbidden", "the admin page needs the token printed at start-up");
@@ -272,7 +298,8 @@ Response handle_request(Study& study, const std::string& admin_token, const std:
         x.push_back(p.x);
         y.push_back(p.y);
       }
-      const int total = r.kind == RoundKind::practice ? study.settings().practice : study.settings().iterations;
+      const int total =
+          r.kind == RoundKind::practice ? study.settings().practice : study.settings().iterations;
       return {200, "application/json",
               fmt::format("{{\"kind\":\"{}\",\"iteration\":{},\"of\":{},\"duration\":{},\"t\":{},"
                           "\"x\":{},\"y\":{}}}",
@@ -281,11 +308,14 @@ Response handle_request(Study& study, const std::string& admin_token, const std:
     }
     if (path == "/api/round/submit") {
       const std::string kind = arg("kind");
-      if (kind != "practice" && kind != "main") throw Rejection(400, "malformed", "kind must be practice or main");
+      if (kind != "practice" && kind != "main")
+        throw Rejection(400, "malformed", "kind must be practice or main");
       const auto it = io::parse_integer(arg("iteration"));
-      if (!it || *it < 1 || *it > 100000) throw Rejection(400, "malformed", "iteration must be a whole number >= 1");
+      if (!it || *it < 1 || *it > 100000)
+        throw Rejection(400, "malformed", "iteration must be a whole number >= 1");
       const auto samples = parse_trace(body);
-      const auto st = study.submit_round(participant, kind == "practice" ? RoundKind::practice : RoundKind::main,
+      const auto st = study.submit_round(participant,
+                                         kind == "practice" ? RoundKind::practice : RoundKind::main,
                                          static_cast<int>(*it), samples);
       return {200, "application/json", status_json(study, st)};
     }
@@ -298,18 +328,21 @@ Response handle_request(Study& study, const std::string& admin_token, const std:
     try {
       const std::string who = valid_participant_id(participant) ? participant : "";
       if (r.status() != 404 || path.rfind("/api/", 0) == 0) {
-        study.record_event(who, "rejected",
-                           fmt::format("{} {} {} {}: {}", method, path, r.status(), r.code(), r.what()));
+        study.record_event(
+            who, "rejected",
+            fmt::format("{} {} {} {}: {}", method, path, r.status(), r.code(), r.what()));
       }
     } catch (const std::exception&) {
       // The events log could not be written: the client still gets its answer.
     }
     return {r.status(), "application/json",
-            fmt::format("{{\"error\":{},\"message\":{}}}", io::json_quote(r.code()), io::json_quote(r.what()))};
+            fmt::format("{{\"error\":{},\"message\":{}}}", io::json_quote(r.code()),
+                        io::json_quote(r.what()))};
   } catch (const std::exception& e) {
     // A file could not be written (disk full...): the round is NOT saved, the page retries.
     try {
-      study.record_event(valid_participant_id(participant) ? participant : "", "server_error", e.what());
+      study.record_event(valid_participant_id(participant) ? participant : "", "server_error",
+                         e.what());
     } catch (const std::exception&) {
     }
     return {503, "application/json",
@@ -327,7 +360,8 @@ class Session : public std::enable_shared_from_this<Session> {
       : stream_(std::move(socket)), study_(study), opt_(opt) {}
 
   void run() {
-    net::dispatch(stream_.get_executor(), beast::bind_front_handler(&Session::read, shared_from_this()));
+    net::dispatch(stream_.get_executor(),
+                  beast::bind_front_handler(&Session::read, shared_from_this()));
   }
 
  private:
@@ -341,20 +375,23 @@ class Session : public std::enable_shared_from_this<Session> {
   }
 
   void on_read(beast::error_code ec, std::size_t) {
-    if (ec == http::error::end_of_stream || ec == beast::error::timeout || ec == net::error::operation_aborted) {
+    if (ec == http::error::end_of_stream || ec == beast::error::timeout ||
+        ec == net::error::operation_aborted) {
       return close();
     }
     if (ec) {
       Response r;
       if (ec == http::error::body_limit || ec == http::error::header_limit) {
         r = {413, "application/json",
-             fmt::format("{{\"error\":\"too_large\",\"message\":\"request larger than {} bytes\"}}", opt_.body_limit)};
+             fmt::format("{{\"error\":\"too_large\",\"message\":\"request larger than {} bytes\"}}",
+                         opt_.body_limit)};
         try {
           study_.record_event("", "rejected", fmt::format("413 too_large: {}", ec.message()));
         } catch (const std::exception&) {
         }
       } else {
-        r = {400, "application/json", "{\"error\":\"malformed\",\"message\":\"not an HTTP request\"}"};
+        r = {400, "application/json",
+             "{\"error\":\"malformed\",\"message\":\"not an HTTP request\"}"};
       }
       return send(r, false, 11);
     }
@@ -365,23 +402,26 @@ class Session : public std::enable_shared_from_this<Session> {
   }
 
   void send(const Response& r, bool keep_alive, unsigned version, bool head = false) {
-    auto res = std::make_shared<http::response<http::string_body>>(static_cast<http::status>(r.status), version);
+    auto res = std::make_shared<http::response<http::string_body>>(
+        static_cast<http::status>(r.status), version);
     res->set(http::field::server, "feint-collect");
     res->set(http::field::content_type, r.content_type);
     res->set(http::field::cache_control, "no-store");
     res->set("X-Content-Type-Options", "nosniff");
     res->set("Content-Security-Policy",
-             "default-src 'self'; img-src 'self' data:; style-src 'self'; script-src 'self'; frame-ancestors 'none'");
+             "default-src 'self'; img-src 'self' data:; style-src 'self'; script-src 'self'; "
+             "frame-ancestors 'none'");
     res->keep_alive(keep_alive);
     if (!head) res->body() = r.body;
     res->prepare_payload();
     if (head) res->body().clear();
     stream_.expires_after(opt_.timeout);
-    http::async_write(stream_, *res,
-                      [self = shared_from_this(), res, keep_alive](beast::error_code ec, std::size_t) {
-                        if (ec || !keep_alive) return self->close();
-                        self->read();
-                      });
+    http::async_write(
+        stream_, *res,
+        [self = shared_from_this(), res, keep_alive](beast::error_code ec, std::size_t) {
+          if (ec || !keep_alive) return self->close();
+          self->read();
+        });
   }
 
   void close() {
@@ -403,7 +443,11 @@ struct Server::Impl {
   ServerOptions opt;
   net::io_context ioc;
   tcp::acceptor acceptor;
-  Impl(Study& s, ServerOptions o) : study(s), opt(std::move(o)), ioc(static_cast<int>(std::max(1u, opt.threads))), acceptor(net::make_strand(ioc)) {}
+  Impl(Study& s, ServerOptions o)
+      : study(s),
+        opt(std::move(o)),
+        ioc(static_cast<int>(std::max(1u, opt.threads))),
+        acceptor(net::make_strand(ioc)) {}
 
   void accept() {
     acceptor.async_accept(net::make_strand(ioc), [this](beast::error_code ec, tcp::socket socket) {
@@ -413,7 +457,8 @@ struct Server::Impl {
   }
 };
 
-Server::Server(Study& study, ServerOptions options) : impl_(std::make_unique<Impl>(study, std::move(options))) {
+Server::Server(Study& study, ServerOptions options)
+    : impl_(std::make_unique<Impl>(study, std::move(options))) {
   auto& o = impl_->opt;
   if (o.admin_token.empty()) {
     std::random_device rd;  // the kernel's generator (getrandom / /dev/urandom): 4 x 32 bits
@@ -444,7 +489,8 @@ void Server::run() {
     signals->async_wait([this](beast::error_code, int) { impl_->ioc.stop(); });
   }
   std::vector<std::thread> pool;
-  for (unsigned i = 1; i < std::max(1u, impl_->opt.threads); ++i) pool.emplace_back([this] { impl_->ioc.run(); });
+  for (unsigned i = 1; i < std::max(1u, impl_->opt.threads); ++i)
+    pool.emplace_back([this] { impl_->ioc.run(); });
   impl_->ioc.run();
   for (auto& t : pool) t.join();
 }

@@ -2,11 +2,11 @@
 // (feint/collect/study.hpp, docs/collect.md).
 #include "feint/collect/study.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <set>
-
-#include <fmt/format.h>
 
 #include "durable.hpp"
 #include "feint/error.hpp"
@@ -79,7 +79,8 @@ void validate(const Settings& s) {
   if (s.conditions.empty()) throw UsageError("conditions: name at least one condition");
   std::set<std::string> names;
   for (const auto& c : s.conditions) {
-    if (!names.insert(c.name).second) throw UsageError(fmt::format("conditions: '{}' twice", c.name));
+    if (!names.insert(c.name).second)
+      throw UsageError(fmt::format("conditions: '{}' twice", c.name));
     if (c.lambda < 0 || c.lambda > 1) throw UsageError("lambda must be in [0, 1]");
   }
   if (s.iterations < 1 || s.iterations > 1000) throw UsageError("iterations must be in [1, 1000]");
@@ -105,8 +106,8 @@ void validate(const Settings& s) {
 bool valid_participant_id(const std::string& id) noexcept {
   if (id.empty() || id.size() > 64 || id.front() == '-') return false;
   return std::all_of(id.begin(), id.end(), [](char c) {
-    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
-           c == '_' || c == '-';
+    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' ||
+           c == '-';
   });
 }
 
@@ -125,12 +126,15 @@ struct Study::Participant {
   std::optional<std::pair<RoundKind, int>> shown;  // round shown and not yet saved
 };
 
-Study::Study(fs::path dir, Settings settings) : dir_(std::move(dir)), settings_(std::move(settings)) {
+Study::Study(fs::path dir, Settings settings)
+    : dir_(std::move(dir)), settings_(std::move(settings)) {
   validate(settings_);
   std::error_code ec;
   for (const auto& sub : {fs::path("logs"), fs::path("practice"), fs::path("collect")}) {
     fs::create_directories(dir_ / sub, ec);
-    if (ec) throw IoError(fmt::format("{}: cannot create folder: {}", (dir_ / sub).string(), ec.message()));
+    if (ec)
+      throw IoError(
+          fmt::format("{}: cannot create folder: {}", (dir_ / sub).string(), ec.message()));
   }
   rebuild();
 }
@@ -141,7 +145,8 @@ fs::path Study::log_path(const std::string& id, RoundKind kind) const {
   return dir_ / (kind == RoundKind::practice ? "practice" : "logs") / (id + ".csv");
 }
 
-Round Study::plan_round(std::size_t index, std::size_t condition, RoundKind kind, int iteration) const {
+Round Study::plan_round(std::size_t index, std::size_t condition, RoundKind kind,
+                        int iteration) const {
   Round r;
   r.kind = kind;
   r.iteration = iteration;
@@ -196,7 +201,7 @@ void Study::recover_log(Participant& p, RoundKind kind) {
   const std::string where = path.string();
   std::size_t good_end = 0;
   std::size_t pos = 0;
-  int current = 0;        // iteration of the rows being read
+  int current = 0;  // iteration of the rows being read
   bool current_done = true;
   double duration = 0;
   bool header = false;
@@ -217,11 +222,14 @@ void Study::recover_log(Participant& p, RoundKind kind) {
     }
     const auto f = io::split_csv_line(std::string(line), ',');
     if (f.size() != 9 || f[0] != p.id) {
-      throw InvalidData(fmt::format("{}: a row that feint collect did not write: '{}'", where, line));
+      throw InvalidData(
+          fmt::format("{}: a row that feint collect did not write: '{}'", where, line));
     }
     const auto it = io::parse_integer(f[2]);
     const auto t = io::parse_double(f[6]);
-    if (!it || !t) throw InvalidData(fmt::format("{}: a row that feint collect did not write: '{}'", where, line));
+    if (!it || !t)
+      throw InvalidData(
+          fmt::format("{}: a row that feint collect did not write: '{}'", where, line));
     if (*it != current) {
       if (!current_done || *it != current + 1) {
         // A new round began before the previous one ended, or rounds are not 1, 2, ...: stop
@@ -243,10 +251,11 @@ void Study::recover_log(Participant& p, RoundKind kind) {
     const fs::path aside = dir_ / "collect" / "damaged" /
                            fmt::format("{}-{}-{}.csv", p.id, to_string(kind), detail::unix_now());
     detail::replace_with_prefix(path, good_end, aside);
-    record_event(p.id, "recovered",
-                 fmt::format("{}: kept {} complete rounds ({} bytes); the incomplete tail ({} bytes) "
-                             "is in {}",
-                             where, complete, good_end, content.size() - good_end, aside.string()));
+    record_event(
+        p.id, "recovered",
+        fmt::format("{}: kept {} complete rounds ({} bytes); the incomplete tail ({} bytes) "
+                    "is in {}",
+                    where, complete, good_end, content.size() - good_end, aside.string()));
   }
   p.saved[k] = complete;
   p.log_size[k] = good_end;
@@ -266,7 +275,8 @@ void Study::rebuild() {
     const auto f = io::split_csv_line(std::string(rows[i]), ',');
     const auto index = f.size() == 4 ? io::parse_integer(f[1]) : std::nullopt;
     if (!index || *index != static_cast<long long>(i - 1) || !valid_participant_id(f[0])) {
-      throw InvalidData(fmt::format("{}:{}: unexpected row '{}'", assignment.string(), i + 1, rows[i]));
+      throw InvalidData(
+          fmt::format("{}:{}: unexpected row '{}'", assignment.string(), i + 1, rows[i]));
     }
     auto p = std::make_shared<Participant>();
     p->id = f[0];
@@ -274,13 +284,15 @@ void Study::rebuild() {
     auto c = std::find_if(settings_.conditions.begin(), settings_.conditions.end(),
                           [&](const Condition& x) { return x.name == f[2]; });
     if (c == settings_.conditions.end()) {
-      throw InvalidData(fmt::format("{}:{}: condition '{}' is not among the study's conditions; "
-                                    "the settings must not change during a study",
-                                    assignment.string(), i + 1, f[2]));
+      throw InvalidData(
+          fmt::format("{}:{}: condition '{}' is not among the study's conditions; "
+                      "the settings must not change during a study",
+                      assignment.string(), i + 1, f[2]));
     }
     p->condition = static_cast<std::size_t>(c - settings_.conditions.begin());
     if (participants_.count(p->id)) {
-      throw InvalidData(fmt::format("{}:{}: participant '{}' twice", assignment.string(), i + 1, p->id));
+      throw InvalidData(
+          fmt::format("{}:{}: participant '{}' twice", assignment.string(), i + 1, p->id));
     }
     recover_log(*p, RoundKind::practice);
     recover_log(*p, RoundKind::main);
@@ -289,7 +301,8 @@ void Study::rebuild() {
   // Log files of participants that were never assigned would be mixed into the analysis.
   for (const auto& entry : fs::directory_iterator(dir_ / "logs")) {
     const std::string stem = entry.path().stem().string();
-    if (entry.path().extension() == ".csv" && valid_participant_id(stem) && !participants_.count(stem)) {
+    if (entry.path().extension() == ".csv" && valid_participant_id(stem) &&
+        !participants_.count(stem)) {
       throw InvalidData(fmt::format("{}: a log of a participant not in {}", entry.path().string(),
                                     assignment.string()));
     }
@@ -299,9 +312,10 @@ void Study::rebuild() {
     const auto lines = lines_of(text);
     if (lines.empty()) return;
     if (std::string(lines[0]) + "\n" != header) {
-      throw InvalidData(fmt::format("{}:1: the header differs from the configured questionnaire "
-                                    "items (expected '{}')",
-                                    path.string(), io::trim(header)));
+      throw InvalidData(
+          fmt::format("{}:1: the header differs from the configured questionnaire "
+                      "items (expected '{}')",
+                      path.string(), io::trim(header)));
     }
     for (std::size_t i = 1; i < lines.size(); ++i) {
       const auto f = io::split_csv_line(std::string(lines[i]), ',');
@@ -328,9 +342,11 @@ void Study::rebuild() {
     if (f.size() != 4 || f[2] != "round_shown") continue;
     auto p = participants_.find(f[1]);
     const auto space = f[3].find(' ');
-    const auto it = space == std::string::npos ? std::nullopt : io::parse_integer(f[3].substr(space + 1));
+    const auto it =
+        space == std::string::npos ? std::nullopt : io::parse_integer(f[3].substr(space + 1));
     if (p == participants_.end() || !it) continue;
-    const RoundKind kind = f[3].substr(0, space) == "practice" ? RoundKind::practice : RoundKind::main;
+    const RoundKind kind =
+        f[3].substr(0, space) == "practice" ? RoundKind::practice : RoundKind::main;
     if (*it > p->second->saved[static_cast<int>(kind)]) {
       p->second->shown = std::make_pair(kind, static_cast<int>(*it));
     } else {
@@ -338,7 +354,8 @@ void Study::rebuild() {
     }
   }
   if (!participants_.empty()) {
-    record_event("", "restart", fmt::format("state rebuilt: {} participants", participants_.size()));
+    record_event("", "restart",
+                 fmt::format("state rebuilt: {} participants", participants_.size()));
   }
 }
 
@@ -374,16 +391,18 @@ ParticipantStatus Study::join(const std::string& requested) {
     std::lock_guard lock(mu_);
     if (id.empty()) {
       // A generated ID: random-looking, from the seed and a counter, never an existing one.
-      sim::Rng rng = sim::Rng::stream(settings_.seed ^ static_cast<std::uint64_t>(detail::unix_now()),
-                                      participants_.size() + generated_);
+      sim::Rng rng =
+          sim::Rng::stream(settings_.seed ^ static_cast<std::uint64_t>(detail::unix_now()),
+                           participants_.size() + generated_);
       do {
         id = fmt::format("G{:010x}", rng() & 0xFFFFFFFFFFULL);
         ++generated_;
       } while (participants_.count(id));
     }
     if (!valid_participant_id(id)) {
-      throw Rejection(400, "bad_participant",
-                      "participant IDs are 1-64 letters, digits, '_' or '-' (not starting with '-')");
+      throw Rejection(
+          400, "bad_participant",
+          "participant IDs are 1-64 letters, digits, '_' or '-' (not starting with '-')");
     }
     auto it = participants_.find(id);
     if (it != participants_.end()) {
@@ -437,7 +456,8 @@ Round Study::start_round(const std::string& id) {
   const std::string name = fmt::format("{} {}", to_string(kind), iteration);
   if (p->shown && p->shown->first == kind && p->shown->second == iteration) {
     ++p->interruptions;
-    record_event(id, "interrupted", name + " was shown before and not saved; shown again from its start");
+    record_event(id, "interrupted",
+                 name + " was shown before and not saved; shown again from its start");
   }
   p->shown = std::make_pair(kind, iteration);
   record_event(id, "round_shown", name);
@@ -466,17 +486,23 @@ ParticipantStatus Study::submit_round(const std::string& id, RoundKind kind, int
   }
   const Round r = plan_round(p->index, p->condition, kind, iteration);
   // Validation: the trace as the page must have recorded it.
-  auto bad = [&](const std::string& why) { return Rejection(422, "invalid_trace", name + ": " + why); };
+  auto bad = [&](const std::string& why) {
+    return Rejection(422, "invalid_trace", name + ": " + why);
+  };
   if (s.size() < 2) throw bad("fewer than 2 samples");
   if (s.size() > settings_.max_samples) {
-    throw Rejection(413, "too_many_samples",
-                    fmt::format("{}: {} samples (at most {})", name, s.size(), settings_.max_samples));
+    throw Rejection(
+        413, "too_many_samples",
+        fmt::format("{}: {} samples (at most {})", name, s.size(), settings_.max_samples));
   }
-  if (s.front().t != 0 || s.front().pad != 0.5) throw bad("the first sample must be t = 0, pad = 0.5");
+  if (s.front().t != 0 || s.front().pad != 0.5)
+    throw bad("the first sample must be t = 0, pad = 0.5");
   for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!std::isfinite(s[i].t) || !std::isfinite(s[i].pad)) throw bad(fmt::format("sample {} is not a number", i + 1));
+    if (!std::isfinite(s[i].t) || !std::isfinite(s[i].pad))
+      throw bad(fmt::format("sample {} is not a number", i + 1));
     if (s[i].pad < 0 || s[i].pad > 1) {
-      throw bad(fmt::format("sample {}: pad {} is outside [0, 1]", i + 1, io::format_double(s[i].pad)));
+      throw bad(
+          fmt::format("sample {}: pad {} is outside [0, 1]", i + 1, io::format_double(s[i].pad)));
     }
     if (i == 0) continue;
     const double dt = s[i].t - s[i - 1].t;
@@ -511,7 +537,8 @@ ParticipantStatus Study::submit_round(const std::string& id, RoundKind kind, int
   const fs::path path = log_path(id, kind);
   if (detail::file_size_or_zero(path) != p->log_size[k]) {
     recover_log(*p, kind);  // an earlier failed write left a tail: set it aside first
-    if (iteration != p->saved[k] + 1) throw Rejection(409, "out_of_order", name + ": state changed");
+    if (iteration != p->saved[k] + 1)
+      throw Rejection(409, "out_of_order", name + ": state changed");
   }
   p->log_size[k] = append_durably(path, kLogHeader, block);
   p->saved[k] = iteration;
@@ -525,7 +552,8 @@ ParticipantStatus Study::submit_questionnaire(const std::string& id,
   auto p = find(id);
   std::lock_guard lock(p->mu);
   p->last_seen = detail::unix_now();
-  if (p->questionnaire_done) throw Rejection(409, "duplicate", "the questionnaire is already saved");
+  if (p->questionnaire_done)
+    throw Rejection(409, "duplicate", "the questionnaire is already saved");
   if (p->saved[0] < settings_.practice || p->saved[1] < settings_.iterations) {
     throw Rejection(409, "out_of_order", "the questionnaire comes after the last round");
   }
@@ -534,7 +562,8 @@ ParticipantStatus Study::submit_questionnaire(const std::string& id,
     auto a = answers.find(item);
     const auto v = a == answers.end() ? std::nullopt : io::parse_integer(a->second);
     if (!v || *v < 1 || *v > 7) {
-      throw Rejection(422, "invalid_answer", fmt::format("item '{}': a whole number 1-7 is needed", item));
+      throw Rejection(422, "invalid_answer",
+                      fmt::format("item '{}': a whole number 1-7 is needed", item));
     }
     row += fmt::format(",{}", *v);
   }
@@ -549,8 +578,8 @@ ParticipantStatus Study::submit_questionnaire(const std::string& id,
     yes_no = fmt::format("{},{},{}\n", id, settings_.conditions[p->condition].name, a->second);
   }
   for (const auto& [k, v] : answers) {
-    if (k != settings_.yes_no_item && std::find(settings_.items.begin(), settings_.items.end(), k) ==
-                                          settings_.items.end()) {
+    if (k != settings_.yes_no_item &&
+        std::find(settings_.items.begin(), settings_.items.end(), k) == settings_.items.end()) {
       throw Rejection(422, "invalid_answer", fmt::format("'{}' is not a questionnaire item", k));
     }
   }
@@ -586,7 +615,8 @@ std::vector<ParticipantStatus> Study::overview() const {
     std::lock_guard lock(mu_);
     for (const auto& [id, p] : participants_) all.push_back(p);
   }
-  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a->index < b->index; });
+  std::sort(all.begin(), all.end(),
+            [](const auto& a, const auto& b) { return a->index < b->index; });
   std::vector<ParticipantStatus> out;
   for (const auto& p : all) {
     std::lock_guard lock(p->mu);

@@ -1,6 +1,8 @@
 // Helpers of the feint collect tests: temporary study folders and valid pad traces.
 #pragma once
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <atomic>
 #include <filesystem>
@@ -8,8 +10,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "feint/collect/study.hpp"
 

@@ -1,8 +1,6 @@
 // feint collect over HTTP: routes, rejections (all recorded), limits, and the real binary killed
 // and restarted mid-study, then `feint analyze` and `feint score` on the result.
 #include <gtest/gtest.h>
-
-#include <csignal>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -11,6 +9,7 @@
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <chrono>
+#include <csignal>
 #include <thread>
 
 #include "collect_helpers.hpp"
@@ -33,7 +32,8 @@ struct Reply {
   std::string body;
 };
 
-Reply request(unsigned short port, http::verb method, const std::string& target, const std::string& body = "") {
+Reply request(unsigned short port, http::verb method, const std::string& target,
+              const std::string& body = "") {
   net::io_context ioc;
   tcp::socket sock(ioc);
   sock.connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), port));
@@ -70,7 +70,8 @@ TEST(CollectHttp, ServesOnlyTheEmbeddedPagesAndNeedsTheAdminToken) {
   EXPECT_EQ(get("/game.js").content_type, "text/javascript; charset=utf-8");
   EXPECT_NE(get("/game.js").body.find("performance.now()"), std::string::npos);
   EXPECT_EQ(get("/game.css").status, 200);
-  for (const char* t : {"/../../etc/passwd", "/etc/passwd", "/admin.html", "/logs/P1.csv", "/%2e%2e/x"}) {
+  for (const char* t :
+       {"/../../etc/passwd", "/etc/passwd", "/admin.html", "/logs/P1.csv", "/%2e%2e/x"}) {
     EXPECT_EQ(get(t).status, 404) << t;
   }
   EXPECT_EQ(get("/admin").status, 403);
@@ -97,7 +98,8 @@ TEST(CollectHttp, MalformedRequestsGetClearErrorsAndAreRecorded) {
   EXPECT_NE(j.body.find("\"participant\":\"5f1b2c3d\""), std::string::npos);
   EXPECT_EQ(post("/api/round/submit?participant=5f1b2c3d&kind=main").status, 400);
   EXPECT_EQ(post("/api/round/submit?participant=5f1b2c3d&kind=x&iteration=1").status, 400);
-  const auto bad = post("/api/round/submit?participant=5f1b2c3d&kind=practice&iteration=1", "0,0.5\nnot,numbers\n");
+  const auto bad = post("/api/round/submit?participant=5f1b2c3d&kind=practice&iteration=1",
+                        "0,0.5\nnot,numbers\n");
   EXPECT_EQ(bad.status, 400);
   EXPECT_NE(bad.body.find("\"error\":\"malformed\""), std::string::npos);
   EXPECT_EQ(post("/api/round/start?participant=ghost").status, 404);
@@ -120,10 +122,11 @@ TEST(CollectHttp, OversizedAndGarbageRequestsAreRefusedOnTheWire) {
   const auto port = server.port();
   EXPECT_EQ(request(port, http::verb::get, "/").status, 200);
   EXPECT_EQ(request(port, http::verb::post, "/api/join?participant=W1").status, 200);
-  EXPECT_EQ(request(port, http::verb::post, "/api/round/submit?participant=W1&kind=practice&iteration=1",
-                    std::string(10000, '1'))
-                .status,
-            413);
+  EXPECT_EQ(
+      request(port, http::verb::post, "/api/round/submit?participant=W1&kind=practice&iteration=1",
+              std::string(10000, '1'))
+          .status,
+      413);
   {
     net::io_context ioc;
     tcp::socket sock(ioc);
@@ -191,28 +194,32 @@ TEST(CollectBinary, KilledMidStudyAndRestartedThenFeintAnalyzeReadsTheFolder) {
       ASSERT_EQ(start.status, 200) << start.body;
       const bool practice = start.body.find("\"kind\":\"practice\"") != std::string::npos;
       const int it = std::stoi(start.body.substr(start.body.find("\"iteration\":") + 12));
-      const double dur = *io::parse_double(start.body.substr(
-          start.body.find("\"duration\":") + 11,
-          start.body.find(',', start.body.find("\"duration\":")) - start.body.find("\"duration\":") - 11));
+      const double dur = *io::parse_double(
+          start.body.substr(start.body.find("\"duration\":") + 11,
+                            start.body.find(',', start.body.find("\"duration\":")) -
+                                start.body.find("\"duration\":") - 11));
       Round r;
       r.path = {{0, 0, 0}, {dur, 0, 0}};
       const auto sub = request(srv.port, http::verb::post,
-                               "/api/round/submit?participant=" + id + "&kind=" +
-                                   (practice ? "practice" : "main") + "&iteration=" + std::to_string(it),
+                               "/api/round/submit?participant=" + id +
+                                   "&kind=" + (practice ? "practice" : "main") +
+                                   "&iteration=" + std::to_string(it),
                                trace_body(valid_trace(r, 0.8, it % 2)));
       ASSERT_EQ(sub.status, 200) << sub.body;
     }
   };
-  for (const auto& id : people) ASSERT_EQ(request(srv.port, http::verb::post, "/api/join?participant=" + id).status, 200);
+  for (const auto& id : people)
+    ASSERT_EQ(request(srv.port, http::verb::post, "/api/join?participant=" + id).status, 200);
   for (const auto& id : people) play(id, 3);  // 2 practice + 1 analysed each
-  stop(srv, SIGKILL);                          // no chance to clean up
+  stop(srv, SIGKILL);                         // no chance to clean up
   srv = launch(dir);
   ASSERT_NE(srv.port, 0);
   const auto admin = request(srv.port, http::verb::get, "/api/admin?token=tok").body;
   EXPECT_EQ(count(admin, "\"rounds_saved\":1"), 4) << admin;
   for (const auto& id : people) {
     play(id, 3);
-    EXPECT_EQ(request(srv.port, http::verb::post, "/api/round/start?participant=" + id).status, 409);
+    EXPECT_EQ(request(srv.port, http::verb::post, "/api/round/start?participant=" + id).status,
+              409);
     const int q = request(srv.port, http::verb::post, "/api/questionnaire?participant=" + id,
                           "entertainment=6&deception=5&intelligence=7&trust=2&intentional=yes")
                       .status;
@@ -221,14 +228,15 @@ TEST(CollectBinary, KilledMidStudyAndRestartedThenFeintAnalyzeReadsTheFolder) {
   stop(srv, SIGTERM);
   // feint analyze reads the folder as it is; practice rounds are not in it.
   const fs::path out = dir.parent_path() / (dir.filename().string() + "-out");
-  const std::string cmd = std::string(FEINT_EXE) + " analyze " + dir.string() + " -o " + out.string() +
-                          " > " + out.string() + ".log 2>&1";
+  const std::string cmd = std::string(FEINT_EXE) + " analyze " + dir.string() + " -o " +
+                          out.string() + " > " + out.string() + ".log 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << slurp(out.string() + ".log");
   const auto scores = lines(slurp(out / "scores.csv"));
   ASSERT_EQ(scores.size(), 1u + 4 * 4);
   const auto header = io::split_csv_line(scores[0]);
   const auto col = std::find(header.begin(), header.end(), "overspeed_segments") - header.begin();
-  for (std::size_t i = 1; i < scores.size(); ++i) EXPECT_EQ(io::split_csv_line(scores[i])[col], "0");
+  for (std::size_t i = 1; i < scores.size(); ++i)
+    EXPECT_EQ(io::split_csv_line(scores[i])[col], "0");
   EXPECT_TRUE(fs::exists(out / "likert_summary.csv"));
 }
 

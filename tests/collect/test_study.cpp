@@ -117,19 +117,26 @@ TEST(CollectRounds, DuplicateAndOutOfOrderSubmissionsAreRefusedAndTheLogKept) {
   const auto trace = valid_trace(p1, s.pad_speed);
   std::string code;
   // Main rounds before the practice is done: out of order.
-  EXPECT_EQ(rejection_status([&] { study.submit_round("P1", RoundKind::main, 1, trace); }, &code), 409);
+  EXPECT_EQ(rejection_status([&] { study.submit_round("P1", RoundKind::main, 1, trace); }, &code),
+            409);
   EXPECT_EQ(code, "out_of_order");
   // Practice 2 before practice 1.
-  EXPECT_EQ(rejection_status([&] { study.submit_round("P1", RoundKind::practice, 2, trace); }, &code), 409);
+  EXPECT_EQ(
+      rejection_status([&] { study.submit_round("P1", RoundKind::practice, 2, trace); }, &code),
+      409);
   EXPECT_EQ(code, "out_of_order");
   study.submit_round("P1", RoundKind::practice, 1, trace);
   const std::string before = slurp(dir / "practice" / "P1.csv");
   // The same round again (a replay, or a retry whose answer was lost): duplicate.
-  EXPECT_EQ(rejection_status([&] { study.submit_round("P1", RoundKind::practice, 1, trace); }, &code), 409);
+  EXPECT_EQ(
+      rejection_status([&] { study.submit_round("P1", RoundKind::practice, 1, trace); }, &code),
+      409);
   EXPECT_EQ(code, "duplicate");
-  EXPECT_EQ(rejection_status([&] { study.submit_round("P1", RoundKind::main, 99, trace); }, &code), 409);
+  EXPECT_EQ(rejection_status([&] { study.submit_round("P1", RoundKind::main, 99, trace); }, &code),
+            409);
   EXPECT_EQ(slurp(dir / "practice" / "P1.csv"), before);
-  EXPECT_EQ(rejection_status([&] { study.submit_round("nobody", RoundKind::practice, 1, trace); }), 404);
+  EXPECT_EQ(rejection_status([&] { study.submit_round("nobody", RoundKind::practice, 1, trace); }),
+            404);
 }
 
 TEST(CollectRounds, EveryInvalidTraceIsRefusedWithItsReason) {
@@ -142,8 +149,8 @@ TEST(CollectRounds, EveryInvalidTraceIsRefusedWithItsReason) {
   const auto good = valid_trace(r, s.pad_speed);
   auto submit = [&](std::vector<PadSample> t) {
     std::string code;
-    const int status = rejection_status(
-        [&] { study.submit_round("P1", RoundKind::practice, 1, t); }, &code);
+    const int status =
+        rejection_status([&] { study.submit_round("P1", RoundKind::practice, 1, t); }, &code);
     return std::to_string(status) + " " + code;
   };
   auto bad = good;
@@ -172,13 +179,14 @@ TEST(CollectRounds, EveryInvalidTraceIsRefusedWithItsReason) {
   std::vector<PadSample> many(501, PadSample{0, 0.5});
   EXPECT_EQ(submit(many), "413 too_many_samples");
   EXPECT_FALSE(fs::exists(dir / "practice" / "P1.csv"));  // nothing was written
-  EXPECT_EQ(submit(good), "0 ");  // and the real one is accepted
+  EXPECT_EQ(submit(good), "0 ");                          // and the real one is accepted
 }
 
 TEST(CollectParticipants, UnsafeIdsNeverBecomeFileNames) {
   const auto dir = fresh_dir("ids");
   Study study(dir, fast_settings());
-  for (const std::string& id : std::vector<std::string>{"../x", "a/b", "-rf", "a b", "a.csv", std::string(65, 'a'), "P1\n"}) {
+  for (const std::string& id : std::vector<std::string>{"../x", "a/b", "-rf", "a b", "a.csv",
+                                                        std::string(65, 'a'), "P1\n"}) {
     EXPECT_EQ(rejection_status([&] { study.join(id); }), 400) << id;
   }
   EXPECT_TRUE(valid_participant_id("5f1b2c3d4e5f6a7b8c9d0e1f"));  // a Prolific ID
@@ -192,8 +200,11 @@ TEST(CollectQuestionnaire, IsWrittenInTheWideLikertLayoutOnceAfterTheRounds) {
   const auto dir = fresh_dir("quest");
   Study study(dir, fast_settings());
   const auto st = study.join("P1");
-  std::map<std::string, std::string> a{{"entertainment", "6"}, {"deception", "5"}, {"intelligence", "7"},
-                                       {"trust", "2"}, {"intentional", "yes"}};
+  std::map<std::string, std::string> a{{"entertainment", "6"},
+                                       {"deception", "5"},
+                                       {"intelligence", "7"},
+                                       {"trust", "2"},
+                                       {"intentional", "yes"}};
   EXPECT_EQ(rejection_status([&] { study.submit_questionnaire("P1", a); }), 409);  // rounds first
   play_all(study, "P1");
   auto bad = a;
@@ -285,10 +296,11 @@ TEST(CollectRestart, ARoundCutShortByACrashIsSetAsideNeverTruncated) {
 
 TEST(CollectRestart, RefusesLogsItDidNotWriteAndChangedConditions) {
   const auto dir = fresh_dir("foreign");
-  { Study study(dir, fast_settings()); study.join("P1"); }
   {
-    std::ofstream(dir / "logs" / "X9.csv") << "participant,iteration,target,t,pad\n";
+    Study study(dir, fast_settings());
+    study.join("P1");
   }
+  { std::ofstream(dir / "logs" / "X9.csv") << "participant,iteration,target,t,pad\n"; }
   EXPECT_THROW(Study(dir, fast_settings()), InvalidData);
   fs::remove(dir / "logs" / "X9.csv");
   Settings other = fast_settings();
@@ -308,8 +320,11 @@ TEST(CollectConcurrency, ParticipantsPlayingAtOnceNeverMixRows) {
       const std::string id = "C" + std::to_string(i);
       study.join(id);
       play_all(study, id);
-      study.submit_questionnaire(id, {{"entertainment", "5"}, {"deception", "4"}, {"intelligence", "6"},
-                                      {"trust", "3"}, {"intentional", "no"}});
+      study.submit_questionnaire(id, {{"entertainment", "5"},
+                                      {"deception", "4"},
+                                      {"intelligence", "6"},
+                                      {"trust", "3"},
+                                      {"intentional", "no"}});
     });
   }
   for (auto& t : threads) t.join();

@@ -26,9 +26,9 @@ struct ServerOptions {
   unsigned short port = 8080;  // 0: an ephemeral port (see Server::port())
   std::string admin_token;     // empty: a random one
   unsigned threads = 4;
-  std::size_t body_limit = 2 * 1024 * 1024;      // bytes per request body
-  std::chrono::seconds timeout{30};              // to read one request
-  bool stop_on_signals = false;                  // SIGINT/SIGTERM make run() return
+  std::size_t body_limit = 2 * 1024 * 1024;  // bytes per request body
+  std::chrono::seconds timeout{30};          // to read one request
+  bool stop_on_signals = false;              // SIGINT/SIGTERM make run() return
 };
 
 /// A response before it is put on the wire (also what the in-process tests look at).

@@ -49,19 +49,19 @@ Condition parse_condition(const std::string& text, double default_lambda);
 struct Settings {
   std::vector<Condition> conditions{{"adaptive", sim::Algorithm::adaptive, 0.5},
                                     {"random", sim::Algorithm::random, 0.5}};
-  int iterations = 20;       // analysed rounds per participant
-  int practice = 2;          // practice rounds (optimal strategy), logged apart, not analysed
-  double pad_speed = 0.8;    // pad units per second while an arrow key is held
-  sim::Geometry geometry;    // trajectories (robot speed is geometry.speed)
-  std::uint64_t seed = 1;    // assignment and rounds
+  int iterations = 20;     // analysed rounds per participant
+  int practice = 2;        // practice rounds (optimal strategy), logged apart, not analysed
+  double pad_speed = 0.8;  // pad units per second while an arrow key is held
+  sim::Geometry geometry;  // trajectories (robot speed is geometry.speed)
+  std::uint64_t seed = 1;  // assignment and rounds
   std::vector<std::string> items{"entertainment", "deception", "intelligence", "trust"};
   std::vector<std::string> item_questions{
       "How entertaining was the game?", "How deceptive was the robot?",
       "How intelligent did the robot seem?", "How much did you trust the robot?"};
   std::string yes_no_item = "intentional";  // empty: no yes/no question
   std::string yes_no_question = "Did the robot's movement look intentional?";
-  std::string consent;         // shown before the first round when not empty
-  std::string completion_url;  // the completion page links (and redirects) here when not empty
+  std::string consent;              // shown before the first round when not empty
+  std::string completion_url;       // the completion page links (and redirects) here when not empty
   std::size_t max_samples = 20000;  // per round
 };
 
