@@ -274,6 +274,7 @@ Response handle_request(Study& study, const std::string& admin_token, const std:
         return {200, "text/javascript; charset=utf-8", std::string(asset("game.js"))};
       if (path == "/game.css")
         return {200, "text/css; charset=utf-8", std::string(asset("game.css"))};
+      if (path == "/favicon.ico") return {204, "image/x-icon", ""};  // browsers ask for it
       if (path == "/admin" || path == "/api/admin") {
         if (!constant_time_equal(arg("token"), admin_token)) {
           throw Rejection(403, "forbidden", "the admin page needs the token printed at start-up");
