@@ -193,9 +193,9 @@ def main():
                      {"type": "keyUp", "value": ARROW[direction]}])
             wd.wait("return document.body.dataset.round !== 'running'", what="round end")
             trace = wd.js("var t = window.__feint.lastTrace; var i = window.__feint.intervals;"
-                          "window.__feint.intervals = []; return [t && t.kind, t && t.iteration, i];")
+                          "window.__feint.intervals = []; return [t && t.kind, t && t.iteration, i, t && t.keys];")
             intervals += trace[2]
-            plan[(trace[0], trace[1])] = (direction, hold)
+            plan[(trace[0], trace[1])] = (direction, hold, trace[3])
         # The questionnaire, as a person fills it in.
         for item, v in [("entertainment", 6), ("deception", 5), ("intelligence", 7), ("trust", 2)]:
             wd.click(f"#{item}-{v}")
@@ -241,19 +241,39 @@ def main():
         tr = [r for r in rows if int(r["iteration"]) == it]
         t = [float(r["t"]) for r in tr]
         pad = [float(r["pad"]) for r in tr]
-        direction, hold = plan[("main", it)]
+        direction, hold, keys = plan[("main", it)]
         moved = pad[-1] - 0.5
         check((moved > 0) == (direction == "right"), f"round {it}: pad moved {moved:+.3f}, key {direction}")
-        # The pad moved at the pad speed for as long as the key was held (WebDriver's timing: +-0.1 s).
-        held = abs(moved) / PAD_SPEED
-        worst = max(worst, abs(held - hold))
-        check(abs(held - hold) < 0.1, f"round {it}: key held {hold:.3f} s, pad moved for {held:.3f} s")
-        steps = [(pad[i + 1] - pad[i]) * (1 if direction == "right" else -1) for i in range(len(pad) - 1)]
-        check(min(steps) >= 0, f"round {it}: the pad moved against the key")
+        # The key events as the page saw them: WebDriver delivered the intended hold (give or take
+        # the scheduling of a loaded machine) ...
+        downs = [k[0] for k in keys if k[1] == direction and k[2]]
+        ups = [k[0] for k in keys if k[1] == direction and not k[2]]
+        seen = (ups[-1] if ups else t[-1]) - (downs[0] if downs else 0.0)
+        worst = max(worst, abs(seen - hold))
+        check(len(downs) == 1 and abs(seen - hold) < 0.25,
+              f"round {it}: key {direction} held {hold:.3f} s by WebDriver, page saw {keys}")
+        # ... and the logged trace is exactly the pad speed integrated over the held keys.
+        state = {"left": False, "right": False}
+        p, last, k = 0.5, 0.0, 0
+        events = sorted((e for e in keys if e[0] > 0), key=lambda e: e[0])
+        for k0 in keys:
+            if k0[0] == 0:
+                state[k0[1]] = k0[2]
+        for ti, pi in zip(t, pad):
+            while k < len(events) and events[k][0] <= ti:
+                d = (1 if state["right"] else 0) - (1 if state["left"] else 0)
+                p = min(1.0, max(0.0, p + d * PAD_SPEED * (events[k][0] - last)))
+                last = events[k][0]
+                state[events[k][1]] = events[k][2]
+                k += 1
+            d = (1 if state["right"] else 0) - (1 if state["left"] else 0)
+            p = min(1.0, max(0.0, p + d * PAD_SPEED * (ti - last)))
+            last = ti
+            if abs(p - pi) > 1e-9:
+                check(False, f"round {it}: at t = {ti} the log has pad {pi}, the keys give {p}")
+                break
         speeds = [abs(pad[i + 1] - pad[i]) / (t[i + 1] - t[i]) for i in range(len(t) - 1)]
         check(max(speeds) <= PAD_SPEED * (1 + 1e-6), f"round {it}: faster than the pad speed")
-        full = sum(1 for s in speeds if abs(s - PAD_SPEED) < 1e-6)
-        check(full >= 3, f"round {it}: only {full} samples at the pad speed while the key was held")
     # ---- feint score and feint analyze on the folder ----
     scores = os.path.join(work, "scores.csv")
     r = subprocess.run([feint, "score", os.path.join(study, "logs"), "-o", scores], capture_output=True, text=True)
@@ -270,7 +290,7 @@ def main():
     med = statistics.median(iv) if iv else float("nan")
     p99 = iv[min(len(iv) - 1, int(0.99 * len(iv)))] if iv else float("nan")
     print(f"sampling interval in headless Chromium: median {med:.2f} ms, p99 {p99:.2f} ms "
-          f"({len(iv)} frames); key-hold timing error at most {worst * 1000:.0f} ms")
+          f"({len(iv)} frames); WebDriver key-hold timing off by at most {worst * 1000:.0f} ms")
     if json_out:
         with open(json_out, "w") as f:
             json.dump({"frames": len(iv), "median_ms": med, "p99_ms": p99}, f)

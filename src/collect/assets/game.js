@@ -128,9 +128,12 @@
     if (dir !== 0) pad = Math.min(1, Math.max(0, pad + dir * st.pad_speed * (now - lastNow) / 1000));
     lastNow = now;
   }
+  let keyLog = [];  // [t, key, down] during the round (read by the browser test)
   function setKey(which, down) {
     if (held[which] === down) return;
-    advance(performance.now());
+    const now = performance.now();
+    advance(now);
+    if (running) keyLog.push([(Math.min(Math.max(now, lastNow), endNow) - startNow) / 1000, which, down]);
     held[which] = down;
     $(which).classList.toggle('held', down);
   }
@@ -204,6 +207,7 @@
     lastNow = startNow;
     endNow = startNow + round.duration * 1000;
     lastFrame = 0;
+    keyLog = [[0, 'left', held.left], [0, 'right', held.right]];
     running = true;
     document.body.dataset.round = 'running';
     $('start').textContent = 'Watch the robot';
@@ -213,7 +217,7 @@
     document.body.dataset.round = 'saving';
     $('status').textContent = 'Saving…';
     const body = samples.map((s) => s[0] + ',' + s[1]).join('\n') + '\n';
-    test.lastTrace = { kind: round.kind, iteration: round.iteration, samples: samples.slice() };
+    test.lastTrace = { kind: round.kind, iteration: round.iteration, samples: samples.slice(), keys: keyLog.slice() };
     const r = await call('/api/round/submit' + q(`&kind=${round.kind}&iteration=${round.iteration}`), body);
     if (r.status === 200) {
       enter(r.json);
