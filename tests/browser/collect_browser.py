@@ -188,6 +188,17 @@ def main():
                 wd.release()
                 reloaded = True
                 continue
+            if n == 2:  # the second practice round with the on-screen button, as on a touch screen
+                x, y = wd.js("var r = document.getElementById('right').getBoundingClientRect();"
+                             "return [Math.round(r.left + r.width / 2), Math.round(r.top + r.height / 2)];")
+                wd.s("POST", "/actions", {"actions": [{"type": "pointer", "id": "finger",
+                     "parameters": {"pointerType": "mouse"}, "actions": [
+                         {"type": "pointerMove", "origin": "viewport", "x": x, "y": y},
+                         {"type": "pointerDown", "button": 0}, {"type": "pause", "duration": 250},
+                         {"type": "pointerUp", "button": 0}]}]})
+                wd.release()
+                wd.wait("return document.body.dataset.round !== 'running'", what="round end")
+                continue
             wd.keys([{"type": "keyDown", "value": ARROW[direction]},
                      {"type": "pause", "duration": int(hold * 1000)},
                      {"type": "keyUp", "value": ARROW[direction]}])
@@ -234,6 +245,9 @@ def main():
     practice = read_rows(os.path.join(study, "practice", "BT1.csv"))
     check(sorted({int(r["iteration"]) for r in practice}) == [1, 2], "2 practice rounds in practice/")
     check({r["strategy"] for r in practice} == {"optimal"}, "practice rounds use the optimal strategy")
+    button = [float(r["pad"]) for r in practice if r["iteration"] == "2"]
+    check(0.5 + 0.8 * 0.15 < button[-1] < 0.5 + 0.8 * 0.5,
+          f"practice round 2: the on-screen button held 0.25 s moved the pad to {button[-1]}")
     events = open(os.path.join(study, "collect", "events.csv")).read()
     check(",BT1,interrupted," in events, "the reload mid-round is recorded as an interruption")
     worst = 0.0
