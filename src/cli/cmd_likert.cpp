@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "feint/error.hpp"
 #include "feint/io/csv.hpp"
+#include "feint/io/file_identity.hpp"
 #include "feint/io/number.hpp"
 #include "feint/io/questionnaire.hpp"
 #include "feint/report/likert.hpp"
@@ -53,6 +54,10 @@ std::vector<std::string> split_lists(const std::vector<std::string>& values) {
 
 void run(const LikertArgs& args) {
   const ResolvedReportOptions r = resolve_report_options(args.report);
+  io::refuse_overwriting_inputs({args.file}, {r.output, args.summary});
+  if (!args.summary.empty() && io::same_file(args.summary, r.output)) {
+    throw UsageError(fmt::format("--summary '{}' is the output file itself", args.summary));
+  }
   report::LikertSettings s;
   s.load.layout = io::parse_questionnaire_layout(args.layout);
   const auto [lo, hi] = io::parse_scale(args.scale);
@@ -85,7 +90,7 @@ void run(const LikertArgs& args) {
   s.apa = r.apa;
 
   const auto analysis = report::analyze_likert_file(args.file, s);
-  const std::string text = report::render_likert(analysis, r.format);
+  const std::string text = report::render_likert(analysis, r.format, r.presentation);
   if (!args.summary.empty()) {
     if (args.summary == "-" && r.output == "-") {
       throw UsageError("--summary - and -o - would both write to standard output");
@@ -154,7 +159,7 @@ void add_likert_command(CLI::App& app) {
   cmd->add_option(
       "--summary", args->summary,
       "Also write per-item descriptives and counts per scale point as CSV to this file");
-  add_report_options(*cmd, args->report);
+  add_report_options(*cmd, args->report, {.tests = true, .presentation = true});
   cmd->callback([args] { run(*args); });
 }
 

@@ -344,9 +344,9 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
     notes.push_back(fmt::format(
         "Tests against R = {} ({}). Single Likert items are ordinal: the Wilcoxon signed-rank test "
         "(R's wilcox.test(x, mu = R)) is the primary analysis, with the rank-biserial correlation "
-        "r; the one-sample t-test (t.test(x, mu = R)) with Cohen's d is shown beside it because it "
-        "is the paper's analysis.",
-        detail::fmt_number(a.reference), ref_origin));
+        "r; the one-sample t-test (t.test(x, mu = R)) with Cohen's d is shown beside it{}.",
+        detail::fmt_number(a.reference), ref_origin,
+        settings.paper ? " because it is the paper's analysis" : ""));
   }
   if (settings.paper) {
     notes.push_back(
@@ -403,6 +403,7 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
   if (q.qualtrics) {
     notes.push_back("Qualtrics export: the question-text and ImportId header rows were skipped.");
   }
+  if (!q.excluded.empty()) notes.push_back(io::describe_exclusions(q));
   if (q.text_answers_mapped > 0) {
     notes.push_back(fmt::format("{} text answer{} mapped to scale points by the {} label map.",
                                 q.text_answers_mapped, q.text_answers_mapped == 1 ? "" : "s",

@@ -105,7 +105,11 @@ LikertAnalysis analyze_likert_file(const std::string& path, const LikertSettings
 
 /// text / markdown / latex: the Likert table, the response distribution, reliability and the
 /// note; csv / json: the tidy rows with likert_columns(settings.apa).
-std::string render_likert(const LikertAnalysis& analysis, OutputFormat format);
+/// `presentation` (--label, --caption, --latex-wide) applies to the main table; the response and
+/// reliability tables get the label plus "-responses" / "-reliability". Default label:
+/// tab:feint-likert, tab:feint-likert-<condition> (--condition), tab:feint-likert-<A>-vs-<B>.
+std::string render_likert(const LikertAnalysis& analysis, OutputFormat format,
+                          const TablePresentation& presentation = {});
 
 /// Per group and item/composite descriptives as CSV: group, name, kind, n, missing, mean, sd,
 /// median, q1, q3, iqr, pct_below, pct_at, pct_above, then n_<point> and pct_<point> per scale
