@@ -60,6 +60,15 @@ struct AnalyzeArgs {
   std::string likert_scale = "1-7";
   std::vector<std::string> composites;
   std::vector<std::string> reverse;
+  std::string layout = "auto";
+  std::string labels;
+  std::vector<std::string> items;
+  std::string id_column = "participant";
+  std::string condition_column = "condition";
+  std::string item_column = "item";
+  std::string response_column = "response";
+  bool keep_unfinished = false;
+  bool keep_previews = false;
   // Shared report settings.
   ReportOptions report;
   std::vector<std::string> formats = {"text", "markdown", "latex", "csv", "json"};
@@ -237,6 +246,15 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
     l.load.scale_min = lo;
     l.load.scale_max = hi;
     l.load.reverse = a.reverse;
+    l.load.layout = io::parse_questionnaire_layout(a.layout);
+    if (!a.labels.empty()) l.load.labels = io::parse_label_map(a.labels);
+    l.load.items = a.items;
+    l.load.id_column = a.id_column;
+    l.load.condition_column = a.condition_column;
+    l.load.item_column = a.item_column;
+    l.load.response_column = a.response_column;
+    l.load.keep_unfinished = a.keep_unfinished;
+    l.load.keep_previews = a.keep_previews;
     for (const auto& c : a.composites) l.composites.push_back(report::parse_composite(c));
     l.reference = a.likert_reference;
     l.test = report_opts.test;
@@ -324,6 +342,36 @@ void add_analyze_command(CLI::App& app) {
                               "(repeatable)"))
       ->group(likert);
   one_per_use(cmd->add_option("--reverse", args->reverse, "Items to reverse-code")->delimiter(','))
+      ->group(likert);
+  one_per_use(cmd->add_option("--items", args->items,
+                              "Items to analyse, in order; NAME=COLUMN renames (trust=Q5_1)")
+                  ->delimiter(','))
+      ->group(likert);
+  cmd->add_option("--labels", args->labels,
+                  "Text answers to scale points: \"Strongly disagree=1,Disagree=2,...\"")
+      ->group(likert);
+  cmd->add_option("--id-column", args->id_column, "Questionnaire: respondent id column")
+      ->capture_default_str()
+      ->group(likert);
+  cmd->add_option("--condition-column", args->condition_column,
+                  "Questionnaire: condition column")
+      ->capture_default_str()
+      ->group(likert);
+  cmd->add_option("--layout", args->layout, "Questionnaire: long, wide or auto")
+      ->capture_default_str()
+      ->group(likert);
+  cmd->add_option("--item-column", args->item_column, "Questionnaire, long layout: item column")
+      ->capture_default_str()
+      ->group(likert);
+  cmd->add_option("--response-column", args->response_column,
+                  "Questionnaire, long layout: response column")
+      ->capture_default_str()
+      ->group(likert);
+  cmd->add_flag("--keep-unfinished", args->keep_unfinished,
+                "Survey exports: keep unfinished responses (Finished False, Progress < 100)")
+      ->group(likert);
+  cmd->add_flag("--keep-previews", args->keep_previews,
+                "Survey exports: keep Survey Preview / Test / Spam responses")
       ->group(likert);
   auto* out = "Output";
   one_per_use(cmd->add_option("--formats", args->formats, "Formats written for every table")

@@ -36,6 +36,8 @@ struct LikertArgs {
   std::string condition;
   std::string compare;
   bool paper = false;
+  bool keep_unfinished = false;
+  bool keep_previews = false;
   std::string summary;
   ReportOptions report;
 };
@@ -70,6 +72,8 @@ void run(const LikertArgs& args) {
   s.load.item_column = args.item_column;
   s.load.response_column = args.response_column;
   s.load.reverse = split_lists(args.reverse);
+  s.load.keep_unfinished = args.keep_unfinished;
+  s.load.keep_previews = args.keep_previews;
   for (const auto& c : args.composites) s.composites.push_back(report::parse_composite(c));
   s.reference = args.reference;
   s.condition = args.condition;
@@ -122,8 +126,8 @@ void add_likert_command(CLI::App& app) {
                   "Map text answers to scale points: \"Strongly disagree=1,Disagree=2,...\" "
                   "(default: built-in agree/disagree map for 5- and 7-point scales)");
   cmd->add_option("--items", args->items,
-                  "Items to analyse, in order (wide: columns; long: item names); comma-separated, "
-                  "repeatable")
+                  "Items to analyse, in order (wide: columns; long: item names); NAME=COLUMN "
+                  "renames (trust=Q5_1); comma-separated, repeatable")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
       ->allow_extra_args(false);
@@ -153,6 +157,12 @@ void add_likert_command(CLI::App& app) {
   cmd->add_option("--condition", args->condition, "Only this condition (default: each condition)");
   cmd->add_option("--compare", args->compare,
                   "Two conditions A,B: Mann-Whitney U (primary) and Welch's t-test");
+  cmd->add_flag("--keep-unfinished", args->keep_unfinished,
+                "Survey exports: keep responses with Finished = False or Progress < 100 "
+                "(excluded by default, and named in the note)");
+  cmd->add_flag("--keep-previews", args->keep_previews,
+                "Survey exports: keep Status = Survey Preview, Survey Test, Spam (excluded by "
+                "default, and named in the note)");
   cmd->add_flag("--paper", args->paper,
                 "The paper's analysis: items entertainment, deception, intelligence, trust against "
                 "3.5 (t-test column; Wilcoxon primary)");
