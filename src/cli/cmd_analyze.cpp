@@ -67,6 +67,7 @@ struct AnalyzeArgs {
   std::string condition_column = "condition";
   std::string item_column = "item";
   std::string response_column = "response";
+  std::string alpha_missing = "pairwise";
   bool keep_unfinished = false;
   bool keep_previews = false;
   // Shared report settings.
@@ -254,6 +255,7 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
     l.load.item_column = a.item_column;
     l.load.response_column = a.response_column;
     l.load.keep_unfinished = a.keep_unfinished;
+    l.alpha_missing = stats::parse_alpha_missing(a.alpha_missing);
     l.load.keep_previews = a.keep_previews;
     for (const auto& c : a.composites) l.composites.push_back(report::parse_composite(c));
     l.reference = a.likert_reference;
@@ -365,6 +367,10 @@ void add_analyze_command(CLI::App& app) {
       ->group(likert);
   cmd->add_option("--response-column", args->response_column,
                   "Questionnaire, long layout: response column")
+      ->capture_default_str()
+      ->group(likert);
+  cmd->add_option("--alpha-missing", args->alpha_missing,
+                  "Cronbach's alpha with missing answers: pairwise (psych's default) or complete")
       ->capture_default_str()
       ->group(likert);
   cmd->add_flag("--keep-unfinished", args->keep_unfinished,

@@ -36,6 +36,7 @@ struct LikertArgs {
   std::string condition;
   std::string compare;
   bool paper = false;
+  std::string alpha_missing = "pairwise";
   bool keep_unfinished = false;
   bool keep_previews = false;
   std::string summary;
@@ -73,6 +74,7 @@ void run(const LikertArgs& args) {
   s.load.response_column = args.response_column;
   s.load.reverse = split_lists(args.reverse);
   s.load.keep_unfinished = args.keep_unfinished;
+  s.alpha_missing = stats::parse_alpha_missing(args.alpha_missing);
   s.load.keep_previews = args.keep_previews;
   for (const auto& c : args.composites) s.composites.push_back(report::parse_composite(c));
   s.reference = args.reference;
@@ -157,6 +159,10 @@ void add_likert_command(CLI::App& app) {
   cmd->add_option("--condition", args->condition, "Only this condition (default: each condition)");
   cmd->add_option("--compare", args->compare,
                   "Two conditions A,B: Mann-Whitney U (primary) and Welch's t-test");
+  cmd->add_option("--alpha-missing", args->alpha_missing,
+                  "Cronbach's alpha with missing answers: pairwise (psych::alpha's default) or "
+                  "complete (complete cases)")
+      ->capture_default_str();
   cmd->add_flag("--keep-unfinished", args->keep_unfinished,
                 "Survey exports: keep responses with Finished = False or Progress < 100 "
                 "(excluded by default, and named in the note)");

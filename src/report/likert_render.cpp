@@ -243,7 +243,10 @@ TextTable distribution_table(const LikertAnalysis& a) {
 
 TextTable reliability_table(const LikertAnalysis& a) {
   TextTable t;
-  t.caption = "Reliability of the composite scales (Cronbach's raw alpha, complete cases)";
+  t.caption = a.settings.alpha_missing == stats::AlphaMissing::pairwise
+                  ? "Reliability of the composite scales (Cronbach's raw alpha, pairwise "
+                    "covariances)"
+                  : "Reliability of the composite scales (Cronbach's raw alpha, complete cases)";
   t.latex_label = "tab:likert-reliability";
   t.header = {"Scale", "Respondents", "n", "alpha", "Item dropped", "alpha if dropped"};
   t.right_align = {false, false, true, true, false, true};

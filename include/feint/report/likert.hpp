@@ -20,6 +20,7 @@
 #include "feint/io/questionnaire.hpp"
 #include "feint/report/tidy.hpp"
 #include "feint/report/writers.hpp"
+#include "feint/stats/reliability.hpp"
 #include "feint/stats/htest.hpp"
 #include "feint/stats/p_adjust.hpp"
 
@@ -48,6 +49,9 @@ struct LikertSettings {
   stats::TestOptions test;                                     ///< alternative, conf_level
   double alpha = 0.05;
   stats::PAdjustMethod p_adjust = stats::PAdjustMethod::none;
+  /// Cronbach's alpha with missing answers: psych::alpha's default pairwise covariances, or
+  /// complete cases (--alpha-missing).
+  stats::AlphaMissing alpha_missing = stats::AlphaMissing::pairwise;
   bool apa = false;    ///< fill TidyRow::apa (CSV/JSON column "apa", APA lines under the table)
   bool paper = false;  ///< the paper's analysis: its four items, reference 3.5 (see docs/likert.md)
 };
@@ -69,7 +73,7 @@ struct LikertReliability {
   std::string name;
   std::string group;  ///< "A+B" style label for two-sample mode, condition or "" otherwise
   std::vector<std::string> items;
-  std::size_t n = 0;                              ///< complete cases
+  std::size_t n = 0;  ///< complete cases, or (pairwise) respondents who answered any item
   std::optional<double> alpha;                    ///< raw alpha
   std::vector<std::optional<double>> if_dropped;  ///< alpha with item j dropped
   std::string note;
