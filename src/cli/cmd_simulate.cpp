@@ -316,7 +316,7 @@ void add_selection_command(CLI::App& parent) {
   auto* cmd = parent.add_subcommand(
       "selection",
       "Simulate runs of a strategy selection algorithm and report entropy, repetition, conditional "
-      "entropy and least-seen-guesser accuracy (selection.md; docs/simulation.md).");
+      "entropy and least-seen-guesser accuracy (docs/selection.md, docs/simulation.md).");
   cmd->add_option("--algorithm,-a", opts->algorithm,
                   "random, fixed-block, fixed-balanced or adaptive")
       ->capture_default_str();
