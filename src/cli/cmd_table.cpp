@@ -62,6 +62,8 @@ void run_table(const TableArgs& a) {
   for (const auto& m : o.metrics) so.metrics.push_back(m.column);
   const io::ScoresTable scores = io::load_scores(a.input, so);
   const report::Table1 table = report::build_table1(scores, o);
+  // The scores' sidecar (read for the note) is an input too.
+  io::refuse_overwriting_inputs({table.provenance.sidecar_path}, {r.output});
   write_report(r.output, report::render_table1(table, r.format, r.presentation));
 }
 

@@ -75,6 +75,12 @@ TEST(InputsAreSacred, TableRefusesToWriteOverItsInputByAnyName) {
     EXPECT_EQ(read_text(input), original) << out;
   }
   EXPECT_TRUE(fs::is_symlink(dir / "link.csv"));
+  // The scores' sidecar, read for the note, is an input too.
+  write_text(dir / "scores.csv.meta.json", "{\"confusion_normalisation\": \"speed\"}\n");
+  const RunResult s = run_feint("table " + q(input) + " --format json -o " +
+                                q(dir / "scores.csv.meta.json"));
+  EXPECT_EQ(s.exit_code, 64) << s.err;
+  EXPECT_EQ(read_text(dir / "scores.csv.meta.json"), "{\"confusion_normalisation\": \"speed\"}\n");
   // Another output name is fine.
   EXPECT_EQ(run_feint("table " + q(input) + " -o " + q(dir / "t.txt")).exit_code, 0);
 }
