@@ -170,15 +170,20 @@ StudyInputs locate_inputs(const AnalyzeArgs& a, const fs::path& study, std::stri
   return in;
 }
 
-// The scores' sidecar records where the scores were written: the staging folder's name until the
-// folder is swapped in. Record the final name instead.
-void record_final_scores_path(const std::string& sidecar, const std::string& staged,
-                              const std::string& final_path) {
+// The scores' sidecar records where the scores (and rejects) were written: in the staging folder
+// until it is swapped in. Record the final folder instead.
+void record_final_paths(const std::string& sidecar, const fs::path& staging,
+                        const std::string& final_folder) {
   std::ifstream in(sidecar, std::ios::binary);
   std::ostringstream ss;
   ss << in.rdbuf();
   std::string text = ss.str();
-  const std::string from = io::json_quote(staged), to = io::json_quote(final_path);
+  const auto unquoted = [](const std::string& s) {
+    const std::string q = io::json_quote(s);
+    return q.substr(1, q.size() - 2);
+  };
+  const std::string from = unquoted((staging / "").string());
+  const std::string to = unquoted((fs::path(final_folder) / "").string());
   for (auto pos = text.find(from); pos != std::string::npos; pos = text.find(from, pos + to.size())) {
     text.replace(pos, from.size(), to);
   }
@@ -211,8 +216,7 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
   const std::string scores_path = out.path("scores.csv");
   const metrics::ScoreSummary scored = metrics::score_to_file(inputs.logs, s, scores_path);
   if (!scored.sidecar_path.empty()) {
-    record_final_scores_path(scored.sidecar_path, scores_path,
-                             (fs::path(a.out) / "scores.csv").string());
+    record_final_paths(scored.sidecar_path, out.staging(), a.out);
   }
 
   // 2. Table 1: one-sample per condition, and A against B when asked.
