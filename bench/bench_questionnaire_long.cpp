@@ -7,6 +7,7 @@
 //
 // Linear loading shows as time and memory growing ~10x per 10x rows. Run the sizes in increasing
 // order (the peak RSS only grows).
+#include <fmt/format.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -16,8 +17,6 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
-
-#include <fmt/format.h>
 
 #include "feint/io/questionnaire.hpp"
 
@@ -49,9 +48,10 @@ int main(int argc, char** argv) {
     const auto q = feint::io::load_questionnaire(path.string());
     const double secs =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    fmt::print("{:>9} rows ({:>6.1f} MB): {} respondents x {} items, {:.3f} s, peak RSS +{:.1f} MB\n",
-               rows, bytes / 1e6, q.respondents(), q.items.size(), secs,
-               (peak_rss_kb() - before) / 1024.0);
+    fmt::print(
+        "{:>9} rows ({:>6.1f} MB): {} respondents x {} items, {:.3f} s, peak RSS +{:.1f} MB\n",
+        rows, bytes / 1e6, q.respondents(), q.items.size(), secs,
+        (peak_rss_kb() - before) / 1024.0);
   }
   std::filesystem::remove(path);
   return 0;

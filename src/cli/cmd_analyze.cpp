@@ -184,7 +184,8 @@ void record_final_paths(const std::string& sidecar, const fs::path& staging,
   };
   const std::string from = unquoted((staging / "").string());
   const std::string to = unquoted((fs::path(final_folder) / "").string());
-  for (auto pos = text.find(from); pos != std::string::npos; pos = text.find(from, pos + to.size())) {
+  for (auto pos = text.find(from); pos != std::string::npos;
+       pos = text.find(from, pos + to.size())) {
     text.replace(pos, from.size(), to);
   }
   io::write_file_atomically(sidecar, text);
@@ -233,7 +234,9 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
   const io::ScoresTable scores = io::load_scores(scores_path, load);
 
   const report::Table1 one_sample = report::build_table1(scores, t);
-  write_all("table1", [&](report::OutputFormat f) { return report::render_table1(one_sample, f, report_opts.presentation); });
+  write_all("table1", [&](report::OutputFormat f) {
+    return report::render_table1(one_sample, f, report_opts.presentation);
+  });
   if (!a.compare.empty()) {
     report::Table1Options c = t;
     c.compare = parse_compare(a.compare);
@@ -241,7 +244,9 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
     c.paired = a.paired;
     const report::Table1 two_sample = report::build_table1(scores, c);
     write_all("table1_compare",
-              [&](report::OutputFormat f) { return report::render_table1(two_sample, f, report_opts.presentation); });
+              [&](report::OutputFormat f) {
+                return report::render_table1(two_sample, f, report_opts.presentation);
+              });
   }
 
   // 3. The questionnaire, when the study has one.
@@ -268,14 +273,18 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
     l.p_adjust = report_opts.p_adjust;
     l.apa = report_opts.apa;
     const report::LikertAnalysis likert = report::analyze_likert_file(inputs.questionnaire, l);
-    write_all("likert", [&](report::OutputFormat f) { return report::render_likert(likert, f, report_opts.presentation); });
+    write_all("likert", [&](report::OutputFormat f) {
+      return report::render_likert(likert, f, report_opts.presentation);
+    });
     write_report(out.path("likert_summary.csv"), report::likert_summary_csv(likert));
     if (!a.compare.empty()) {
       report::LikertSettings lc = l;
       lc.compare = parse_compare(a.compare);
       const report::LikertAnalysis between = report::analyze_likert_file(inputs.questionnaire, lc);
       write_all("likert_compare",
-                [&](report::OutputFormat f) { return report::render_likert(between, f, report_opts.presentation); });
+                [&](report::OutputFormat f) {
+                  return report::render_likert(between, f, report_opts.presentation);
+                });
     }
   }
 

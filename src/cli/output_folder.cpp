@@ -1,6 +1,7 @@
 #include "output_folder.hpp"
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -12,8 +13,6 @@
 #include <fstream>
 #include <set>
 #include <sstream>
-
-#include <fmt/format.h>
 
 #include "feint/error.hpp"
 #include "feint/io/number.hpp"
@@ -40,13 +39,25 @@ std::vector<std::string> parse_manifest_files(const std::string& json) {
         if (json[i] == '\\' && i + 1 < json.size()) {
           ++i;
           switch (json[i]) {
-            case 'n': s += '\n'; break;
-            case 't': s += '\t'; break;
-            case 'r': s += '\r'; break;
-            case 'b': s += '\b'; break;
-            case 'f': s += '\f'; break;
-            case 'u': throw InvalidData("\\u escapes are not expected in a file list");
-            default: s += json[i];
+            case 'n':
+              s += '\n';
+              break;
+            case 't':
+              s += '\t';
+              break;
+            case 'r':
+              s += '\r';
+              break;
+            case 'b':
+              s += '\b';
+              break;
+            case 'f':
+              s += '\f';
+              break;
+            case 'u':
+              throw InvalidData("\\u escapes are not expected in a file list");
+            default:
+              s += json[i];
           }
         } else {
           s += json[i];
@@ -126,9 +137,10 @@ void check_replaceable(const fs::path& dir, const std::string& shown) {
     try {
       for (auto& f : detail::parse_manifest_files(ss.str())) ours.insert(std::move(f));
     } catch (const InvalidData& e) {
-      throw UsageError(fmt::format("output folder '{}': its {} is not feint's ({}); choose a new "
-                                   "or empty folder",
-                                   shown, kAnalyzeManifest, e.what()));
+      throw UsageError(
+          fmt::format("output folder '{}': its {} is not feint's ({}); choose a new "
+                      "or empty folder",
+                      shown, kAnalyzeManifest, e.what()));
     }
     ours.insert(std::string(kAnalyzeManifest));
   } else {
@@ -166,14 +178,16 @@ OutputFolder::OutputFolder(std::string target, const std::vector<std::string>& i
     std::error_code ec;
     const bool folder = fs::is_directory(c, ec);
     if (is_within(c, resolved_)) {
-      throw UsageError(fmt::format("output folder '{}' {} the input '{}': feint never writes over "
-                                   "or mixes into its inputs; choose another folder",
-                                   target_, c == resolved_ ? "is" : "contains", in));
+      throw UsageError(
+          fmt::format("output folder '{}' {} the input '{}': feint never writes over "
+                      "or mixes into its inputs; choose another folder",
+                      target_, c == resolved_ ? "is" : "contains", in));
     }
     if (folder && is_within(resolved_, c)) {
-      throw UsageError(fmt::format("output folder '{}' is inside the input folder '{}': a later "
-                                   "run would read the outputs as inputs; choose another folder",
-                                   target_, in));
+      throw UsageError(
+          fmt::format("output folder '{}' is inside the input folder '{}': a later "
+                      "run would read the outputs as inputs; choose another folder",
+                      target_, in));
     }
   }
   std::error_code ec;
@@ -191,8 +205,8 @@ OutputFolder::OutputFolder(std::string target, const std::vector<std::string>& i
   std::string templ =
       (parent / ("." + resolved_.filename().string() + ".feint-staging-XXXXXX")).string();
   if (::mkdtemp(templ.data()) == nullptr) {
-    throw IoError(fmt::format("cannot create a folder beside '{}': {}", target_,
-                              std::strerror(errno)));
+    throw IoError(
+        fmt::format("cannot create a folder beside '{}': {}", target_, std::strerror(errno)));
   }
   staging_ = templ;
 }

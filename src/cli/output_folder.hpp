@@ -46,8 +46,8 @@ class OutputFolder {
   std::vector<std::string> commit(std::string_view tool_version);
 
  private:
-  std::string target_;                 // as given
-  std::filesystem::path resolved_;     // the folder actually replaced (a symbolic link followed)
+  std::string target_;              // as given
+  std::filesystem::path resolved_;  // the folder actually replaced (a symbolic link followed)
   std::filesystem::path staging_;
   bool committed_ = false;
 };

@@ -1,10 +1,9 @@
 #include "feint/io/file_identity.hpp"
 
+#include <fmt/format.h>
 #include <sys/stat.h>
 
 #include <filesystem>
-
-#include <fmt/format.h>
 
 #include "feint/error.hpp"
 
@@ -12,7 +11,8 @@ namespace feint::io {
 
 bool same_file(const std::string& a, const std::string& b) {
   if (a.empty() || b.empty() || a == "-" || b == "-") return false;
-  struct stat sa {}, sb {};
+  struct stat sa {
+  }, sb{};
   const bool ea = ::stat(a.c_str(), &sa) == 0, eb = ::stat(b.c_str(), &sb) == 0;
   // A device or FIFO (/dev/stdout, a pipe) is written in place and destroys nothing; two names of
   // the same terminal are not "the same file" in the sense that matters here.
@@ -30,9 +30,10 @@ void refuse_overwriting_inputs(const std::vector<std::string>& inputs,
   for (const auto& out : outputs) {
     for (const auto& in : inputs) {
       if (same_file(in, out)) {
-        throw UsageError(fmt::format("the output '{}' is also an input ('{}'): feint never "
-                                     "overwrites its inputs",
-                                     out, in));
+        throw UsageError(
+            fmt::format("the output '{}' is also an input ('{}'): feint never "
+                        "overwrites its inputs",
+                        out, in));
       }
     }
   }

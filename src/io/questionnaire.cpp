@@ -466,8 +466,9 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
     // --items selects items (rows of other items are skipped, unread) and sets their order.
     const auto selected = [&](const std::string& item) {
       if (item_specs.empty()) return true;
-      return std::any_of(item_specs.begin(), item_specs.end(),
-                         [&](const detail::ItemSpec& s) { return detail::iequals(s.source, item); });
+      return std::any_of(
+          item_specs.begin(), item_specs.end(),
+          [&](const detail::ItemSpec& s) { return detail::iequals(s.source, item); });
     };
     // Answers are collected as (respondent, item, value) first and the items x respondents table
     // is built once at the end: memory stays linear in the rows (a table grown row by row is
@@ -538,7 +539,9 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
           throw UsageError(fmt::format("--items: no item '{}' in {} (items: {})", spec.source,
                                        file, detail::list_names(q.items)));
         }
-        if (taken[*i]) throw UsageError(fmt::format("--items: item '{}' is named twice", spec.source));
+        if (taken[*i]) {
+          throw UsageError(fmt::format("--items: item '{}' is named twice", spec.source));
+        }
         taken[*i] = true;
         items.push_back(spec.renamed ? spec.name : q.items[*i]);
         item_columns.push_back(spec.renamed ? q.items[*i] : q.item_columns[*i]);

@@ -90,10 +90,10 @@ TEST(AnalyzeQuestionnaire, TheSameOptionsWorkOnTheCommandLineAndKeepUnfinished) 
   const auto study = dir / "study";
   make_logs(study);
   write_text(study / "questionnaire.csv", kExport);
-  const RunResult r = run_feint(
-      "analyze " + q(study) + " -o " + q(dir / "out") +
-      " --id-column PROLIFIC_PID --condition-column grp --items trust=Q5_1,fun=Q5_2"
-      " --labels 'Schlecht=1,Gut=2,Sehr gut=3' --likert-scale 1-3 --keep-unfinished");
+  const RunResult r =
+      run_feint("analyze " + q(study) + " -o " + q(dir / "out") +
+                " --id-column PROLIFIC_PID --condition-column grp --items trust=Q5_1,fun=Q5_2"
+                " --labels 'Schlecht=1,Gut=2,Sehr gut=3' --likert-scale 1-3 --keep-unfinished");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string summary = read_text(dir / "out" / "likert_summary.csv");
   EXPECT_NE(summary.find("B,trust,item,3,"), std::string::npos) << summary;  // R_4 kept

@@ -81,9 +81,9 @@ TEST(CliUsage, AConditionTheDataDoNotHaveExits64InEveryCommand) {
   EXPECT_NE(r.err.find("fixed"), std::string::npos) << r.err;
   r = run_feint("likert " + q(kWideLikert) + " --condition fixed");
   EXPECT_EQ(r.exit_code, 64) << r.err;
-  ASSERT_EQ(run_feint("simulate study -o " + q(dir / "s") + " --participants 2 --iterations 2")
-                .exit_code,
-            0);
+  ASSERT_EQ(
+      run_feint("simulate study -o " + q(dir / "s") + " --participants 2 --iterations 2").exit_code,
+      0);
   r = run_feint("analyze " + q(dir / "s") + " -o " + q(dir / "out") + " --compare adaptive,fixed");
   EXPECT_EQ(r.exit_code, 64) << r.err;
   EXPECT_FALSE(fs::exists(dir / "out"));

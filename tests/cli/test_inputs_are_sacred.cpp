@@ -2,7 +2,6 @@
 // output is given (the same path, a symbolic link, a hard link), and `feint analyze` replaces its
 // output folder as one unit, never mixing runs and never touching the study.
 #include <gtest/gtest.h>
-
 #include <unistd.h>
 
 #include <filesystem>
@@ -77,8 +76,8 @@ TEST(InputsAreSacred, TableRefusesToWriteOverItsInputByAnyName) {
   EXPECT_TRUE(fs::is_symlink(dir / "link.csv"));
   // The scores' sidecar, read for the note, is an input too.
   write_text(dir / "scores.csv.meta.json", "{\"confusion_normalisation\": \"speed\"}\n");
-  const RunResult s = run_feint("table " + q(input) + " --format json -o " +
-                                q(dir / "scores.csv.meta.json"));
+  const RunResult s =
+      run_feint("table " + q(input) + " --format json -o " + q(dir / "scores.csv.meta.json"));
   EXPECT_EQ(s.exit_code, 64) << s.err;
   EXPECT_EQ(read_text(dir / "scores.csv.meta.json"), "{\"confusion_normalisation\": \"speed\"}\n");
   // Another output name is fine.
@@ -159,9 +158,10 @@ TEST(InputsAreSacred, AnalyzeThatFailsLeavesTheOutputFolderAsItWas) {
   const std::string likert_before = read_text(out / "likert.txt");
   // The questionnaire is now invalid: scoring and Table 1 would succeed, the questionnaire fails.
   write_text(study / "questionnaire.csv", "participant,condition,trust\nP01,adaptive,99\n");
-  write_text(study / "logs" / "session2.csv",
-             "participant,condition,iteration,target,t,pad,pad_speed\nP99,adaptive,1,left,0,0.5,0.5\n"
-             "P99,adaptive,1,left,1,0.2,0.5\n");
+  write_text(
+      study / "logs" / "session2.csv",
+      "participant,condition,iteration,target,t,pad,pad_speed\nP99,adaptive,1,left,0,0.5,0.5\n"
+      "P99,adaptive,1,left,1,0.2,0.5\n");
   const RunResult r = run_feint("analyze " + q(study) + " -o " + q(out));
   EXPECT_EQ(r.exit_code, 65) << r.err;
   EXPECT_EQ(read_text(out / "table1.txt"), table_before);

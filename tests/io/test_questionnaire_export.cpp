@@ -86,7 +86,8 @@ TEST(QualtricsExport, PreviewsTestsSpamAndUnfinishedResponsesAreNotParticipants)
   EXPECT_EQ(q.excluded[2].id, "R_spam");
   EXPECT_EQ(q.excluded[3].reason, "Survey Test");
   EXPECT_EQ(q.rows_read, 7u);
-  EXPECT_NE(feint::io::describe_exclusions(q).find("4 responses of the survey export excluded"), std::string::npos)
+  EXPECT_NE(feint::io::describe_exclusions(q).find("4 responses of the survey export excluded"),
+            std::string::npos)
       << feint::io::describe_exclusions(q);
 }
 
@@ -107,8 +108,9 @@ TEST(QualtricsExport, OptionsKeepUnfinishedResponsesAndPreviews) {
 
 TEST(QualtricsExport, NumericStatusCodesAndFinishedAsZeroOne) {
   // Qualtrics' "numeric values" export: Status 1 = preview, 2 = test, 8 = spam; Finished 1/0.
-  TempCsv f(qualtrics("d,d,0,100,1,1,R_1,a,5,6\nd,d,1,100,1,1,R_p,a,5,6\nd,d,0,99,1,0,R_u,a,5,\n"
-                      "d,d,4,100,1,1,R_imported,b,2,3\nd,d,8,100,1,1,R_s,b,1,1\n"));
+  TempCsv f(
+      qualtrics("d,d,0,100,1,1,R_1,a,5,6\nd,d,1,100,1,1,R_p,a,5,6\nd,d,0,99,1,0,R_u,a,5,\n"
+                "d,d,4,100,1,1,R_imported,b,2,3\nd,d,8,100,1,1,R_s,b,1,1\n"));
   QuestionnaireOptions o;
   o.condition_column = "cond";
   const Questionnaire q = load_questionnaire(f.path(), o);
@@ -128,18 +130,20 @@ TEST(QualtricsExport, ItemsAreRenamedByNameEqualsColumn) {
   ASSERT_EQ(q.respondents(), 3u);
   EXPECT_EQ(q.responses[0][0], 5);
   EXPECT_EQ(q.responses[1][0], 8 - 6);  // reversed on 1-7
-  EXPECT_THROW(load_questionnaire(f.path(), [&] {
-                 auto b = o;
-                 b.items = {"trust=Q9"};
-                 return b;
-               }()),
+  EXPECT_THROW(load_questionnaire(f.path(),
+                                  [&] {
+                                    auto b = o;
+                                    b.items = {"trust=Q9"};
+                                    return b;
+                                  }()),
                UsageError);
-  EXPECT_THROW(load_questionnaire(f.path(), [&] {
-                 auto b = o;
-                 b.items = {"x=Q5_1", "x=Q5_2"};
-                 b.reverse.clear();
-                 return b;
-               }()),
+  EXPECT_THROW(load_questionnaire(f.path(),
+                                  [&] {
+                                    auto b = o;
+                                    b.items = {"x=Q5_1", "x=Q5_2"};
+                                    b.reverse.clear();
+                                    return b;
+                                  }()),
                UsageError);
 }
 
@@ -158,8 +162,8 @@ TEST(LongLayout, AValidLongFileOf20000RowsLoadsInMemoryLinearInItsRows) {
   std::ostringstream s;
   s << "participant,condition,item,response\n";
   for (int p = 0; p < 2000; ++p) {
-    for (int i = 0; i < 10; ++i) s << "P" << p << "," << (p % 2 ? "a" : "b") << ",item" << i << ","
-                                   << (p + i) % 7 + 1 << "\n";
+    for (int i = 0; i < 10; ++i)
+      s << "P" << p << "," << (p % 2 ? "a" : "b") << ",item" << i << "," << (p + i) % 7 + 1 << "\n";
   }
   TempCsv f(s.str());
   const long before = peak_rss_kb();
@@ -177,7 +181,8 @@ TEST(LongLayout, AllDifferentItemsAreRefusedWithoutARowsTimesRowsMatrix) {
   // memory.
   std::ostringstream s;
   s << "participant,item,response\n";
-  for (int r = 0; r < 20000; ++r) s << "P" << r << ",free text answer " << r << "," << r % 7 + 1 << "\n";
+  for (int r = 0; r < 20000; ++r)
+    s << "P" << r << ",free text answer " << r << "," << r % 7 + 1 << "\n";
   TempCsv f(s.str());
   const long before = peak_rss_kb();
   try {

@@ -68,7 +68,8 @@ TEST(CronbachAlphaMissing, CompleteCasesMatchPsychAlphaOfNaOmit) {
 
 TEST(CronbachAlphaMissing, PairwiseNeedsTwoJointAnswersPerPair) {
   const double na = std::nan("");
-  const std::vector<std::vector<double>> items{{1, 2, 3, na, na}, {na, na, 2, 4, 5}, {1, 2, 3, 4, 5}};
+  const std::vector<std::vector<double>> items{
+      {1, 2, 3, na, na}, {na, na, 2, 4, 5}, {1, 2, 3, 4, 5}};
   const auto a = st::cronbach_alpha(items);
   EXPECT_FALSE(a.raw_alpha.has_value());
   EXPECT_NE(a.note.find("items 1 and 2 were answered together by 1"), std::string::npos) << a.note;

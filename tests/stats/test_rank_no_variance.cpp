@@ -27,10 +27,10 @@ st::TestOptions with(st::Alternative alt) {
 
 TEST(RankTestsWithoutVariance, OneSampleAllZeroDifferencesGiveWhatRGives) {
   const std::vector<double> x{4, 4, 4, 4};
-  for (const std::optional<bool> exact : {std::optional<bool>{}, std::optional<bool>{true},
-                                          std::optional<bool>{false}}) {
-    for (const auto alt : {st::Alternative::two_sided, st::Alternative::less,
-                           st::Alternative::greater}) {
+  for (const std::optional<bool> exact :
+       {std::optional<bool>{}, std::optional<bool>{true}, std::optional<bool>{false}}) {
+    for (const auto alt :
+         {st::Alternative::two_sided, st::Alternative::less, st::Alternative::greater}) {
       for (const bool correct : {true, false}) {
         SCOPED_TRACE(::testing::Message() << "alt " << static_cast<int>(alt) << " correct "
                                           << correct << " exact " << exact.value_or(false));
@@ -56,10 +56,10 @@ TEST(RankTestsWithoutVariance, OneSampleAllZeroDifferencesGiveWhatRGives) {
 
 TEST(RankTestsWithoutVariance, TwoSampleAllTiedGiveWhatRGives) {
   const std::vector<double> x{3, 3, 3}, y{3, 3, 3, 3};
-  for (const std::optional<bool> exact : {std::optional<bool>{}, std::optional<bool>{true},
-                                          std::optional<bool>{false}}) {
-    for (const auto alt : {st::Alternative::two_sided, st::Alternative::less,
-                           st::Alternative::greater}) {
+  for (const std::optional<bool> exact :
+       {std::optional<bool>{}, std::optional<bool>{true}, std::optional<bool>{false}}) {
+    for (const auto alt :
+         {st::Alternative::two_sided, st::Alternative::less, st::Alternative::greater}) {
       for (const bool correct : {true, false}) {
         SCOPED_TRACE(::testing::Message() << "alt " << static_cast<int>(alt) << " correct "
                                           << correct << " exact " << exact.value_or(false));

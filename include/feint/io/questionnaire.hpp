@@ -40,8 +40,9 @@ struct QuestionnaireOptions {
   std::string response_column = "response";    ///< long layout
   /// The items to use, in this order (wide: columns; long: values of the item column, rows of other
   /// items skipped). `name=Q5_1` renames: column (or long-layout item) Q5_1 becomes item `name`
-  /// (--reverse and composites then use the new name). Empty = every item; in the wide layout every column that is not the id,
-  /// the condition, or a known survey-platform metadata column (Qualtrics, Google Forms).
+  /// (--reverse and composites then use the new name). Empty = every item; in the wide layout
+  /// every column that is not the id, the condition, or a known survey-platform metadata column
+  /// (Qualtrics, Google Forms).
   std::vector<std::string> items;
   /// Label map for text answers. Empty = the built-in agree/disagree map when the scale has 5 or 7
   /// points (and no text answers accepted otherwise).
