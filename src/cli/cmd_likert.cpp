@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "feint/error.hpp"
 #include "feint/io/csv.hpp"
+#include "feint/io/file_identity.hpp"
 #include "feint/io/number.hpp"
 #include "feint/io/questionnaire.hpp"
 #include "feint/report/likert.hpp"
@@ -35,6 +36,9 @@ struct LikertArgs {
   std::string condition;
   std::string compare;
   bool paper = false;
+  std::string alpha_missing = "pairwise";
+  bool keep_unfinished = false;
+  bool keep_previews = false;
   std::string summary;
   ReportOptions report;
 };
@@ -53,6 +57,10 @@ std::vector<std::string> split_lists(const std::vector<std::string>& values) {
 
 void run(const LikertArgs& args) {
   const ResolvedReportOptions r = resolve_report_options(args.report);
+  io::refuse_overwriting_inputs({args.file}, {r.output, args.summary});
+  if (!args.summary.empty() && io::same_file(args.summary, r.output)) {
+    throw UsageError(fmt::format("--summary '{}' is the output file itself", args.summary));
+  }
   report::LikertSettings s;
   s.load.layout = io::parse_questionnaire_layout(args.layout);
   const auto [lo, hi] = io::parse_scale(args.scale);
@@ -65,6 +73,9 @@ void run(const LikertArgs& args) {
   s.load.item_column = args.item_column;
   s.load.response_column = args.response_column;
   s.load.reverse = split_lists(args.reverse);
+  s.load.keep_unfinished = args.keep_unfinished;
+  s.alpha_missing = stats::parse_alpha_missing(args.alpha_missing);
+  s.load.keep_previews = args.keep_previews;
   for (const auto& c : args.composites) s.composites.push_back(report::parse_composite(c));
   s.reference = args.reference;
   s.condition = args.condition;
@@ -85,7 +96,7 @@ void run(const LikertArgs& args) {
   s.apa = r.apa;
 
   const auto analysis = report::analyze_likert_file(args.file, s);
-  const std::string text = report::render_likert(analysis, r.format);
+  const std::string text = report::render_likert(analysis, r.format, r.presentation);
   if (!args.summary.empty()) {
     if (args.summary == "-" && r.output == "-") {
       throw UsageError("--summary - and -o - would both write to standard output");
@@ -117,8 +128,8 @@ void add_likert_command(CLI::App& app) {
                   "Map text answers to scale points: \"Strongly disagree=1,Disagree=2,...\" "
                   "(default: built-in agree/disagree map for 5- and 7-point scales)");
   cmd->add_option("--items", args->items,
-                  "Items to analyse, in order (wide: columns; long: item names); comma-separated, "
-                  "repeatable")
+                  "Items to analyse, in order (wide: columns; long: item names); NAME=COLUMN "
+                  "renames (trust=Q5_1); comma-separated, repeatable")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
       ->allow_extra_args(false);
@@ -148,13 +159,23 @@ void add_likert_command(CLI::App& app) {
   cmd->add_option("--condition", args->condition, "Only this condition (default: each condition)");
   cmd->add_option("--compare", args->compare,
                   "Two conditions A,B: Mann-Whitney U (primary) and Welch's t-test");
+  cmd->add_option("--alpha-missing", args->alpha_missing,
+                  "Cronbach's alpha with missing answers: pairwise (psych::alpha's default) or "
+                  "complete (complete cases)")
+      ->capture_default_str();
+  cmd->add_flag("--keep-unfinished", args->keep_unfinished,
+                "Survey exports: keep responses with Finished = False or Progress < 100 "
+                "(excluded by default, and named in the note)");
+  cmd->add_flag("--keep-previews", args->keep_previews,
+                "Survey exports: keep Status = Survey Preview, Survey Test, Spam (excluded by "
+                "default, and named in the note)");
   cmd->add_flag("--paper", args->paper,
                 "The paper's analysis: items entertainment, deception, intelligence, trust against "
                 "3.5 (t-test column; Wilcoxon primary)");
   cmd->add_option(
       "--summary", args->summary,
       "Also write per-item descriptives and counts per scale point as CSV to this file");
-  add_report_options(*cmd, args->report);
+  add_report_options(*cmd, args->report, {.tests = true, .presentation = true});
   cmd->callback([args] { run(*args); });
 }
 

@@ -316,7 +316,7 @@ void add_selection_command(CLI::App& parent) {
   auto* cmd = parent.add_subcommand(
       "selection",
       "Simulate runs of a strategy selection algorithm and report entropy, repetition, conditional "
-      "entropy and least-seen-guesser accuracy (selection.md; docs/simulation.md).");
+      "entropy and least-seen-guesser accuracy (docs/selection.md, docs/simulation.md).");
   cmd->add_option("--algorithm,-a", opts->algorithm,
                   "random, fixed-block, fixed-balanced or adaptive")
       ->capture_default_str();
@@ -401,7 +401,8 @@ void add_study_command(CLI::App& parent) {
       "study",
       "Simulate a user study (adaptive vs random selection) and write pad-trace logs "
       "(DIR/logs/P*.csv.gz) and a Likert questionnaire (DIR/questionnaire.csv); docs/simulation.md.");
-  cmd->add_option("--out", opts->out, "output directory (created if missing)")->required();
+  cmd->add_option("-o,--output,--out", opts->out, "output directory (created if missing)")
+      ->required();
   cmd->add_option("--participants,-p", opts->participants, "participants per condition")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();

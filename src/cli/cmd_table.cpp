@@ -9,6 +9,7 @@
 #include "commands.hpp"
 #include "feint/error.hpp"
 #include "feint/io/csv.hpp"
+#include "feint/io/file_identity.hpp"
 #include "feint/io/number.hpp"
 #include "feint/io/scores.hpp"
 #include "feint/report/table1.hpp"
@@ -35,6 +36,7 @@ struct TableArgs {
 
 void run_table(const TableArgs& a) {
   const ResolvedReportOptions r = resolve_report_options(a.report);
+  io::refuse_overwriting_inputs({a.input}, {r.output});
   report::Table1Options o;
   o.metrics = parse_metric_specs(a.metrics);
   o.condition = a.condition;
@@ -60,7 +62,9 @@ void run_table(const TableArgs& a) {
   for (const auto& m : o.metrics) so.metrics.push_back(m.column);
   const io::ScoresTable scores = io::load_scores(a.input, so);
   const report::Table1 table = report::build_table1(scores, o);
-  write_report(r.output, report::render_table1(table, r.format));
+  // The scores' sidecar (read for the note) is an input too.
+  io::refuse_overwriting_inputs({table.provenance.sidecar_path}, {r.output});
+  write_report(r.output, report::render_table1(table, r.format, r.presentation));
 }
 
 }  // namespace
@@ -96,7 +100,7 @@ void add_table_command(CLI::App& app) {
   cmd->add_option("--condition-column", args->condition_column,
                   "Name of the (optional) condition column")
       ->capture_default_str();
-  add_report_options(*cmd, args->report);
+  add_report_options(*cmd, args->report, {.tests = true, .presentation = true});
   cmd->callback([args] { run_table(*args); });
 }
 

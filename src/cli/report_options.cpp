@@ -12,6 +12,21 @@
 
 namespace feint::cli {
 
+void add_presentation_options(CLI::App& cmd, ReportOptions& options, const std::string& group) {
+  auto* label = cmd.add_option("--label", options.label,
+                               "LaTeX \\label of the table (default: unique per table, e.g. "
+                               "tab:feint-table1-adaptive-vs-random)");
+  auto* caption =
+      cmd.add_option("--caption", options.caption, "Caption of the table (default: describes it)");
+  auto* wide = cmd.add_flag("--latex-wide", options.latex_wide,
+                            "LaTeX table* (spans both columns of a two-column paper)");
+  if (!group.empty()) {
+    label->group(group);
+    caption->group(group);
+    wide->group(group);
+  }
+}
+
 void add_report_options(CLI::App& cmd, ReportOptions& options, ReportOptionSet set) {
   cmd.add_option("--format", options.format,
                  "Output format: text (aligned table), markdown, latex (booktabs fragment), csv or "
@@ -20,6 +35,7 @@ void add_report_options(CLI::App& cmd, ReportOptions& options, ReportOptionSet s
   cmd.add_option("-o,--output", options.output,
                  "Output file, written atomically (temporary file + rename); - = standard output")
       ->capture_default_str();
+  if (set.presentation) add_presentation_options(cmd, options);
   if (!set.tests) return;
   cmd.add_flag("--apa", options.apa,
                "Add an APA-style string per test, e.g. 't(29) = 2.93, p = .007, d = 0.53' "
@@ -34,7 +50,7 @@ void add_report_options(CLI::App& cmd, ReportOptions& options, ReportOptionSet s
       ->capture_default_str();
   cmd.add_option("--p-adjust", options.p_adjust,
                  "Multiple-comparison adjustment within a family (R's p.adjust): none, bonferroni, "
-                 "holm, hochberg, hommel, BH, BY")
+                 "holm, hochberg, hommel, BH (alias fdr), BY; any case")
       ->capture_default_str();
 }
 
@@ -58,14 +74,28 @@ ResolvedReportOptions resolve_report_options(const ReportOptions& o) {
     throw UsageError(
         fmt::format("--alternative '{}': expected two.sided, greater or less", o.alternative));
   }
-  try {
-    r.p_adjust = stats::parse_p_adjust(o.p_adjust);
-  } catch (const UsageError&) {
-    throw UsageError(
-        fmt::format("--p-adjust '{}': expected none, bonferroni, holm, hochberg, hommel, BH or BY",
-                    o.p_adjust));
-  }
+  r.p_adjust = parse_p_adjust_option(o.p_adjust);
+  if (!o.label.empty()) report::validate_latex_label(o.label);
+  r.presentation.label = o.label;
+  r.presentation.caption = o.caption;
+  r.presentation.wide = o.latex_wide;
   return r;
+}
+
+stats::PAdjustMethod parse_p_adjust_option(std::string_view text) {
+  // R's p.adjust.methods, in any case (R itself is case-sensitive, but nobody means anything else
+  // by "Holm" or "bh"); "fdr" is R's alias of BH.
+  const std::string name = io::to_lower(io::trim(text));
+  if (name == "none") return stats::PAdjustMethod::none;
+  if (name == "bonferroni") return stats::PAdjustMethod::bonferroni;
+  if (name == "holm") return stats::PAdjustMethod::holm;
+  if (name == "hochberg") return stats::PAdjustMethod::hochberg;
+  if (name == "hommel") return stats::PAdjustMethod::hommel;
+  if (name == "bh" || name == "fdr") return stats::PAdjustMethod::BH;
+  if (name == "by") return stats::PAdjustMethod::BY;
+  throw UsageError(fmt::format("--p-adjust '{}': expected none, bonferroni, holm, hochberg, "
+                               "hommel, BH (alias fdr) or BY, in any case",
+                               text));
 }
 
 void write_report(const std::string& path, std::string_view content) {

@@ -33,17 +33,24 @@ struct ReportOptions {
   std::string alternative = "two.sided";
   double conf_level = 0.95;
   std::string p_adjust = "none";
+  std::string label;
+  std::string caption;
+  bool latex_wide = false;
 };
 
 /// Which of the shared options a command offers (describe has no tests: only format and output).
 struct ReportOptionSet {
   bool tests = true;  ///< --apa --alpha --alternative --conf-level --p-adjust
+  bool presentation = false;  ///< --label --caption --latex-wide
 };
 
 /// Registers `--format`, `-o/--output` and (unless `set.tests` is false) `--apa`, `--alpha`,
 /// `--alternative`, `--conf-level`, `--p-adjust` on `cmd`, bound to `options` (which must outlive
 /// the parse).
 void add_report_options(CLI::App& cmd, ReportOptions& options, ReportOptionSet set = {});
+
+/// Registers `--label`, `--caption`, `--latex-wide` (in CLI11 group `group` when not empty).
+void add_presentation_options(CLI::App& cmd, ReportOptions& options, const std::string& group = "");
 
 /// The validated options.
 struct ResolvedReportOptions {
@@ -53,11 +60,16 @@ struct ResolvedReportOptions {
   double alpha = 0.05;
   stats::TestOptions test;
   stats::PAdjustMethod p_adjust = stats::PAdjustMethod::none;
+  report::TablePresentation presentation;
 };
 
 /// Validates: format name, alpha and conf-level in (0, 1), alternative, p-adjust method. Throws
 /// UsageError (exit 64) naming the option and the accepted values.
 ResolvedReportOptions resolve_report_options(const ReportOptions& options);
+
+/// Parses a `--p-adjust` value: R's method names in any case, and R's alias "fdr" for BH.
+/// Throws UsageError naming the accepted values.
+stats::PAdjustMethod parse_p_adjust_option(std::string_view text);
 
 /// Parses `--compare A,B` (the two conditions, trimmed). Throws UsageError otherwise.
 std::pair<std::string, std::string> parse_compare(const std::string& text);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <unordered_map>
 #include <utility>
 
 #include <fmt/format.h>
@@ -150,6 +151,51 @@ class Respondents {
   std::vector<std::uint64_t> first_line_;
 };
 
+/// `--items` entries: item name and the column (wide) or item value (long) it comes from.
+struct ItemSpec {
+  std::string name;
+  std::string source;
+  bool renamed = false;  // NAME=SOURCE; otherwise the item keeps the file's spelling
+};
+
+std::vector<ItemSpec> parse_item_specs(const std::vector<std::string>& items) {
+  std::vector<ItemSpec> specs;
+  for (const auto& entry : items) {
+    ItemSpec s;
+    const auto eq = entry.find('=');
+    if (eq == std::string::npos) {
+      s.name = s.source = std::string(trim(entry));
+    } else {
+      s.name = std::string(trim(std::string_view(entry).substr(0, eq)));
+      s.source = std::string(trim(std::string_view(entry).substr(eq + 1)));
+      s.renamed = true;
+    }
+    if (s.name.empty() || s.source.empty()) {
+      throw UsageError(fmt::format("--items '{}': expected ITEM or NAME=COLUMN", entry));
+    }
+    for (const auto& prev : specs) {
+      if (iequals(prev.name, s.name)) {
+        throw UsageError(fmt::format("--items: item '{}' is named twice", s.name));
+      }
+    }
+    specs.push_back(std::move(s));
+  }
+  return specs;
+}
+
+/// Qualtrics' Status values that are not a participant's response, as labels and numeric codes.
+std::optional<std::string> non_response_status(std::string_view raw) {
+  static constexpr std::array<std::pair<std::string_view, int>, 6> kStatus = {{
+      {"Survey Preview", 1}, {"Survey Test", 2}, {"Spam", 8}, {"Preview Spam", 9},
+      {"Imported Spam", 12}, {"Offline Preview", 17}}};
+  const std::string_view t = trim(raw);
+  const auto code = parse_integer(t);
+  for (const auto& [label, c] : kStatus) {
+    if (iequals(t, label) || (code && *code == c)) return std::string(label);
+  }
+  return std::nullopt;
+}
+
 std::string who(const Questionnaire& q, const std::string& participant,
                 const std::string& condition) {
   if (q.has_condition) return fmt::format("participant {}, condition {}", participant, condition);
@@ -270,6 +316,29 @@ std::vector<LabelEntry> builtin_agree_labels(int scale_min, int scale_max) {
   return {};
 }
 
+std::string describe_exclusions(const Questionnaire& q) {
+  if (q.excluded.empty()) return {};
+  std::size_t unfinished = 0;
+  std::string list;
+  for (std::size_t i = 0; i < q.excluded.size(); ++i) {
+    const auto& e = q.excluded[i];
+    if (e.reason.rfind("unfinished", 0) == 0) ++unfinished;
+    if (i < 12) {
+      list += fmt::format("{}{} ({})", i == 0 ? "" : ", ", e.id, e.reason);
+    } else if (i == 12) {
+      list += fmt::format(" and {} more", q.excluded.size() - 12);
+    }
+  }
+  const std::size_t previews = q.excluded.size() - unfinished;
+  std::string keep;
+  if (previews > 0) keep += "--keep-previews";
+  if (unfinished > 0) keep += std::string(keep.empty() ? "" : " / ") + "--keep-unfinished";
+  return fmt::format("{} response{} of the survey export excluded, not counted as participants "
+                     "({} preview/test/spam, {} unfinished): {}; {} keeps them.",
+                     q.excluded.size(), q.excluded.size() == 1 ? "" : "s", previews, unfinished,
+                     list, keep);
+}
+
 Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOptions& options) {
   using detail::Record;
   if (options.scale_min >= options.scale_max ||
@@ -287,7 +356,7 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
   CsvOptions csv;
   csv.delimiter = options.delimiter;
   CsvReader reader(path, csv);
-  const std::string file = path == "-" ? "<stdin>" : path;
+  const std::string file = path == "-" ? "standard input" : path;
   const std::vector<std::string> header = reader.header();
 
   std::vector<Record> records;
@@ -330,6 +399,38 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
   const int item_col = detail::find_column(header, options.item_column);
   const int resp_col = detail::find_column(header, options.response_column);
 
+  // Survey exports: previews, tests, spam and unfinished responses are not participants.
+  const bool survey_export = q.qualtrics || detail::find_column(header, "ResponseId") >= 0;
+  const int status_col = survey_export ? detail::find_column(header, "Status") : -1;
+  const int finished_col = survey_export ? detail::find_column(header, "Finished") : -1;
+  const int progress_col = survey_export ? detail::find_column(header, "Progress") : -1;
+  const auto excluded = [&](const Record& r) {
+    std::optional<std::string> reason;
+    if (status_col >= 0 && !options.keep_previews) {
+      reason = detail::non_response_status(r.fields[static_cast<std::size_t>(status_col)]);
+    }
+    if (!reason && !options.keep_unfinished && (finished_col >= 0 || progress_col >= 0)) {
+      const std::string_view fin =
+          finished_col >= 0 ? trim(r.fields[static_cast<std::size_t>(finished_col)]) : "";
+      const std::string_view prog =
+          progress_col >= 0 ? trim(r.fields[static_cast<std::size_t>(progress_col)]) : "";
+      const auto progress = parse_double(prog);
+      if (detail::iequals(fin, "false") || fin == "0" || (progress && *progress < 100.0)) {
+        std::vector<std::string> parts;
+        if (finished_col >= 0) parts.push_back(fmt::format("Finished {}", fin));
+        if (progress_col >= 0) parts.push_back(fmt::format("Progress {}", prog));
+        reason = fmt::format("unfinished ({})", detail::list_names(parts));
+      }
+    }
+    if (!reason) return false;
+    std::string id = id_col >= 0 ? std::string(trim(r.fields[static_cast<std::size_t>(id_col)]))
+                                 : std::string();
+    if (id.empty()) id = fmt::format("line {}", r.line);
+    q.excluded.push_back({static_cast<std::size_t>(r.line), std::move(id), std::move(*reason)});
+    return true;
+  };
+  const std::vector<detail::ItemSpec> item_specs = detail::parse_item_specs(options.items);
+
   q.layout = options.layout;
   if (q.layout == QuestionnaireLayout::automatic) {
     q.layout = item_col >= 0 && resp_col >= 0 ? QuestionnaireLayout::long_format
@@ -364,15 +465,27 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
     }
     // --items selects items (rows of other items are skipped, unread) and sets their order.
     const auto selected = [&](const std::string& item) {
-      if (options.items.empty()) return true;
-      return std::any_of(options.items.begin(), options.items.end(),
-                         [&](const std::string& s) { return detail::iequals(s, item); });
+      if (item_specs.empty()) return true;
+      return std::any_of(
+          item_specs.begin(), item_specs.end(),
+          [&](const detail::ItemSpec& s) { return detail::iequals(s.source, item); });
     };
+    // Answers are collected as (respondent, item, value) first and the items x respondents table
+    // is built once at the end: memory stays linear in the rows (a table grown row by row is
+    // items x respondents, quadratic when every row brings a new item and a new respondent).
+    struct Answer {
+      std::size_t respondent;
+      std::size_t item;
+      std::optional<int> value;
+    };
+    std::vector<Answer> answers;
+    std::unordered_map<std::string, std::size_t> item_index;
     // (respondent, item) -> line of the answer, to name both places of a duplicate.
     std::map<std::pair<std::size_t, std::size_t>, std::uint64_t> seen;
     for (std::size_t k = first; k < records.size(); ++k) {
       const Record& r = records[k];
       ++q.rows_read;
+      if (excluded(r)) continue;
       const auto [participant, condition] = read_key(r);
       const std::string item(trim(r.fields[static_cast<std::size_t>(item_col)]));
       if (item.empty()) {
@@ -380,13 +493,12 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
                                         header[static_cast<std::size_t>(item_col)], participant));
       }
       if (!selected(item)) continue;
-      std::size_t it = 0;
-      while (it < q.items.size() && q.items[it] != item) ++it;
-      if (it == q.items.size()) {
+      const auto [found, added] = item_index.try_emplace(item, q.items.size());
+      if (added) {
         q.items.push_back(item);
         q.item_columns.push_back(header[static_cast<std::size_t>(resp_col)]);
-        q.responses.emplace_back(q.participants.size());
       }
+      const std::size_t it = found->second;
       const auto [resp, inserted] = respondents.find_or_add(participant, condition, r.line);
       (void)inserted;
       if (const auto prev = seen.find({resp, it}); prev != seen.end()) {
@@ -395,36 +507,56 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
                                 detail::who(q, participant, condition), item, prev->second));
       }
       seen.emplace(std::make_pair(resp, it), r.line);
-      q.responses[it][resp] =
-          parser.parse(r.fields[static_cast<std::size_t>(resp_col)], r.line,
-                       header[static_cast<std::size_t>(resp_col)],
-                       detail::who(q, participant, condition) + ", item " + item);
+      answers.push_back({resp, it,
+                         parser.parse(r.fields[static_cast<std::size_t>(resp_col)], r.line,
+                                      header[static_cast<std::size_t>(resp_col)],
+                                      detail::who(q, participant, condition) + ", item " + item)});
     }
-    if (!options.items.empty()) {
-      // Reorder (and check) the items as --items lists them.
-      Questionnaire sel = q;
-      sel.items.clear();
-      sel.item_columns.clear();
-      sel.responses.clear();
-      for (const auto& name : options.items) {
-        const auto i = q.item_index(name);
+    // A table that is mostly holes is not a questionnaire read right (typically the wrong item
+    // column: free text, timestamps): refuse it rather than allocate items x respondents cells.
+    const std::size_t n_items = q.items.size(), n_resp = q.participants.size();
+    const double cells = static_cast<double>(n_items) * static_cast<double>(n_resp);
+    if (cells > std::max(1048576.0, 64.0 * static_cast<double>(answers.size()))) {
+      throw InvalidData(fmt::format(
+          "{}: {} items and {} respondents but only {} answers (each item answered by {:.1f} "
+          "respondents on average): is the item column right? (--item-column '{}', "
+          "--response-column '{}', --layout)",
+          file, n_items, n_resp, answers.size(),
+          static_cast<double>(answers.size()) / static_cast<double>(n_items),
+          options.item_column, options.response_column));
+    }
+    q.responses.assign(n_items, std::vector<std::optional<int>>(n_resp));
+    for (const auto& ans : answers) q.responses[ans.item][ans.respondent] = ans.value;
+    answers = {};
+    if (!item_specs.empty()) {
+      // Reorder, rename (and check) the items as --items lists them.
+      std::vector<std::string> items, item_columns;
+      std::vector<std::vector<std::optional<int>>> responses;
+      std::vector<bool> taken(n_items, false);
+      for (const auto& spec : item_specs) {
+        const auto i = q.item_index(spec.source);
         if (!i) {
-          throw UsageError(fmt::format("--items: no item '{}' in {} (items: {})", name, file,
-                                       detail::list_names(q.items)));
+          throw UsageError(fmt::format("--items: no item '{}' in {} (items: {})", spec.source,
+                                       file, detail::list_names(q.items)));
         }
-        if (std::find(sel.items.begin(), sel.items.end(), q.items[*i]) != sel.items.end()) {
-          throw UsageError(fmt::format("--items: item '{}' is named twice", name));
+        if (taken[*i]) {
+          throw UsageError(fmt::format("--items: item '{}' is named twice", spec.source));
         }
-        sel.items.push_back(q.items[*i]);
-        sel.item_columns.push_back(q.item_columns[*i]);
-        sel.responses.push_back(q.responses[*i]);
+        taken[*i] = true;
+        items.push_back(spec.renamed ? spec.name : q.items[*i]);
+        item_columns.push_back(spec.renamed ? q.items[*i] : q.item_columns[*i]);
+        responses.push_back(std::move(q.responses[*i]));
       }
-      q = std::move(sel);
+      q.items = std::move(items);
+      q.item_columns = std::move(item_columns);
+      q.responses = std::move(responses);
     }
   } else {
     std::vector<std::size_t> cols;
-    if (!options.items.empty()) {
-      for (const auto& name : options.items) {
+    std::vector<std::string> names;  // item names (renamed by --items NAME=COLUMN)
+    if (!item_specs.empty()) {
+      for (const auto& spec : item_specs) {
+        const std::string& name = spec.source;
         const int c = detail::find_column(header, name);
         if (c < 0) {
           throw UsageError(fmt::format("--items: no column '{}' in {} (columns: {})", name, file,
@@ -437,6 +569,7 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
           throw UsageError(fmt::format("--items: column '{}' is named twice", name));
         }
         cols.push_back(static_cast<std::size_t>(c));
+        names.push_back(spec.renamed ? spec.name : std::string(trim(header[c])));
       }
     } else {
       for (std::size_t c = 0; c < header.size(); ++c) {
@@ -444,26 +577,28 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
         if (detail::is_platform_column(header[c])) continue;
         if (trim(header[c]).empty()) continue;
         cols.push_back(c);
+        names.emplace_back(trim(header[c]));
       }
     }
     if (cols.empty()) {
       throw InvalidData(
           fmt::format("{}: no item columns (columns: {})", file, detail::list_names(header)));
     }
-    for (const auto c : cols) {
+    for (std::size_t j = 0; j < cols.size(); ++j) {
       for (const auto& prev : q.items) {
-        if (detail::iequals(prev, header[c])) {
+        if (detail::iequals(prev, names[j])) {
           throw InvalidData(
               fmt::format("{}: item column '{}' appears twice in the header", file, prev));
         }
       }
-      q.items.emplace_back(trim(header[c]));
-      q.item_columns.push_back(header[c]);
+      q.items.push_back(names[j]);
+      q.item_columns.push_back(header[cols[j]]);
       q.responses.emplace_back();
     }
     for (std::size_t k = first; k < records.size(); ++k) {
       const Record& r = records[k];
       ++q.rows_read;
+      if (excluded(r)) continue;
       const auto [participant, condition] = read_key(r);
       const auto [resp, inserted] = respondents.find_or_add(participant, condition, r.line);
       if (!inserted) {
@@ -480,6 +615,9 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
   }
 
   if (q.participants.empty()) {
+    if (!q.excluded.empty()) {
+      throw InvalidData(fmt::format("{}: no responses: {}", file, describe_exclusions(q)));
+    }
     throw InvalidData(fmt::format("{}: no responses (a header but no data rows)", file));
   }
   q.text_answers_mapped = parser.mapped();

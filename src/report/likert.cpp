@@ -252,18 +252,16 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
       LikertReliability rel;
       rel.name = a.names[n_items + c];
       rel.group = a.two_sample ? b.group1 + "+" + b.group2 : b.group1;
+      // Every respondent, NaN for a missing answer: cronbach_alpha applies the chosen treatment.
       std::vector<std::vector<double>> cols(members[c].size());
       for (const auto r : everyone) {
-        const bool complete = std::all_of(members[c].begin(), members[c].end(), [&](std::size_t i) {
-          return q.responses[i][r].has_value();
-        });
-        if (!complete) continue;
         for (std::size_t j = 0; j < members[c].size(); ++j) {
-          cols[j].push_back(*q.responses[members[c][j]][r]);
+          const auto& v = q.responses[members[c][j]][r];
+          cols[j].push_back(v ? static_cast<double>(*v) : std::nan(""));
         }
       }
       for (const auto i : members[c]) rel.items.push_back(q.items[i]);
-      const auto ca = stats::cronbach_alpha(cols);
+      const auto ca = stats::cronbach_alpha(cols, settings.alpha_missing);
       rel.n = ca.n;
       rel.alpha = ca.raw_alpha;
       rel.if_dropped = ca.if_dropped;
@@ -344,9 +342,9 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
     notes.push_back(fmt::format(
         "Tests against R = {} ({}). Single Likert items are ordinal: the Wilcoxon signed-rank test "
         "(R's wilcox.test(x, mu = R)) is the primary analysis, with the rank-biserial correlation "
-        "r; the one-sample t-test (t.test(x, mu = R)) with Cohen's d is shown beside it because it "
-        "is the paper's analysis.",
-        detail::fmt_number(a.reference), ref_origin));
+        "r; the one-sample t-test (t.test(x, mu = R)) with Cohen's d is shown beside it{}.",
+        detail::fmt_number(a.reference), ref_origin,
+        settings.paper ? " because it is the paper's analysis" : ""));
   }
   if (settings.paper) {
     notes.push_back(
@@ -395,14 +393,19 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
                                 q.scale_min + q.scale_max, detail::join(rev)));
   }
   if (!members.empty()) {
-    notes.push_back(
+    notes.push_back(fmt::format(
         "Composite scores are the mean of their items per respondent; a respondent missing any of "
-        "its items is missing for the composite. Cronbach's alpha: raw alpha as psych::alpha, on "
-        "complete cases.");
+        "its items is missing for the composite. Cronbach's alpha: raw alpha as psych::alpha, {}.",
+        settings.alpha_missing == stats::AlphaMissing::pairwise
+            ? "from pairwise covariances (psych's default use = \"pairwise\": each covariance "
+              "from the respondents who answered both items; n = respondents who answered any "
+              "item; --alpha-missing complete for complete cases)"
+            : "on complete cases (--alpha-missing complete; psych::alpha(na.omit(items)))"));
   }
   if (q.qualtrics) {
     notes.push_back("Qualtrics export: the question-text and ImportId header rows were skipped.");
   }
+  if (!q.excluded.empty()) notes.push_back(io::describe_exclusions(q));
   if (q.text_answers_mapped > 0) {
     notes.push_back(fmt::format("{} text answer{} mapped to scale points by the {} label map.",
                                 q.text_answers_mapped, q.text_answers_mapped == 1 ? "" : "s",

@@ -124,7 +124,9 @@ TextTable main_table(const LikertAnalysis& a) {
   t.groups.push_back({"Descriptives", desc_first, desc_count});
   t.groups.push_back({a.two_sample ? "Mann-Whitney U (primary)" : "Wilcoxon signed-rank (primary)",
                       rank_first, rank_count});
-  t.groups.push_back({a.two_sample ? "Welch t-test" : "One-sample t-test (the paper's analysis)",
+  t.groups.push_back({a.two_sample         ? "Welch t-test"
+                       : a.settings.paper ? "One-sample t-test (the paper's analysis)"
+                                          : "One-sample t-test",
                       t_first, t_count});
 
   const std::size_t per_block = a.names.size() * 2;
@@ -241,7 +243,10 @@ TextTable distribution_table(const LikertAnalysis& a) {
 
 TextTable reliability_table(const LikertAnalysis& a) {
   TextTable t;
-  t.caption = "Reliability of the composite scales (Cronbach's raw alpha, complete cases)";
+  t.caption = a.settings.alpha_missing == stats::AlphaMissing::pairwise
+                  ? "Reliability of the composite scales (Cronbach's raw alpha, pairwise "
+                    "covariances)"
+                  : "Reliability of the composite scales (Cronbach's raw alpha, complete cases)";
   t.latex_label = "tab:likert-reliability";
   t.header = {"Scale", "Respondents", "n", "alpha", "Item dropped", "alpha if dropped"};
   t.right_align = {false, false, true, true, false, true};
@@ -279,7 +284,8 @@ std::vector<std::string> apa_lines(const LikertAnalysis& a) {
 }  // namespace
 }  // namespace detail
 
-std::string render_likert(const LikertAnalysis& a, OutputFormat format) {
+std::string render_likert(const LikertAnalysis& a, OutputFormat format,
+                          const TablePresentation& presentation) {
   if (format == OutputFormat::csv || format == OutputFormat::json) {
     const auto columns = likert_columns(a.settings.apa);
     return format == OutputFormat::csv ? tidy_csv(a.rows, columns) : tidy_json(a.rows, columns);
@@ -288,6 +294,21 @@ std::string render_likert(const LikertAnalysis& a, OutputFormat format) {
   tables.push_back(detail::main_table(a));
   tables.push_back(detail::distribution_table(a));
   if (!a.reliability.empty()) tables.push_back(detail::reliability_table(a));
+  std::string label = presentation.label;
+  if (label.empty()) {
+    label = "tab:feint-likert";
+    if (a.settings.compare) {
+      label += "-" + latex_label_part(a.settings.compare->first) + "-vs-" +
+               latex_label_part(a.settings.compare->second);
+    } else if (!a.settings.condition.empty()) {
+      label += "-" + latex_label_part(a.settings.condition);
+    }
+  }
+  apply_presentation(tables[0], presentation, label);
+  for (std::size_t i = 1; i < tables.size(); ++i) {
+    tables[i].latex_label = label + (i == 1 ? "-responses" : "-reliability");
+    tables[i].latex_wide = presentation.wide;
+  }
   auto& last = tables.back();
   last.notes = a.notes;
   if (a.settings.apa) {

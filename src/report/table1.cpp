@@ -90,6 +90,31 @@ void adjust_family(std::vector<TidyRow>& rows, const std::vector<std::size_t>& f
   for (std::size_t k = 0; k < family.size(); ++k) rows[family[k]].result.p_adjusted = adjusted[k];
 }
 
+// A paired test needs participants who were measured in both conditions. With none (a
+// between-subjects design) every cell would be "not computable": say what is wrong instead.
+void require_pairs(const io::ScoresTable& scores, const std::string& a, const std::string& b) {
+  std::set<std::string> in_a;
+  for (const auto& r : scores.records) {
+    if (r.condition == a) in_a.insert(r.participant);
+  }
+  for (const auto& r : scores.records) {
+    if (r.condition == b && in_a.count(r.participant) != 0) return;
+  }
+  throw UsageError(fmt::format(
+      "{}: --paired: no participant occurs in both conditions {} and {} (a between-subjects "
+      "design); the paired t-test needs the same participants in both. Leave out --paired for "
+      "Welch's t-test of independent groups",
+      scores.path, a, b));
+}
+
+// Notes name files without their folders: a table pasted into a paper must not carry the
+// author's home directory.
+std::string file_name(const std::string& path) {
+  if (path.empty() || path == "-") return "standard input";
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
 }  // namespace
 
 Table1 build_table1(const io::ScoresTable& scores, const Table1Options& options) {
@@ -128,12 +153,14 @@ Table1 build_table1(const io::ScoresTable& scores, const Table1Options& options)
     return s;
   };
   auto require_condition = [&](const std::string& c, std::string_view option) {
+    // The data are valid; the command names a condition they do not have: a usage error (64),
+    // as in feint likert and feint analyze.
     if (!scores.has_condition) {
-      throw InvalidData(fmt::format("{}: {} '{}': the file has no condition column", scores.path,
-                                    option, c));
+      throw UsageError(fmt::format("{}: {} '{}': the file has no condition column", scores.path,
+                                   option, c));
     }
     if (std::find(conditions.begin(), conditions.end(), c) == conditions.end()) {
-      throw InvalidData(fmt::format(
+      throw UsageError(fmt::format(
           "{}: {}: condition '{}' does not occur in column 'condition' (conditions: {})",
           scores.path, option, c, conditions_text()));
     }
@@ -147,6 +174,7 @@ Table1 build_table1(const io::ScoresTable& scores, const Table1Options& options)
     if (a == b) {
       throw UsageError(fmt::format("--compare {},{}: a condition cannot be compared with itself", a, b));
     }
+    if (o.paired) require_pairs(scores, a, b);
     Table1Block blk;
     blk.group1 = a;
     blk.group2 = b;
@@ -368,10 +396,11 @@ std::vector<std::string> table1_note(const Table1& t) {
   if (has_confusion) {
     if (!t.provenance.confusion_normalisation.empty()) {
       notes.push_back(fmt::format("Confusion normalisation: {} (from {}).",
-                                  t.provenance.confusion_normalisation, t.provenance.sidecar_path));
+                                  t.provenance.confusion_normalisation,
+                                  file_name(t.provenance.sidecar_path)));
     } else if (!t.provenance.sidecar_path.empty()) {
       notes.push_back(fmt::format("Confusion normalisation: unknown ({} does not record it).",
-                                  t.provenance.sidecar_path));
+                                  file_name(t.provenance.sidecar_path)));
     } else {
       notes.push_back("Confusion normalisation: unknown (no scores sidecar found beside the input).");
     }
@@ -390,7 +419,7 @@ std::vector<std::string> table1_note(const Table1& t) {
     notes.push_back("Not computable: " + s + ".");
   }
   for (const auto& w : t.warnings) notes.push_back("Warning: " + w);
-  notes.push_back(fmt::format("Source: {}.", t.source));
+  notes.push_back(fmt::format("Source: {}.", file_name(t.source)));
   return notes;
 }
 
@@ -412,7 +441,18 @@ constexpr std::string_view kDash = "\u2014";
 
 }  // namespace
 
-std::string render_table1(const Table1& t, OutputFormat format) {
+std::string table1_default_label(const Table1& t) {
+  const Table1Options& o = t.options;
+  if (o.compare) {
+    return fmt::format("tab:feint-table1-{}-vs-{}", latex_label_part(o.compare->first),
+                       latex_label_part(o.compare->second));
+  }
+  if (!o.condition.empty()) return "tab:feint-table1-" + latex_label_part(o.condition);
+  return "tab:feint-table1";
+}
+
+std::string render_table1(const Table1& t, OutputFormat format,
+                          const TablePresentation& presentation) {
   const Table1Options& o = t.options;
   if (format == OutputFormat::csv || format == OutputFormat::json) {
     const auto cols = table_columns(o.apa);
@@ -437,7 +477,7 @@ std::string render_table1(const Table1& t, OutputFormat format) {
                              capitalised(test_name(o)), metric_names, o.compare->first,
                              o.compare->second);
   }
-  tt.latex_label = "tab:feint-table";
+  apply_presentation(tt, presentation, table1_default_label(t));
   tt.header.push_back("Iteration");
   tt.right_align.push_back(true);
   for (const auto& m : o.metrics) {

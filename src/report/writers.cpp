@@ -1,6 +1,7 @@
 #include "feint/report/writers.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cfloat>
 #include <cmath>
 #include <stdexcept>
@@ -551,14 +552,20 @@ std::string render_markdown(const TextTable& t) {
 
 std::string render_latex(const TextTable& t) {
   const std::size_t n = column_count(t);
+  // table* floats only to the top of a page or to a float page: [tp], not [htbp] (h and b are not
+  // available to two-column floats).
+  const std::string env = t.latex_wide ? "table*" : "table";
   std::string out = "% Needs \\usepackage{booktabs} and \\usepackage{graphicx} in the preamble.\n";
-  out += "\\begin{table}[htbp]\n  \\centering\n";
+  out += "\\begin{" + env + "}" + (t.latex_wide ? "[tp]" : "[htbp]") + "\n  \\centering\n";
   if (!t.caption.empty()) out += "  \\caption{" + latex_escape(t.caption) + "}\n";
   if (!t.latex_label.empty()) out += "  \\label{" + t.latex_label + "}\n";
   std::string spec;
   for (std::size_t i = 0; i < n; ++i) spec += right_at(t, i) ? 'r' : 'l';
-  // Wide tables (Likert with three test blocks, two-sample Table 1) shrink to the line width;
-  // narrower ones keep their natural size.
+  // Wide tables (Likert with three test blocks, two-sample Table 1) shrink to the line width, and
+  // long ones (Table 1 of several conditions x 20 iterations) to 60% of the text height, so the
+  // float and its note fit on a page; smaller ones keep their natural size.
+  out += "  \\resizebox*{!}{\\ifdim\\totalheight>0.6\\textheight 0.6\\textheight\\else"
+         "\\totalheight\\fi}{%\n";
   out += "  \\resizebox{\\ifdim\\width>\\linewidth\\linewidth\\else\\width\\fi}{!}{%\n";
   out += "  \\begin{tabular}{" + spec + "}\n    \\toprule\n";
   if (!t.groups.empty()) {
@@ -600,7 +607,7 @@ std::string render_latex(const TextTable& t) {
     }
     first = false;
   }
-  out += "    \\bottomrule\n  \\end{tabular}}\n";
+  out += "    \\bottomrule\n  \\end{tabular}}}\n";
   if (!t.notes.empty()) {
     out += "  \\par\\smallskip\n  \\begin{minipage}{\\linewidth}\n    \\footnotesize\n";
     for (std::size_t i = 0; i < t.notes.size(); ++i) {
@@ -609,11 +616,44 @@ std::string render_latex(const TextTable& t) {
     }
     out += "  \\end{minipage}\n";
   }
-  out += "\\end{table}\n";
+  out += "\\end{" + env + "}\n";
   return out;
 }
 
 }  // namespace
+
+void validate_latex_label(std::string_view label) {
+  const bool ok = !label.empty() && std::all_of(label.begin(), label.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == ':' || c == '-' || c == '_' ||
+           c == '.' || c == '/' || c == '+';
+  });
+  if (!ok) {
+    throw UsageError(fmt::format("--label '{}': use letters, digits and : - _ . / + only (e.g. "
+                                 "tab:confusion)",
+                                 label));
+  }
+}
+
+std::string latex_label_part(std::string_view text) {
+  std::string out;
+  bool dash = false;
+  for (const char c : text) {
+    if (std::isalnum(static_cast<unsigned char>(c)) != 0) {
+      if (dash && !out.empty()) out += '-';
+      dash = false;
+      out += c;
+    } else {
+      dash = true;
+    }
+  }
+  return out.empty() ? "x" : out;
+}
+
+void apply_presentation(TextTable& t, const TablePresentation& p, std::string_view default_label) {
+  t.latex_label = p.label.empty() ? std::string(default_label) : p.label;
+  if (!p.caption.empty()) t.caption = p.caption;
+  t.latex_wide = p.wide;
+}
 
 std::string render_table(const TextTable& table, OutputFormat format) {
   switch (format) {

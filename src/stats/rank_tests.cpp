@@ -257,10 +257,26 @@ TestResult wilcoxon_signed_rank(std::span<const double> x_in, double mu, const T
   r.statistic_name = "V";
 
   if (n == 0) {
+    // V = 0 with no variance. R's normal approximation divides by sigma = 0: two-sided (and
+    // without the correction) 0/0 = NaN; one-sided with the continuity correction +-0.5/0 = +-Inf,
+    // which R turns into p = 1. Match R where it gives a number, and say what it means.
     r.method = "Wilcoxon signed rank test";
+    r.exact = false;
+    r.statistic = 0.0;
+    if (correct && options.alternative != Alternative::two_sided) {
+      r.method += " with continuity correction";
+      r.p_value = 1.0;
+      r.note = fmt::format(
+          "all {} differences from mu = {} are zero: V = 0 has no variance; R's wilcox.test also "
+          "returns p = 1 here (its continuity correction over zero variance gives z = {}Inf), "
+          "which is no evidence either way",
+          zeros, mu, options.alternative == Alternative::less ? "+" : "-");
+      return r;
+    }
     r.computed = false;
     r.note = fmt::format(
-        "all {} differences from mu = {} are zero: nothing to rank (R returns V = 0 and p-value NaN)",
+        "all {} differences from mu = {} are zero: nothing to rank; R's wilcox.test returns V = 0 "
+        "with p-value NaN (p = 1 only for a one-sided test with the continuity correction)",
         zeros, mu);
     return r;
   }
@@ -372,10 +388,23 @@ TestResult mann_whitney(std::span<const double> x_in, std::span<const double> y_
       r.method += " with continuity correction";
     }
     if (!(sigma > 0.0)) {
+      // As in the signed-rank test: R gives NaN, except p = 1 one-sided with the correction.
+      r.statistic = w;
+      if (correct && options.alternative != Alternative::two_sided) {
+        r.p_value = 1.0;
+        r.note = fmt::format(
+            "all {} values of x and y are tied: W = {} has no variance; R's wilcox.test also "
+            "returns p = 1 here (its continuity correction over zero variance gives z = {}Inf), "
+            "which is no evidence either way",
+            pooled.size(), w, options.alternative == Alternative::less ? "+" : "-");
+        r.rank_biserial = 2.0 * w / (nx * ny) - 1.0;
+        return r;
+      }
       r.computed = false;
       r.note = fmt::format(
-          "all {} values of x and y are tied: the rank-sum statistic has no variance (R returns "
-          "W = {} and p-value NaN)",
+          "all {} values of x and y are tied: the rank-sum statistic has no variance; R's "
+          "wilcox.test returns W = {} with p-value NaN (p = 1 only for a one-sided test with the "
+          "continuity correction)",
           pooled.size(), w);
       return r;
     }

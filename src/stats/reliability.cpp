@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "feint/error.hpp"
+
 namespace feint::stats {
 namespace {
 
@@ -23,8 +25,21 @@ double raw_alpha(const std::vector<double>& c, std::size_t k, const std::vector<
 
 }  // namespace
 
-CronbachAlpha cronbach_alpha(std::span<const std::vector<double>> items) {
+AlphaMissing parse_alpha_missing(std::string_view text) {
+  if (text == "pairwise") return AlphaMissing::pairwise;
+  if (text == "complete" || text == "complete-cases") return AlphaMissing::complete_cases;
+  throw UsageError(fmt::format("--alpha-missing '{}': expected pairwise (psych::alpha's default) "
+                               "or complete (complete cases)",
+                               text));
+}
+
+std::string_view to_string(AlphaMissing method) noexcept {
+  return method == AlphaMissing::pairwise ? "pairwise" : "complete";
+}
+
+CronbachAlpha cronbach_alpha(std::span<const std::vector<double>> items, AlphaMissing missing) {
   CronbachAlpha out;
+  out.missing = missing;
   const std::size_t k = items.size();
   out.if_dropped.assign(k, std::nullopt);
   if (k < 2) {
@@ -38,34 +53,69 @@ CronbachAlpha cronbach_alpha(std::span<const std::vector<double>> items) {
       return out;
     }
 
-  // Complete cases: respondents who answered every item.
-  std::vector<std::size_t> complete;
-  for (std::size_t i = 0; i < rows; ++i) {
-    bool ok = true;
-    for (const auto& item : items) ok = ok && !std::isnan(item[i]);
-    if (ok) complete.push_back(i);
-  }
-  out.n = complete.size();
-  if (out.n < 2) {
-    out.note = fmt::format("{} respondent(s) answered every item: at least 2 are needed", out.n);
-    return out;
-  }
-
-  // Covariance matrix, two passes (means, then centred cross products) for accuracy.
-  const double nd = static_cast<double>(out.n);
-  std::vector<double> mean(k, 0.0);
-  for (std::size_t j = 0; j < k; ++j) {
-    double s = 0.0;
-    for (std::size_t i : complete) s += items[j][i];
-    mean[j] = s / nd;
-  }
   std::vector<double> c(k * k, 0.0);
-  for (std::size_t a = 0; a < k; ++a)
-    for (std::size_t b = a; b < k; ++b) {
-      double s = 0.0;
-      for (std::size_t i : complete) s += (items[a][i] - mean[a]) * (items[b][i] - mean[b]);
-      c[a * k + b] = c[b * k + a] = s / (nd - 1.0);
+  if (missing == AlphaMissing::complete_cases) {
+    // Complete cases: respondents who answered every item.
+    std::vector<std::size_t> complete;
+    for (std::size_t i = 0; i < rows; ++i) {
+      bool ok = true;
+      for (const auto& item : items) ok = ok && !std::isnan(item[i]);
+      if (ok) complete.push_back(i);
     }
+    out.n = complete.size();
+    if (out.n < 2) {
+      out.note = fmt::format("{} respondent(s) answered every item: at least 2 are needed", out.n);
+      return out;
+    }
+    // Covariance matrix, two passes (means, then centred cross products) for accuracy.
+    const double nd = static_cast<double>(out.n);
+    std::vector<double> mean(k, 0.0);
+    for (std::size_t j = 0; j < k; ++j) {
+      double s = 0.0;
+      for (std::size_t i : complete) s += items[j][i];
+      mean[j] = s / nd;
+    }
+    for (std::size_t a = 0; a < k; ++a)
+      for (std::size_t b = a; b < k; ++b) {
+        double s = 0.0;
+        for (std::size_t i : complete) s += (items[a][i] - mean[a]) * (items[b][i] - mean[b]);
+        c[a * k + b] = c[b * k + a] = s / (nd - 1.0);
+      }
+  } else {
+    // Pairwise-complete covariances, as R's cov(x, use = "pairwise"): for each pair, the means and
+    // the cross products over the respondents who answered both (two passes).
+    for (std::size_t i = 0; i < rows; ++i) {
+      bool any = false;
+      for (const auto& item : items) any = any || !std::isnan(item[i]);
+      if (any) ++out.n;
+    }
+    for (std::size_t a = 0; a < k; ++a)
+      for (std::size_t b = a; b < k; ++b) {
+        double sa = 0.0, sb = 0.0;
+        std::size_t n_ab = 0;
+        for (std::size_t i = 0; i < rows; ++i) {
+          if (std::isnan(items[a][i]) || std::isnan(items[b][i])) continue;
+          sa += items[a][i];
+          sb += items[b][i];
+          ++n_ab;
+        }
+        if (n_ab < 2) {
+          out.note = a == b ? fmt::format("item {} has {} answer(s): at least 2 are needed", a + 1,
+                                          n_ab)
+                            : fmt::format("items {} and {} were answered together by {} "
+                                          "respondent(s): a pairwise covariance needs at least 2",
+                                          a + 1, b + 1, n_ab);
+          return out;
+        }
+        const double nd = static_cast<double>(n_ab), ma = sa / nd, mb = sb / nd;
+        double s = 0.0;
+        for (std::size_t i = 0; i < rows; ++i) {
+          if (std::isnan(items[a][i]) || std::isnan(items[b][i])) continue;
+          s += (items[a][i] - ma) * (items[b][i] - mb);
+        }
+        c[a * k + b] = c[b * k + a] = s / (nd - 1.0);
+      }
+  }
 
   // psych deletes items without variance (with a warning) before computing alpha.
   std::vector<std::size_t> use;

@@ -53,3 +53,60 @@ TEST(LatexTables, CompileAsFragmentsOfAPaper) {
         << table;
   }
 }
+
+namespace {
+
+// Compiles `body` twice (so references resolve) in a two-column paper; returns the second log.
+std::string compile_two_column_paper(const fs::path& dir, const std::string& body, int* rc) {
+  write_text(dir / "paper.tex",
+             "\\documentclass[twocolumn]{article}\n\\usepackage[T1]{fontenc}\n"
+             "\\usepackage{booktabs}\n\\usepackage{graphicx}\n\\usepackage{amsmath}\n"
+             "\\begin{document}\n" + body + "\\end{document}\n");
+  const std::string cmd = "cd " + shell_quote(dir.string()) +
+                          " && pdflatex -interaction=nonstopmode -halt-on-error paper.tex "
+                          ">/dev/null 2>&1 && pdflatex -interaction=nonstopmode -halt-on-error "
+                          "paper.tex >/dev/null 2>&1";
+  *rc = std::system(cmd.c_str());
+  return read_text(dir / "paper.log");
+}
+
+}  // namespace
+
+// Every table of the demo study in one two-column paper, referenced by its label: no LaTeX warning
+// (no multiply-defined or undefined label, no overfull box), in the column and across both columns.
+TEST(LatexTables, AllDemoTablesCompileInOneTwoColumnPaperWithoutWarnings) {
+  if (!have_latex())
+    GTEST_SKIP() << "pdflatex with booktabs not installed: LaTeX compile check skipped";
+  const fs::path demo = fs::path(FEINT_SOURCE_DIR) / "data" / "demo";
+  for (const bool wide : {false, true}) {
+    TempDir dir;
+    const auto out = dir / "out";
+    const auto r = run_feint("analyze " + shell_quote(demo.string()) + " -o " +
+                             shell_quote(out.string()) +
+                             " --formats latex --equivalence 0.1 --compare adaptive,random" +
+                             (wide ? " --latex-wide" : ""));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::string body = "Some text of the paper.\n";
+    for (const char* table : {"table1", "table1_compare", "likert", "likert_compare"}) {
+      const std::string tex = read_text(out / (std::string(table) + ".tex"));
+      EXPECT_EQ(tex.find(wide ? "\\begin{table*}" : "\\begin{table}"), tex.find("\\begin{table"))
+          << table;
+      // Each table's labels are referenced, so an undefined one would warn.
+      for (std::size_t k = tex.find("\\label{"); k != std::string::npos;
+           k = tex.find("\\label{", k + 1)) {
+        const auto end = tex.find('}', k);
+        body += "See Table~\\ref{" + tex.substr(k + 7, end - k - 7) + "}.\n";
+      }
+      body += "\\input{" + (out / (std::string(table) + ".tex")).string() + "}\n";
+      // No absolute path leaks into the paper.
+      EXPECT_EQ(tex.find(out.string()), std::string::npos) << table;
+      EXPECT_EQ(tex.find(demo.string()), std::string::npos) << table;
+    }
+    int rc = 0;
+    const std::string log = compile_two_column_paper(dir.path(), body, &rc);
+    ASSERT_EQ(rc, 0) << log;
+    EXPECT_EQ(log.find("Warning"), std::string::npos) << (wide ? "wide: " : "") << log;
+    EXPECT_EQ(log.find("Overfull"), std::string::npos) << log;
+    EXPECT_EQ(log.find("Underfull"), std::string::npos) << log;
+  }
+}

@@ -201,9 +201,9 @@ TEST(LikertCli, LongAndWideLayoutsGiveTheSameTable) {
 TEST(LikertCli, ReverseAndCompositeEndToEnd) {
   const auto r = run_feint("likert " + data("golden_input.csv") +
                            " --reverse boring --composite enjoyment=entertainment,boring,fun "
-                           "--condition adaptive --format json --apa");
+                           "--condition adaptive --format json --apa --alpha-missing complete");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  // psych::alpha raw alpha of the adaptive condition (tests/golden/likert/golden.csv).
+  // psych::alpha(na.omit(...)) raw alpha of the adaptive condition (tests/golden/likert/golden.csv).
   EXPECT_NE(r.out.find("\"cronbach_alpha\": 0.9146884272997"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"apa\": \"V = "), std::string::npos);
 }

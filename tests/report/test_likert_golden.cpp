@@ -52,6 +52,9 @@ LikertSettings common() {
   LikertSettings s;
   s.load.reverse = {"boring"};
   s.composites = {feint::report::parse_composite("enjoyment=entertainment,boring,fun")};
+  // golden.csv's alpha is psych::alpha(na.omit(...)); the pairwise default is checked against
+  // psych in test_likert_alpha.cpp.
+  s.alpha_missing = feint::stats::AlphaMissing::complete_cases;
   return s;
 }
 

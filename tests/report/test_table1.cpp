@@ -233,8 +233,8 @@ TEST(Table1Errors, UnknownConditionAndImpossibleOptions) {
   o.compare = std::make_pair(std::string("adaptive"), std::string("fixed"));
   try {
     build_table1(s, o);
-    ADD_FAILURE() << "expected InvalidData";
-  } catch (const InvalidData& e) {
+    ADD_FAILURE() << "expected UsageError";
+  } catch (const UsageError& e) {
     EXPECT_STREQ(e.what(),
                  "scores_small.csv: --compare: condition 'fixed' does not occur in column "
                  "'condition' (conditions: adaptive, random)");
@@ -243,7 +243,7 @@ TEST(Table1Errors, UnknownConditionAndImpossibleOptions) {
   EXPECT_THROW(build_table1(s, o), UsageError);
   o = {};
   o.condition = "nope";
-  EXPECT_THROW(build_table1(s, o), InvalidData);
+  EXPECT_THROW(build_table1(s, o), UsageError);
   o = {};
   o.alpha = 1.5;
   EXPECT_THROW(build_table1(s, o), UsageError);

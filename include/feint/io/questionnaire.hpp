@@ -39,8 +39,10 @@ struct QuestionnaireOptions {
   std::string item_column = "item";            ///< long layout
   std::string response_column = "response";    ///< long layout
   /// The items to use, in this order (wide: columns; long: values of the item column, rows of other
-  /// items skipped). Empty = every item; in the wide layout every column that is not the id,
-  /// the condition, or a known survey-platform metadata column (Qualtrics, Google Forms).
+  /// items skipped). `name=Q5_1` renames: column (or long-layout item) Q5_1 becomes item `name`
+  /// (--reverse and composites then use the new name). Empty = every item; in the wide layout
+  /// every column that is not the id, the condition, or a known survey-platform metadata column
+  /// (Qualtrics, Google Forms).
   std::vector<std::string> items;
   /// Label map for text answers. Empty = the built-in agree/disagree map when the scale has 5 or 7
   /// points (and no text answers accepted otherwise).
@@ -48,6 +50,20 @@ struct QuestionnaireOptions {
   /// Items to reverse-code (x -> min + max - x), by name (case-insensitive).
   std::vector<std::string> reverse;
   char delimiter = 0;  ///< 0 = detect
+  /// Survey exports (Qualtrics: the three header rows, or a ResponseId column): responses whose
+  /// `Finished` is False/0 or whose `Progress` is below 100 are excluded unless this is set.
+  bool keep_unfinished = false;
+  /// Survey exports: responses whose `Status` is Survey Preview, Survey Test, Spam, Preview Spam,
+  /// Imported Spam or Offline Preview (or their numeric codes 1, 2, 8, 9, 12, 17) are excluded
+  /// unless this is set.
+  bool keep_previews = false;
+};
+
+/// A survey-export row that is not a participant's response (see QuestionnaireOptions).
+struct ExcludedResponse {
+  std::size_t line = 0;
+  std::string id;      ///< the respondent id (ResponseId), or "line N" when empty
+  std::string reason;  ///< "Survey Preview", "Spam", "unfinished (Finished False, Progress 40)"
 };
 
 /// A loaded questionnaire: one column of responses per item, one entry per respondent.
@@ -72,6 +88,9 @@ struct Questionnaire {
   std::size_t rows_read = 0;            ///< data rows read (Qualtrics' extra header rows excluded)
   std::size_t text_answers_mapped = 0;  ///< answers given as text and mapped by the label map
   std::string label_map;  ///< "", "user", "built-in 5-point agree", "built-in 7-point agree"
+  /// Survey-export rows excluded as previews, tests, spam or unfinished (in file order); they are
+  /// counted in rows_read but are not respondents.
+  std::vector<ExcludedResponse> excluded;
 
   /// Index of an item (case-insensitive); nullopt when absent.
   std::optional<std::size_t> item_index(std::string_view name) const;
@@ -86,6 +105,10 @@ struct Questionnaire {
 /// violation (message `file:line: column 'trust': 9 is outside the scale 1-7 (participant P07)`),
 /// UsageError when an option names a column or item the file does not have.
 Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOptions& options = {});
+
+/// One sentence for a report's note naming the excluded survey rows and how to keep them; "" when
+/// none was excluded.
+std::string describe_exclusions(const Questionnaire& questionnaire);
 
 /// Largest number of scale points accepted (0-100 rating scales); more is a usage error.
 inline constexpr long long kMaxScalePoints = 101;

@@ -20,6 +20,7 @@
 #include "feint/io/questionnaire.hpp"
 #include "feint/report/tidy.hpp"
 #include "feint/report/writers.hpp"
+#include "feint/stats/reliability.hpp"
 #include "feint/stats/htest.hpp"
 #include "feint/stats/p_adjust.hpp"
 
@@ -48,6 +49,9 @@ struct LikertSettings {
   stats::TestOptions test;                                     ///< alternative, conf_level
   double alpha = 0.05;
   stats::PAdjustMethod p_adjust = stats::PAdjustMethod::none;
+  /// Cronbach's alpha with missing answers: psych::alpha's default pairwise covariances, or
+  /// complete cases (--alpha-missing).
+  stats::AlphaMissing alpha_missing = stats::AlphaMissing::pairwise;
   bool apa = false;    ///< fill TidyRow::apa (CSV/JSON column "apa", APA lines under the table)
   bool paper = false;  ///< the paper's analysis: its four items, reference 3.5 (see docs/likert.md)
 };
@@ -69,7 +73,7 @@ struct LikertReliability {
   std::string name;
   std::string group;  ///< "A+B" style label for two-sample mode, condition or "" otherwise
   std::vector<std::string> items;
-  std::size_t n = 0;                              ///< complete cases
+  std::size_t n = 0;  ///< complete cases, or (pairwise) respondents who answered any item
   std::optional<double> alpha;                    ///< raw alpha
   std::vector<std::optional<double>> if_dropped;  ///< alpha with item j dropped
   std::string note;
@@ -105,7 +109,11 @@ LikertAnalysis analyze_likert_file(const std::string& path, const LikertSettings
 
 /// text / markdown / latex: the Likert table, the response distribution, reliability and the
 /// note; csv / json: the tidy rows with likert_columns(settings.apa).
-std::string render_likert(const LikertAnalysis& analysis, OutputFormat format);
+/// `presentation` (--label, --caption, --latex-wide) applies to the main table; the response and
+/// reliability tables get the label plus "-responses" / "-reliability". Default label:
+/// tab:feint-likert, tab:feint-likert-<condition> (--condition), tab:feint-likert-<A>-vs-<B>.
+std::string render_likert(const LikertAnalysis& analysis, OutputFormat format,
+                          const TablePresentation& presentation = {});
 
 /// Per group and item/composite descriptives as CSV: group, name, kind, n, missing, mean, sd,
 /// median, q1, q3, iqr, pct_below, pct_at, pct_above, then n_<point> and pct_<point> per scale

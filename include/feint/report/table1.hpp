@@ -82,6 +82,12 @@ std::vector<std::string> table1_note(const Table1& table);
 
 /// Renders the paper-shaped table (text, markdown, latex) or the tidy rows (csv, json; with the
 /// "apa" column when options.apa).
-std::string render_table1(const Table1& table, OutputFormat format);
+/// `presentation`: --label/--caption/--latex-wide; the default label is unique per table:
+/// tab:feint-table1, tab:feint-table1-<condition> (--condition), tab:feint-table1-<A>-vs-<B>.
+std::string render_table1(const Table1& table, OutputFormat format,
+                          const TablePresentation& presentation = {});
+
+/// The default LaTeX label of `table` (see render_table1).
+std::string table1_default_label(const Table1& table);
 
 }  // namespace feint::report

@@ -164,11 +164,31 @@ struct TextTable {
   std::vector<Row> rows;
   std::vector<std::string> notes;    ///< paragraphs of the note below the table (plain text)
   std::string latex_label;           ///< \label{...} when non-empty
+  bool latex_wide = false;           ///< LaTeX `table*`: spans both columns of a two-column paper
 
   /// Cells that are already LaTeX (e.g. format_p(..., PStyle::latex)): rendered verbatim in LaTeX
   /// output instead of being escaped. Indexed [row][column]; may be empty (= escape everything).
   std::vector<std::vector<std::string>> latex_cells;
 };
+
+/// How the user wants a report's tables presented (`--label`, `--caption`, `--latex-wide`).
+struct TablePresentation {
+  std::string label;    ///< LaTeX \label of the main table; "" = the report's default
+  std::string caption;  ///< caption of the main table (every format); "" = the report's own
+  bool wide = false;    ///< LaTeX `table*` (both columns of a two-column paper) instead of `table`
+};
+
+/// Checks a `--label` value: letters, digits and `:-_./+` only (anything else breaks \label or
+/// \ref). Throws UsageError.
+void validate_latex_label(std::string_view label);
+
+/// A LaTeX label fragment from free text (a condition name): letters and digits kept, every other
+/// run of characters becomes one '-'.
+std::string latex_label_part(std::string_view text);
+
+/// Applies `p` to the main table `t` (label, caption) and marks it wide; `default_label` is used
+/// when p.label is empty.
+void apply_presentation(TextTable& t, const TablePresentation& p, std::string_view default_label);
 
 /// Renders `table` as aligned plain text, a Markdown pipe table, or a LaTeX booktabs `table`
 /// environment (a fragment for a paper: needs \usepackage{booktabs}). Throws std::invalid_argument
