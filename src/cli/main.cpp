@@ -29,6 +29,8 @@ int main(int argc, char** argv) {
   feint::cli::add_analyze_command(app);
   feint::cli::add_likert_command(app);
   feint::cli::add_simulate_command(app);
+  feint::cli::add_anova_command(app);
+  feint::cli::add_power_command(app);
 
   try {
     app.parse(argc, argv);
