@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "analyze_anova.hpp"
 #include "commands.hpp"
 #include "feint/error.hpp"
 #include "feint/io/number.hpp"
@@ -195,6 +196,9 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
     const report::Table1 two_sample = report::build_table1(scores, c);
     write_all("table1_compare",
               [&](report::OutputFormat f) { return report::render_table1(two_sample, f); });
+  }
+  if (const auto anova = analyze_anova(scores)) {  // the mixed ANOVA (docs/anova-power.md)
+    write_all("anova", [&](report::OutputFormat f) { return report::render_anova(*anova, f, t.apa); });
   }
 
   // 3. The questionnaire, when the study has one.

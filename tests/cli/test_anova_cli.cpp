@@ -155,3 +155,25 @@ TEST(AnovaCli, ConstantMetricExits65AndBadCorrectionExits64) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(AnovaCli, AnalyzeWritesTheAnovaOfItsScoresInEveryFormatAsked) {
+  TempDir dir;
+  const auto out = dir.path() / "out";
+  const std::string demo = std::string(FEINT_SOURCE_DIR) + "/data/demo";
+  const RunResult r = run_feint("analyze " + shell_quote(demo) + " -o " + shell_quote(out.string()) +
+                                " --formats csv,text");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(std::filesystem::exists(out / "anova.csv"));
+  ASSERT_TRUE(std::filesystem::exists(out / "anova.txt"));
+  EXPECT_FALSE(std::filesystem::exists(out / "anova.json"));
+  // The same numbers as `feint anova` on the scores analyze wrote.
+  const RunResult direct =
+      run_feint("anova " + shell_quote((out / "scores.csv").string()) + " --format csv");
+  ASSERT_EQ(direct.exit_code, 0) << direct.err;
+  EXPECT_EQ(read_text(out / "anova.csv"), direct.out);
+  EXPECT_EQ(parse_csv(direct.out).size(), 7u);  // error and confusion, 3 effects each
+}
+
+}  // namespace
