@@ -35,7 +35,7 @@ std::string design_text(const models::MixedAnova& a) {
                        a.iterations.size());
   }
   return fmt::format(
-      "condition ({} levels) between x iteration ({} levels) within participants",
+      "condition ({} levels) between \u00d7 iteration ({} levels) within participants",
       a.conditions.size(), a.iterations.size());
 }
 

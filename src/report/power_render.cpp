@@ -136,7 +136,7 @@ std::string render_simulation_power(const models::SimulationPowerResult& r, cons
     return format == OutputFormat::csv ? write_csv(cols, recs) : write_json(cols, recs);
   }
   TextTable t;
-  t.caption = fmt::format("Simulated power, 2 conditions x {} iterations, {} + {} participants, {} studies",
+  t.caption = fmt::format("Simulated power, 2 conditions \u00d7 {} iterations, {} + {} participants, {} studies",
                           d.means_a.size(), d.n_a, d.n_b, o.studies);
   t.header = {"Test", "Iteration", "Power", "MC SE"};
   t.right_align = {false, true, true, true};

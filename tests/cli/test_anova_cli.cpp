@@ -2,6 +2,8 @@
 // command line, every format, the notes, and the exit codes of bad input.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -174,6 +176,33 @@ TEST(AnovaCli, AnalyzeWritesTheAnovaOfItsScoresInEveryFormatAsked) {
   ASSERT_EQ(direct.exit_code, 0) << direct.err;
   EXPECT_EQ(read_text(out / "anova.csv"), direct.out);
   EXPECT_EQ(parse_csv(direct.out).size(), 7u);  // error and confusion, 3 effects each
+}
+
+}  // namespace
+
+namespace {
+
+TEST(AnovaCli, LatexOfAnovaAndPowerCompilesInAPaper) {
+  if (std::system("command -v pdflatex >/dev/null 2>&1 && kpsewhich booktabs.sty >/dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "pdflatex with booktabs not installed: LaTeX compile check skipped";
+  }
+  TempDir dir;
+  const auto scores = dir.path() / "scores.csv";
+  write_text(scores, scores_of_case("singular"));
+  const std::string s = shell_quote(scores.string());
+  ASSERT_EQ(run_feint("anova " + s + " --apa --format latex -o " + shell_quote((dir / "a.tex").string())).exit_code, 0);
+  ASSERT_EQ(run_feint("power t-test --d 0.4 --power 0.9 --welch --sd2 1.5 --format latex -o " +
+                      shell_quote((dir / "b.tex").string())).exit_code, 0);
+  ASSERT_EQ(run_feint("power simulate " + s + " --studies 20 --format latex -o " +
+                      shell_quote((dir / "c.tex").string())).exit_code, 0);
+  write_text(dir / "paper.tex",
+             "\\documentclass{article}\n\\usepackage[T1]{fontenc}\n\\usepackage{booktabs}\n"
+             "\\usepackage{graphicx}\n\\usepackage{amsmath}\n\\begin{document}\nText.\n"
+             "\\input{a.tex}\n\\input{b.tex}\n\\input{c.tex}\n\\end{document}\n");
+  const std::string cmd = "cd " + shell_quote(dir.path().string()) +
+                          " && pdflatex -interaction=nonstopmode -halt-on-error paper.tex > out.txt 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << read_text(dir / "out.txt");
+  EXPECT_EQ(read_text(dir / "paper.log").find("Overfull \\hbox"), std::string::npos);
 }
 
 }  // namespace
