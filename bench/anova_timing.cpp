@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   for (int r = 0; r < reps; ++r) {
     // From the long table each time, as aov_ez does from its data frame.
-    const auto report = feint::report::build_anova_report(scores, feint::models::SphericityCorrection::GG);
+    const auto report =
+        feint::report::build_anova_report(scores, feint::models::SphericityCorrection::GG);
     sink += report.analyses[0].effects.back().f;
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -51,10 +51,15 @@ void BM_SimulationPower(benchmark::State& state) {
   o.studies = static_cast<std::size_t>(state.range(0));
   o.threads = static_cast<unsigned>(state.range(1));
   for (auto _ : state) benchmark::DoNotOptimize(simulate_power(paper_design(), o));
-  state.counters["studies_per_s"] = benchmark::Counter(
-      static_cast<double>(o.studies) * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["studies_per_s"] =
+      benchmark::Counter(static_cast<double>(o.studies) * static_cast<double>(state.iterations()),
+                         benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_SimulationPower)->Args({10000, 1})->Args({10000, 2})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_SimulationPower)
+    ->Args({10000, 1})
+    ->Args({10000, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 

@@ -56,7 +56,8 @@ void add_anova_command(CLI::App& app) {
   auto args = std::make_shared<AnovaArgs>();
   auto* cmd = app.add_subcommand(
       "anova",
-      "Mixed ANOVA per metric: condition (between) x iteration (within), as afex::aov_ez - type-III "
+      "Mixed ANOVA per metric: condition (between) x iteration (within), as afex::aov_ez - "
+      "type-III "
       "F tests, Mauchly's test, Greenhouse-Geisser/Huynh-Feldt corrections, generalized eta "
       "squared. One condition: one-way repeated-measures ANOVA.");
   cmd->add_option("SCORES", args->input,
@@ -72,7 +73,8 @@ void add_anova_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--apa", args->apa,
                 "Add an APA string per effect, e.g. 'F(1.93, 112.1) = 4.31, p = .017, ηG² = .031'");
-  cmd->add_option("--participant-column", args->participant_column, "Name of the participant column")
+  cmd->add_option("--participant-column", args->participant_column,
+                  "Name of the participant column")
       ->capture_default_str();
   cmd->add_option("--iteration-column", args->iteration_column, "Name of the iteration column")
       ->capture_default_str();

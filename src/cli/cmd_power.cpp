@@ -1,12 +1,12 @@
 // feint power t-test | simulate: analytic t-test power and sample size, and simulation power of
 // the 2 x k design (see docs/anova-power.md).
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "commands.hpp"
 #include "feint/error.hpp"
@@ -53,7 +53,8 @@ void run_t_test(const TTestArgs& a) {
   try {
     s.alternative = stats::parse_alternative(a.alternative);
   } catch (const UsageError&) {
-    throw UsageError(fmt::format("--alternative '{}': expected two.sided, greater or less", a.alternative));
+    throw UsageError(
+        fmt::format("--alternative '{}': expected two.sided, greater or less", a.alternative));
   }
   const std::string solved = report::solved_for(s);
   const models::TTestPowerResult result = models::solve_t_test_power(s);
@@ -83,7 +84,9 @@ std::vector<double> parse_means(const std::string& text, const char* option) {
   std::vector<double> out;
   for (const auto& f : io::split_csv_line(text)) {
     const auto v = io::parse_double(io::trim(f));
-    if (!v) throw UsageError(fmt::format("{} '{}': expected comma-separated numbers, one per iteration", option, text));
+    if (!v)
+      throw UsageError(fmt::format("{} '{}': expected comma-separated numbers, one per iteration",
+                                   option, text));
     out.push_back(*v);
   }
   return out;
@@ -127,13 +130,16 @@ void run_simulate(const SimulateArgs& a) {
   o.studies = a.studies;
   o.seed = a.seed;
   o.threads = a.threads;
-  if (!(a.alpha > 0 && a.alpha < 1)) throw UsageError(fmt::format("--alpha {}: expected a number in (0, 1)", a.alpha));
+  if (!(a.alpha > 0 && a.alpha < 1))
+    throw UsageError(fmt::format("--alpha {}: expected a number in (0, 1)", a.alpha));
   o.alpha = a.alpha;
   o.correction = models::parse_sphericity_correction(a.correction);
   try {
     o.p_adjust = stats::parse_p_adjust(a.p_adjust);
   } catch (const UsageError&) {
-    throw UsageError(fmt::format("--p-adjust '{}': expected none, bonferroni, holm, hochberg, hommel, BH or BY", a.p_adjust));
+    throw UsageError(
+        fmt::format("--p-adjust '{}': expected none, bonferroni, holm, hochberg, hommel, BH or BY",
+                    a.p_adjust));
   }
   const auto result = models::simulate_power(d, o);
   write_report(r.output, report::render_simulation_power(result, a.pilot, r.format));
@@ -158,10 +164,12 @@ void add_power_command(CLI::App& app) {
   tt->add_option("--delta", t->delta, "True difference of means, in metric units (with --sd)");
   tt->add_option("--d", t->d, "Cohen's d (delta in sd units; sd = 1)");
   tt->add_option("--power", t->power, "Power wanted, e.g. 0.8");
-  tt->add_option("--sd", t->sd, "Standard deviation (two-sample: common, or group A with --welch; "
-                                "paired: of the differences); default 1");
+  tt->add_option("--sd", t->sd,
+                 "Standard deviation (two-sample: common, or group A with --welch; "
+                 "paired: of the differences); default 1");
   tt->add_option("--sd2", t->sd2, "Welch: standard deviation of group B (default --sd)");
-  tt->add_option("--ratio", t->ratio, "Two-sample: n2 = ratio x n1 (unequal groups)")->capture_default_str();
+  tt->add_option("--ratio", t->ratio, "Two-sample: n2 = ratio x n1 (unequal groups)")
+      ->capture_default_str();
   tt->add_flag("--welch", t->welch, "Two-sample: Welch's test (unequal variances)");
   tt->add_option("--alpha", t->alpha, "Family-wise significance level")->capture_default_str();
   tt->add_option("--tests", t->tests,
@@ -182,23 +190,31 @@ void add_power_command(CLI::App& app) {
       "variance components from a pilot scores file or given");
   sim->add_option("PILOT", s->pilot, "Pilot scores CSV (two conditions); optional");
   sim->add_option("--metric", s->metric, "Metric of the pilot")->capture_default_str();
-  sim->add_option("--means-a", s->means_a, "Without a pilot: means of condition A per iteration, comma-separated");
+  sim->add_option("--means-a", s->means_a,
+                  "Without a pilot: means of condition A per iteration, comma-separated");
   sim->add_option("--means-b", s->means_b, "Without a pilot: means of condition B per iteration");
-  sim->add_option("--sd-participant", s->sd_participant, "SD of the participant intercepts (overrides the pilot)");
+  sim->add_option("--sd-participant", s->sd_participant,
+                  "SD of the participant intercepts (overrides the pilot)");
   sim->add_option("--sd-residual", s->sd_residual, "Residual SD (overrides the pilot)");
-  sim->add_option("--n-per-group", s->n_per_group, "Participants per condition (default: the pilot's, or 30)");
+  sim->add_option("--n-per-group", s->n_per_group,
+                  "Participants per condition (default: the pilot's, or 30)");
   sim->add_option("--studies", s->studies, "Simulated studies")->capture_default_str();
   sim->add_option("--seed", s->seed, "Random seed (same seed, same result)")->capture_default_str();
   sim->add_option("--threads", s->threads, "Threads")->capture_default_str();
   sim->add_option("--alpha", s->alpha, "Significance level")->capture_default_str();
-  sim->add_option("--correction", s->correction, "Sphericity correction of the ANOVA: GG, HF or none")
+  sim->add_option("--correction", s->correction,
+                  "Sphericity correction of the ANOVA: GG, HF or none")
       ->capture_default_str();
-  sim->add_option("--p-adjust", s->p_adjust, "Adjustment of the per-iteration p-values (R's p.adjust)")
+  sim->add_option("--p-adjust", s->p_adjust,
+                  "Adjustment of the per-iteration p-values (R's p.adjust)")
       ->capture_default_str();
   sim->add_flag("--null", s->null, "Simulate the null: both conditions get the average profile");
-  sim->add_option("--participant-column", s->participant_column, "Pilot: participant column")->capture_default_str();
-  sim->add_option("--iteration-column", s->iteration_column, "Pilot: iteration column")->capture_default_str();
-  sim->add_option("--condition-column", s->condition_column, "Pilot: condition column")->capture_default_str();
+  sim->add_option("--participant-column", s->participant_column, "Pilot: participant column")
+      ->capture_default_str();
+  sim->add_option("--iteration-column", s->iteration_column, "Pilot: iteration column")
+      ->capture_default_str();
+  sim->add_option("--condition-column", s->condition_column, "Pilot: condition column")
+      ->capture_default_str();
   add_report_options(*sim, s->report, ReportOptionSet{false});
   sim->callback([s] { run_simulate(*s); });
 }

@@ -51,9 +51,12 @@ SphericityCorrection parse_sphericity_correction(std::string_view text) {
 
 std::string_view to_string(SphericityCorrection correction) noexcept {
   switch (correction) {
-    case SphericityCorrection::none: return "none";
-    case SphericityCorrection::GG: return "GG";
-    case SphericityCorrection::HF: return "HF";
+    case SphericityCorrection::none:
+      return "none";
+    case SphericityCorrection::GG:
+      return "GG";
+    case SphericityCorrection::HF:
+      return "HF";
   }
   return "none";
 }
@@ -84,7 +87,8 @@ MixedAnova mixed_anova(const WideDesign& d, SphericityCorrection correction) {
 
   // Cell means (condition profiles), their weighted and unweighted means.
   Eigen::MatrixXd profile = Eigen::MatrixXd::Zero(a, k);
-  for (Eigen::Index i = 0; i < n; ++i) profile.row(static_cast<Eigen::Index>(d.group[i])) += y.row(i);
+  for (Eigen::Index i = 0; i < n; ++i)
+    profile.row(static_cast<Eigen::Index>(d.group[i])) += y.row(i);
   Eigen::VectorXd ng(a);
   for (Eigen::Index g = 0; g < a; ++g) {
     ng(g) = static_cast<double>(sizes[static_cast<std::size_t>(g)]);
@@ -96,7 +100,8 @@ MixedAnova mixed_anova(const WideDesign& d, SphericityCorrection correction) {
 
   // Residual SSP (k x k) around the condition profiles.
   Eigen::MatrixXd resid(n, k);
-  for (Eigen::Index i = 0; i < n; ++i) resid.row(i) = y.row(i) - profile.row(static_cast<Eigen::Index>(d.group[i]));
+  for (Eigen::Index i = 0; i < n; ++i)
+    resid.row(i) = y.row(i) - profile.row(static_cast<Eigen::Index>(d.group[i]));
   const Eigen::MatrixXd sspe_full = resid.transpose() * resid;
 
   const double kd = static_cast<double>(k);

@@ -74,14 +74,16 @@ double power_at(const TTestPowerSpec& s, double n, double delta) {
 /// The root of f (increasing) in [lo, hi], hi doubled until f(hi) >= 0.
 template <class F>
 double increasing_root(F f, double lo, double hi, double hi_limit, const char* what) {
+  if (f(lo) >= 0) return lo;  // the smallest allowed value already reaches the target
   while (f(hi) < 0) {
     lo = hi;
     hi *= 2;
-    if (hi > hi_limit) throw UsageError(fmt::format("no {} up to {} reaches the power asked for", what, hi_limit));
+    if (hi > hi_limit)
+      throw UsageError(fmt::format("no {} up to {} reaches the power asked for", what, hi_limit));
   }
   std::uintmax_t iterations = 200;
-  const auto r = boost::math::tools::toms748_solve(f, lo, hi, boost::math::tools::eps_tolerance<double>(52),
-                                                   iterations);
+  const auto r = boost::math::tools::toms748_solve(
+      f, lo, hi, boost::math::tools::eps_tolerance<double>(52), iterations);
   return (r.first + r.second) / 2;
 }
 
@@ -104,9 +106,12 @@ TTestDesign parse_t_test_design(std::string_view text) {
 
 std::string_view to_string(TTestDesign design) noexcept {
   switch (design) {
-    case TTestDesign::one_sample: return "one-sample";
-    case TTestDesign::two_sample: return "two-sample";
-    case TTestDesign::paired: return "paired";
+    case TTestDesign::one_sample:
+      return "one-sample";
+    case TTestDesign::two_sample:
+      return "two-sample";
+    case TTestDesign::paired:
+      return "paired";
   }
   return "";
 }
@@ -119,15 +124,21 @@ double t_test_power(const TTestPowerSpec& s) {
 TTestPowerResult solve_t_test_power(const TTestPowerSpec& spec) {
   const int missing = !spec.n + !spec.delta + !spec.power;
   if (missing != 1) {
-    throw UsageError("give exactly two of --n, --delta (or --d) and --power; the third is solved for");
+    throw UsageError(
+        "give exactly two of --n, --delta (or --d) and --power; the third is solved for");
   }
-  if (!(spec.alpha > 0 && spec.alpha < 1)) throw UsageError(fmt::format("--alpha {}: expected a number in (0, 1)", spec.alpha));
-  if (spec.tests < 1) throw UsageError(fmt::format("--tests {}: expected a whole number >= 1", spec.tests));
-  if (!(spec.sd > 0) || !std::isfinite(spec.sd) || (spec.sd2 && !(*spec.sd2 > 0 && std::isfinite(*spec.sd2)))) {
+  if (!(spec.alpha > 0 && spec.alpha < 1))
+    throw UsageError(fmt::format("--alpha {}: expected a number in (0, 1)", spec.alpha));
+  if (spec.tests < 1)
+    throw UsageError(fmt::format("--tests {}: expected a whole number >= 1", spec.tests));
+  if (!(spec.sd > 0) || !std::isfinite(spec.sd) ||
+      (spec.sd2 && !(*spec.sd2 > 0 && std::isfinite(*spec.sd2)))) {
     throw UsageError("--sd and --sd2 must be positive numbers");
   }
-  if (!(spec.ratio > 0) || !std::isfinite(spec.ratio)) throw UsageError(fmt::format("--ratio {}: expected a positive number", spec.ratio));
-  if (spec.sd2 && !spec.welch) throw UsageError("--sd2 needs --welch (Student's test assumes one common sd)");
+  if (!(spec.ratio > 0) || !std::isfinite(spec.ratio))
+    throw UsageError(fmt::format("--ratio {}: expected a positive number", spec.ratio));
+  if (spec.sd2 && !spec.welch)
+    throw UsageError("--sd2 needs --welch (Student's test assumes one common sd)");
   if ((spec.welch || spec.ratio != 1.0) && spec.design != TTestDesign::two_sample) {
     throw UsageError("--welch and --ratio apply to --type two-sample only");
   }
@@ -137,10 +148,13 @@ TTestPowerResult solve_t_test_power(const TTestPowerSpec& spec) {
     throw UsageError(fmt::format("--n {}: expected at least {} per group", *spec.n, nmin));
   }
   if (spec.delta && !(*spec.delta > 0 && std::isfinite(*spec.delta))) {
-    throw UsageError(fmt::format("--delta {}: expected a positive difference (the direction is set by --alternative)", *spec.delta));
+    throw UsageError(fmt::format(
+        "--delta {}: expected a positive difference (the direction is set by --alternative)",
+        *spec.delta));
   }
   if (spec.power && !(*spec.power > a && *spec.power < 1)) {
-    throw UsageError(fmt::format("--power {}: expected a number in (alpha per test = {}, 1)", *spec.power, a));
+    throw UsageError(
+        fmt::format("--power {}: expected a number in (alpha per test = {}, 1)", *spec.power, a));
   }
 
   TTestPowerResult r;
@@ -151,14 +165,15 @@ TTestPowerResult solve_t_test_power(const TTestPowerSpec& spec) {
     s.power = detail::power_at(s, *s.n, *s.delta);
   } else if (!s.n) {
     const double target = *s.power;
-    s.n = detail::increasing_root([&](double n) { return detail::power_at(s, n, *s.delta) - target; },
-                                  nmin, std::max(nmin * 2, 8.0), 1e9, "sample size");
+    s.n =
+        detail::increasing_root([&](double n) { return detail::power_at(s, n, *s.delta) - target; },
+                                nmin, std::max(nmin * 2, 8.0), 1e9, "sample size");
   } else {
     const double target = *s.power;
     const double hi0 = s.sd;
-    s.delta = detail::increasing_root(
-        [&](double d) { return detail::power_at(s, *s.n, d) - target; }, 1e-9 * hi0, hi0, 1e9 * hi0,
-        "difference");
+    s.delta =
+        detail::increasing_root([&](double d) { return detail::power_at(s, *s.n, d) - target; },
+                                1e-9 * hi0, hi0, 1e9 * hi0, "difference");
   }
   r.n1 = *s.n;
   r.n2 = s.design == TTestDesign::two_sample ? s.ratio * r.n1 : 0;
@@ -177,8 +192,12 @@ TTestPowerResult solve_t_test_power(const TTestPowerSpec& spec) {
     r.power_at_ceiling = detail::power_at(whole, *whole.n, *s.delta);
   }
   switch (s.design) {
-    case TTestDesign::one_sample: r.method = "One-sample t test power calculation"; break;
-    case TTestDesign::paired: r.method = "Paired t test power calculation"; break;
+    case TTestDesign::one_sample:
+      r.method = "One-sample t test power calculation";
+      break;
+    case TTestDesign::paired:
+      r.method = "Paired t test power calculation";
+      break;
     case TTestDesign::two_sample:
       r.method = s.welch ? "Two-sample t test power calculation (Welch, approximate)"
                          : "Two-sample t test power calculation (Student)";

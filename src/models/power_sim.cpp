@@ -95,8 +95,19 @@ struct Study {
   StudyAnalysis last;
 
   Study(const SimulationDesign& design, const SimulationOptions& options)
-      : d(design), o(options), k(design.means_a.size()), n(design.n_a + design.n_b),
-        y(n * k), mean_a(k), mean_b(k), var_a(k), var_b(k), e(k * k), row(k), rm(k), p(k) {}
+      : d(design),
+        o(options),
+        k(design.means_a.size()),
+        n(design.n_a + design.n_b),
+        y(n * k),
+        mean_a(k),
+        mean_b(k),
+        var_a(k),
+        var_b(k),
+        e(k * k),
+        row(k),
+        rm(k),
+        p(k) {}
 
   void run(std::uint64_t index, Tally& t) {
     Xoshiro rng(o.seed, index);
@@ -209,7 +220,8 @@ struct Study {
       const double se2 = va + vb;
       const double tt = (mean_a[j] - mean_b[j]) / std::sqrt(se2);
       const double df = se2 * se2 / (va * va / (na - 1) + vb * vb / (nb - 1));
-      p[j] = 2 * boost::math::cdf(boost::math::complement(boost::math::students_t(df), std::abs(tt)));
+      p[j] =
+          2 * boost::math::cdf(boost::math::complement(boost::math::students_t(df), std::abs(tt)));
     }
     const auto adjusted = stats::p_adjust(p, o.p_adjust);
     last.p_iteration.assign(k, 0.0);
@@ -227,8 +239,8 @@ struct Study {
 
 }  // namespace
 
-StudyAnalysis analyse_simulated_study(const SimulationDesign& design, const SimulationOptions& options,
-                                      std::uint64_t index) {
+StudyAnalysis analyse_simulated_study(const SimulationDesign& design,
+                                      const SimulationOptions& options, std::uint64_t index) {
   Tally t;
   t.iteration.assign(design.means_a.size(), 0);
   Study study(design, options);
@@ -280,23 +292,29 @@ SimulationDesign design_from_pilot(const WideDesign& pilot) {
   return d;
 }
 
-SimulationPowerResult simulate_power(const SimulationDesign& design, const SimulationOptions& options) {
+SimulationPowerResult simulate_power(const SimulationDesign& design,
+                                     const SimulationOptions& options) {
   const std::size_t k = design.means_a.size();
   if (k < 2 || design.means_b.size() != k) {
-    throw UsageError(fmt::format("the means of A and B need the same number (>= 2) of iterations; got {} and {}",
-                                 k, design.means_b.size()));
+    throw UsageError(
+        fmt::format("the means of A and B need the same number (>= 2) of iterations; got {} and {}",
+                    k, design.means_b.size()));
   }
-  if (design.n_a < 2 || design.n_b < 2) throw UsageError("simulation power needs at least 2 participants per condition");
-  if (!(design.sd_residual > 0) || !(design.sd_participant >= 0) || !std::isfinite(design.sd_residual) ||
-      !std::isfinite(design.sd_participant)) {
+  if (design.n_a < 2 || design.n_b < 2)
+    throw UsageError("simulation power needs at least 2 participants per condition");
+  if (!(design.sd_residual > 0) || !(design.sd_participant >= 0) ||
+      !std::isfinite(design.sd_residual) || !std::isfinite(design.sd_participant)) {
     throw UsageError("the residual sd must be positive and the participant sd non-negative");
   }
-  for (double m : design.means_a) if (!std::isfinite(m)) throw UsageError("the means must be finite numbers");
-  for (double m : design.means_b) if (!std::isfinite(m)) throw UsageError("the means must be finite numbers");
+  for (double m : design.means_a)
+    if (!std::isfinite(m)) throw UsageError("the means must be finite numbers");
+  for (double m : design.means_b)
+    if (!std::isfinite(m)) throw UsageError("the means must be finite numbers");
   if (options.studies == 0) throw UsageError("--studies must be at least 1");
   if (!(options.alpha > 0 && options.alpha < 1)) throw UsageError("--alpha must be in (0, 1)");
 
-  const unsigned threads = std::max(1u, std::min<unsigned>(options.threads, static_cast<unsigned>(options.studies)));
+  const unsigned threads =
+      std::max(1u, std::min<unsigned>(options.threads, static_cast<unsigned>(options.studies)));
   std::vector<detail::Tally> tallies(threads);
   auto work = [&](unsigned t) {
     detail::Tally& tally = tallies[t];
@@ -324,7 +342,8 @@ SimulationPowerResult simulate_power(const SimulationDesign& design, const Simul
   r.interaction = detail::proportion(total.interaction, options.studies);
   r.condition = detail::proportion(total.condition, options.studies);
   r.any_iteration = detail::proportion(total.any, options.studies);
-  for (std::size_t j = 0; j < k; ++j) r.iteration.push_back(detail::proportion(total.iteration[j], options.studies));
+  for (std::size_t j = 0; j < k; ++j)
+    r.iteration.push_back(detail::proportion(total.iteration[j], options.studies));
   r.mean_gg_eps = total.eps_sum / static_cast<double>(options.studies);
   return r;
 }

@@ -58,9 +58,12 @@ const models::MauchlyTest* mauchly_of(const models::MixedAnova& a, const std::st
 
 std::string correction_name(models::SphericityCorrection c) {
   switch (c) {
-    case models::SphericityCorrection::GG: return "Greenhouse-Geisser";
-    case models::SphericityCorrection::HF: return "Huynh-Feldt";
-    case models::SphericityCorrection::none: break;
+    case models::SphericityCorrection::GG:
+      return "Greenhouse-Geisser";
+    case models::SphericityCorrection::HF:
+      return "Huynh-Feldt";
+    case models::SphericityCorrection::none:
+      break;
   }
   return "no";
 }
@@ -84,8 +87,8 @@ std::vector<models::Observation> observations(const io::ScoresTable& scores,
   if (m < 0) return out;
   out.reserve(scores.records.size());
   for (const auto& r : scores.records) {
-    out.push_back({r.participant, r.condition, r.iteration, r.values[static_cast<std::size_t>(m)],
-                   r.line});
+    out.push_back(
+        {r.participant, r.condition, r.iteration, r.values[static_cast<std::size_t>(m)], r.line});
   }
   return out;
 }
@@ -110,12 +113,32 @@ std::string anova_apa(const models::AnovaEffect& e) {
 }
 
 std::vector<std::string_view> anova_columns(bool apa) {
-  std::vector<std::string_view> c = {
-      "metric",    "effect",     "num_df",    "den_df",   "MSE",       "F",
-      "ges",       "pes",        "p.value",   "correction", "eps",     "num_df_uncorrected",
-      "den_df_uncorrected", "p.value_uncorrected", "gg_eps", "p.value_gg", "hf_eps",
-      "p.value_hf", "mauchly_W", "mauchly_p.value", "ss", "error_ss", "n", "n_excluded",
-      "excluded", "note"};
+  std::vector<std::string_view> c = {"metric",
+                                     "effect",
+                                     "num_df",
+                                     "den_df",
+                                     "MSE",
+                                     "F",
+                                     "ges",
+                                     "pes",
+                                     "p.value",
+                                     "correction",
+                                     "eps",
+                                     "num_df_uncorrected",
+                                     "den_df_uncorrected",
+                                     "p.value_uncorrected",
+                                     "gg_eps",
+                                     "p.value_gg",
+                                     "hf_eps",
+                                     "p.value_hf",
+                                     "mauchly_W",
+                                     "mauchly_p.value",
+                                     "ss",
+                                     "error_ss",
+                                     "n",
+                                     "n_excluded",
+                                     "excluded",
+                                     "note"};
   if (apa) c.push_back("apa");
   return c;
 }
@@ -124,8 +147,10 @@ namespace {
 
 std::string effect_note(const models::MixedAnova& a, const models::AnovaEffect& e) {
   std::vector<std::string> notes;
-  if (!e.correction_note.empty()) notes.push_back(e.correction_note + "; df and p assume sphericity");
-  if (e.within && a.iterations.size() == 2) notes.push_back("1 numerator df: sphericity holds trivially");
+  if (!e.correction_note.empty())
+    notes.push_back(e.correction_note + "; df and p assume sphericity");
+  if (e.within && a.iterations.size() == 2)
+    notes.push_back("1 numerator df: sphericity holds trivially");
   return join(notes, "; ");
 }
 
@@ -134,36 +159,35 @@ std::vector<Record> tidy(const AnovaReport& r, bool apa) {
   for (const auto& a : r.analyses) {
     for (const auto& e : a.effects) {
       const models::MauchlyTest* m = mauchly_of(a, e.effect);
-      Record rec = {
-          Cell::str(a.metric),
-          Cell::str(e.effect),
-          Cell::num(e.report_num_df),
-          Cell::num(e.report_den_df),
-          Cell::num(e.mse),
-          Cell::num(e.f),
-          Cell::num(e.ges),
-          Cell::num(e.pes),
-          Cell::num(e.report_p),
-          Cell::str(e.within ? std::string(models::to_string(r.correction)) : "none"),
-          Cell::num(e.report_eps),
-          Cell::num(e.num_df),
-          Cell::num(e.den_df),
-          Cell::num(e.p_value),
-          Cell::num(e.gg_eps),
-          Cell::num(e.p_gg),
-          Cell::num(e.hf_eps),
-          Cell::num(e.p_hf),
-          Cell::num(m ? m->statistic : std::nullopt),
-          Cell::num(m ? m->p_value : std::nullopt),
-          Cell::num(e.ss),
-          Cell::num(e.error_ss),
-          Cell::integer(static_cast<long long>(a.n_participants)),
-          Cell::integer(static_cast<long long>(a.excluded.size())),
-          a.excluded.empty() ? Cell::none() : Cell::str(join(a.excluded, ";")),
-          [&] {
-            const std::string n = effect_note(a, e);
-            return n.empty() ? Cell::none() : Cell::str(n);
-          }()};
+      Record rec = {Cell::str(a.metric),
+                    Cell::str(e.effect),
+                    Cell::num(e.report_num_df),
+                    Cell::num(e.report_den_df),
+                    Cell::num(e.mse),
+                    Cell::num(e.f),
+                    Cell::num(e.ges),
+                    Cell::num(e.pes),
+                    Cell::num(e.report_p),
+                    Cell::str(e.within ? std::string(models::to_string(r.correction)) : "none"),
+                    Cell::num(e.report_eps),
+                    Cell::num(e.num_df),
+                    Cell::num(e.den_df),
+                    Cell::num(e.p_value),
+                    Cell::num(e.gg_eps),
+                    Cell::num(e.p_gg),
+                    Cell::num(e.hf_eps),
+                    Cell::num(e.p_hf),
+                    Cell::num(m ? m->statistic : std::nullopt),
+                    Cell::num(m ? m->p_value : std::nullopt),
+                    Cell::num(e.ss),
+                    Cell::num(e.error_ss),
+                    Cell::integer(static_cast<long long>(a.n_participants)),
+                    Cell::integer(static_cast<long long>(a.excluded.size())),
+                    a.excluded.empty() ? Cell::none() : Cell::str(join(a.excluded, ";")),
+                    [&] {
+                      const std::string n = effect_note(a, e);
+                      return n.empty() ? Cell::none() : Cell::str(n);
+                    }()};
       if (apa) rec.push_back(Cell::str(anova_apa(e)));
       out.push_back(std::move(rec));
     }
@@ -179,8 +203,8 @@ TextTable people_table(const AnovaReport& r, bool apa) {
     t.caption = fmt::format("Repeated-measures ANOVA, {} correction of the df",
                             correction_name(r.correction));
   }
-  t.header = {"Effect", "df1",   "df2",   "MSE",  "F",          "ges",       "pes",
-              "p",      "GG eps", "HF eps", "Mauchly W", "Mauchly p"};
+  t.header = {"Effect", "df1", "df2",    "MSE",    "F",         "ges",
+              "pes",    "p",   "GG eps", "HF eps", "Mauchly W", "Mauchly p"};
   if (apa) t.header.push_back("APA");
   t.right_align.assign(t.header.size(), true);
   t.right_align[0] = false;
@@ -212,7 +236,8 @@ TextTable people_table(const AnovaReport& r, bool apa) {
       if (!e.within) cells[mp_col] = "";
       if (apa) cells.push_back(anova_apa(e));
       std::vector<std::string> latex(t.header.size());
-      latex[p_col] = format_p(e.report_p, PStyle::latex) + (e.correction_note.empty() ? "" : " (a)");
+      latex[p_col] =
+          format_p(e.report_p, PStyle::latex) + (e.correction_note.empty() ? "" : " (a)");
       if (m && m->p_value) latex[mp_col] = format_p(m->p_value, PStyle::latex);
       t.rows.push_back({std::move(cells), false});
       t.latex_cells.push_back(std::move(latex));

@@ -33,15 +33,22 @@ std::string render_t_test_power(const models::TTestPowerResult& r, const std::st
       "alpha {} shared by {} test(s) (Bonferroni: {} per test).{}",
       two && s.ratio != 1.0 && !s.welch ? " / pwr.t2n.test" : "", io::format_double(s.alpha),
       s.tests, io::format_double(r.alpha_per_test),
-      s.welch ? " Welch: noncentral t with the Welch-Satterthwaite df of the true variances (as "
-                "MESS::power_welch_t_test), an approximation."
-              : (s.design == models::TTestDesign::paired ? " Paired: sd is the sd of the differences."
-                                                         : ""));
+      s.welch
+          ? " Welch: noncentral t with the Welch-Satterthwaite df of the true variances (as "
+            "MESS::power_welch_t_test), an approximation."
+          : (s.design == models::TTestDesign::paired ? " Paired: sd is the sd of the differences."
+                                                     : ""));
   if (format == OutputFormat::csv || format == OutputFormat::json) {
-    const std::vector<std::string_view> cols = {
-        "method", "type", "alternative", "solved", "n1", "n2", "n1_ceiling", "n2_ceiling",
-        "delta", "sd", "sd2", "alpha", "tests", "alpha_per_test", "power", "power_at_ceiling",
-        "df", "ncp", "note"};
+    const std::vector<std::string_view> cols = {"method",      "type",
+                                                "alternative", "solved",
+                                                "n1",          "n2",
+                                                "n1_ceiling",  "n2_ceiling",
+                                                "delta",       "sd",
+                                                "sd2",         "alpha",
+                                                "tests",       "alpha_per_test",
+                                                "power",       "power_at_ceiling",
+                                                "df",          "ncp",
+                                                "note"};
     Record rec = {Cell::str(r.method),
                   Cell::str(std::string(models::to_string(s.design))),
                   Cell::str(std::string(stats::to_string(s.alternative))),
@@ -101,8 +108,8 @@ std::string render_t_test_power(const models::TTestPowerResult& r, const std::st
   return render_table(t, format);
 }
 
-std::string render_simulation_power(const models::SimulationPowerResult& r, const std::string& source,
-                                    OutputFormat format) {
+std::string render_simulation_power(const models::SimulationPowerResult& r,
+                                    const std::string& source, OutputFormat format) {
   const auto& d = r.design;
   const auto& o = r.options;
   const std::string corr(models::to_string(o.correction));
@@ -117,12 +124,13 @@ std::string render_simulation_power(const models::SimulationPowerResult& r, cons
       {"condition (mixed ANOVA)", std::nullopt, r.condition},
       {"any iteration (Welch t, " + padj + ")", std::nullopt, r.any_iteration}};
   for (std::size_t j = 0; j < r.iteration.size(); ++j) {
-    lines.push_back({"iteration (Welch t, " + padj + ")", static_cast<long long>(j + 1), r.iteration[j]});
+    lines.push_back(
+        {"iteration (Welch t, " + padj + ")", static_cast<long long>(j + 1), r.iteration[j]});
   }
   if (format == OutputFormat::csv || format == OutputFormat::json) {
-    const std::vector<std::string_view> cols = {"test", "iteration", "power", "mc_se", "studies",
-                                                "seed", "n_a", "n_b", "alpha", "correction",
-                                                "p_adjust"};
+    const std::vector<std::string_view> cols = {"test",    "iteration",  "power",   "mc_se",
+                                                "studies", "seed",       "n_a",     "n_b",
+                                                "alpha",   "correction", "p_adjust"};
     std::vector<Record> recs;
     for (const auto& l : lines) {
       recs.push_back({Cell::str(l.test), l.iteration ? Cell::integer(*l.iteration) : Cell::none(),
@@ -136,8 +144,9 @@ std::string render_simulation_power(const models::SimulationPowerResult& r, cons
     return format == OutputFormat::csv ? write_csv(cols, recs) : write_json(cols, recs);
   }
   TextTable t;
-  t.caption = fmt::format("Simulated power, 2 conditions \u00d7 {} iterations, {} + {} participants, {} studies",
-                          d.means_a.size(), d.n_a, d.n_b, o.studies);
+  t.caption = fmt::format(
+      "Simulated power, 2 conditions \u00d7 {} iterations, {} + {} participants, {} studies",
+      d.means_a.size(), d.n_a, d.n_b, o.studies);
   t.header = {"Test", "Iteration", "Power", "MC SE"};
   t.right_align = {false, true, true, true};
   t.latex_label = "tab:simulated-power";
@@ -160,7 +169,8 @@ std::string render_simulation_power(const models::SimulationPowerResult& r, cons
       format_mean(d.sd_residual, 4), format_mean(icc, 3), means_a, means_b));
   t.notes.push_back(fmt::format(
       "Power = share of simulated studies with p < {} (MC SE = sqrt(power (1 - power) / studies)); "
-      "each study is analysed as the real one: mixed ANOVA with the {} correction (mean estimated GG "
+      "each study is analysed as the real one: mixed ANOVA with the {} correction (mean estimated "
+      "GG "
       "epsilon {}), Welch t per iteration adjusted by {} over the {} iterations. Seed {}: the same "
       "seed gives the same result on any machine and thread count. Compound symmetry is assumed, "
       "under which the GG-corrected test is conservative.",

@@ -76,10 +76,17 @@ TEST(AnovaCli, CsvCarriesAfexNumbersForEveryMetricOfThePaperDesign) {
   const auto golden = golden_of_case("paper_design");
   for (std::size_t i = 1; i < rows.size(); ++i) {
     const auto& g = golden.at(rows[i][col.at("effect")]);
-    for (const auto& [ours, theirs] : std::map<std::string, std::string>{
-             {"F", "F"}, {"den_df", "afex_gg_den_df"}, {"p.value", "afex_gg_p"},
-             {"MSE", "afex_gg_mse"}, {"ges", "ges"}, {"pes", "pes"}, {"gg_eps", "gg_eps"},
-             {"hf_eps", "hf_eps"}, {"mauchly_W", "mauchly_w"}, {"p.value_uncorrected", "p"}}) {
+    for (const auto& [ours, theirs] :
+         std::map<std::string, std::string>{{"F", "F"},
+                                            {"den_df", "afex_gg_den_df"},
+                                            {"p.value", "afex_gg_p"},
+                                            {"MSE", "afex_gg_mse"},
+                                            {"ges", "ges"},
+                                            {"pes", "pes"},
+                                            {"gg_eps", "gg_eps"},
+                                            {"hf_eps", "hf_eps"},
+                                            {"mauchly_W", "mauchly_w"},
+                                            {"p.value_uncorrected", "p"}}) {
       const std::string& mine = rows[i][col.at(ours)];
       if (g.at(theirs) == "NA") {
         EXPECT_EQ(mine, "") << ours;
@@ -90,7 +97,8 @@ TEST(AnovaCli, CsvCarriesAfexNumbersForEveryMetricOfThePaperDesign) {
     }
   }
   EXPECT_EQ(rows[2][col.at("correction")], "GG");
-  EXPECT_EQ(rows[2][col.at("apa")].rfind("F(4.81, 278.8) = 2.32, p = .046, \u03b7G\u00b2 = .002", 0), 0u)
+  EXPECT_EQ(
+      rows[2][col.at("apa")].rfind("F(4.81, 278.8) = 2.32, p = .046, \u03b7G\u00b2 = .002", 0), 0u)
       << rows[2][col.at("apa")];
 }
 
@@ -100,11 +108,12 @@ TEST(AnovaCli, TextNamesExcludedParticipantsAndHfChangesTheDf) {
   write_text(scores, scores_of_case("missing_trials"));
   const RunResult r = run_feint("anova " + shell_quote(scores.string()) + " --metric error");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("Excluded for a missing value (as afex): 3 (P07, P08, P13)"), std::string::npos)
+  EXPECT_NE(r.out.find("Excluded for a missing value (as afex): 3 (P07, P08, P13)"),
+            std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("Greenhouse-Geisser"), std::string::npos);
-  const RunResult hf =
-      run_feint("anova " + shell_quote(scores.string()) + " --metric error --correction HF --format json");
+  const RunResult hf = run_feint("anova " + shell_quote(scores.string()) +
+                                 " --metric error --correction HF --format json");
   ASSERT_EQ(hf.exit_code, 0) << hf.err;
   EXPECT_NE(hf.out.find("\"correction\": \"HF\""), std::string::npos) << hf.out;
   EXPECT_NE(hf.out.find("\"excluded\": \"P07;P08;P13\""), std::string::npos);
@@ -114,7 +123,8 @@ TEST(AnovaCli, SingularCaseSaysWhyInsteadOfEpsilons) {
   TempDir dir;
   const auto scores = dir.path() / "scores.csv";
   write_text(scores, scores_of_case("singular"));
-  const RunResult r = run_feint("anova " + shell_quote(scores.string()) + " --metric error --format markdown");
+  const RunResult r =
+      run_feint("anova " + shell_quote(scores.string()) + " --metric error --format markdown");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("| singular |"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("12 complete participants give 10 error df for 19 iteration contrasts"),
@@ -139,8 +149,9 @@ TEST(AnovaCli, ParticipantInTwoConditionsExits65WithTheLine) {
              "P2,a,2,0.4\nP3,b,1,0.5\nP3,b,2,0.3\n");
   const RunResult r = run_feint("anova " + shell_quote(scores.string()) + " --metric error");
   EXPECT_EQ(r.exit_code, 65);
-  EXPECT_NE(r.err.find("scores.csv:5: participant 'P2' is in condition 'a' but line 4 put it in 'b'"),
-            std::string::npos)
+  EXPECT_NE(
+      r.err.find("scores.csv:5: participant 'P2' is in condition 'a' but line 4 put it in 'b'"),
+      std::string::npos)
       << r.err;
 }
 
@@ -164,8 +175,8 @@ TEST(AnovaCli, AnalyzeWritesTheAnovaOfItsScoresInEveryFormatAsked) {
   TempDir dir;
   const auto out = dir.path() / "out";
   const std::string demo = std::string(FEINT_SOURCE_DIR) + "/data/demo";
-  const RunResult r = run_feint("analyze " + shell_quote(demo) + " -o " + shell_quote(out.string()) +
-                                " --formats csv,text");
+  const RunResult r = run_feint("analyze " + shell_quote(demo) + " -o " +
+                                shell_quote(out.string()) + " --formats csv,text");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ASSERT_TRUE(std::filesystem::exists(out / "anova.csv"));
   ASSERT_TRUE(std::filesystem::exists(out / "anova.txt"));
@@ -183,24 +194,33 @@ TEST(AnovaCli, AnalyzeWritesTheAnovaOfItsScoresInEveryFormatAsked) {
 namespace {
 
 TEST(AnovaCli, LatexOfAnovaAndPowerCompilesInAPaper) {
-  if (std::system("command -v pdflatex >/dev/null 2>&1 && kpsewhich booktabs.sty >/dev/null 2>&1") != 0) {
+  if (std::system(
+          "command -v pdflatex >/dev/null 2>&1 && kpsewhich booktabs.sty >/dev/null 2>&1") != 0) {
     GTEST_SKIP() << "pdflatex with booktabs not installed: LaTeX compile check skipped";
   }
   TempDir dir;
   const auto scores = dir.path() / "scores.csv";
   write_text(scores, scores_of_case("singular"));
   const std::string s = shell_quote(scores.string());
-  ASSERT_EQ(run_feint("anova " + s + " --apa --format latex -o " + shell_quote((dir / "a.tex").string())).exit_code, 0);
+  ASSERT_EQ(
+      run_feint("anova " + s + " --apa --format latex -o " + shell_quote((dir / "a.tex").string()))
+          .exit_code,
+      0);
   ASSERT_EQ(run_feint("power t-test --d 0.4 --power 0.9 --welch --sd2 1.5 --format latex -o " +
-                      shell_quote((dir / "b.tex").string())).exit_code, 0);
+                      shell_quote((dir / "b.tex").string()))
+                .exit_code,
+            0);
   ASSERT_EQ(run_feint("power simulate " + s + " --studies 20 --format latex -o " +
-                      shell_quote((dir / "c.tex").string())).exit_code, 0);
+                      shell_quote((dir / "c.tex").string()))
+                .exit_code,
+            0);
   write_text(dir / "paper.tex",
              "\\documentclass{article}\n\\usepackage[T1]{fontenc}\n\\usepackage{booktabs}\n"
              "\\usepackage{graphicx}\n\\usepackage{amsmath}\n\\begin{document}\nText.\n"
              "\\input{a.tex}\n\\input{b.tex}\n\\input{c.tex}\n\\end{document}\n");
-  const std::string cmd = "cd " + shell_quote(dir.path().string()) +
-                          " && pdflatex -interaction=nonstopmode -halt-on-error paper.tex > out.txt 2>&1";
+  const std::string cmd =
+      "cd " + shell_quote(dir.path().string()) +
+      " && pdflatex -interaction=nonstopmode -halt-on-error paper.tex > out.txt 2>&1";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << read_text(dir / "out.txt");
   EXPECT_EQ(read_text(dir / "paper.log").find("Overfull \\hbox"), std::string::npos);
 }

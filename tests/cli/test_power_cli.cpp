@@ -51,7 +51,8 @@ TEST(PowerCli, BonferroniOverTwentyTestsRaisesTheSampleSize) {
 TEST(PowerCli, BadRequestsExit64) {
   RunResult r = run_feint("power t-test --d 0.5");
   EXPECT_EQ(r.exit_code, 64);
-  EXPECT_NE(r.err.find("give exactly two of --n, --delta (or --d) and --power"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("give exactly two of --n, --delta (or --d) and --power"), std::string::npos)
+      << r.err;
   r = run_feint("power t-test --d 0.5 --delta 0.4 --n 10");
   EXPECT_EQ(r.exit_code, 64);
   r = run_feint("power t-test --type three-sample --d 0.5 --n 10");
@@ -66,7 +67,8 @@ TEST(PowerCli, SimulationFromAPilotIsReproducibleFromItsSeed) {
   std::string text = "participant,condition,iteration,error\n";
   for (int i = 0; i < 10; ++i) {
     for (int j = 1; j <= 4; ++j) {
-      const double v = (i < 5 ? 0.6 : 0.5) + 0.01 * ((i * 7 + j * 3) % 5) - (i < 5 ? 0.0 : 0.02 * j);
+      const double v =
+          (i < 5 ? 0.6 : 0.5) + 0.01 * ((i * 7 + j * 3) % 5) - (i < 5 ? 0.0 : 0.02 * j);
       text += "P" + std::to_string(i) + "," + (i < 5 ? "A" : "B") + "," + std::to_string(j) + "," +
               std::to_string(v) + "\n";
     }
@@ -82,14 +84,17 @@ TEST(PowerCli, SimulationFromAPilotIsReproducibleFromItsSeed) {
   EXPECT_EQ(rec.at("test"), "condition:iteration (mixed ANOVA, GG)");
   EXPECT_EQ(rec.at("n_a"), "12");
   EXPECT_EQ(rec.at("studies"), "300");
-  const RunResult text_out = run_feint("power simulate " + shell_quote(pilot.string()) + " --studies 50");
+  const RunResult text_out =
+      run_feint("power simulate " + shell_quote(pilot.string()) + " --studies 50");
   EXPECT_NE(text_out.out.find("Design from pilot"), std::string::npos) << text_out.out;
 }
 
 TEST(PowerCli, PilotWithOneConditionExits65) {
   TempDir dir;
   const auto pilot = dir.path() / "pilot.csv";
-  write_text(pilot, "participant,iteration,error\nP1,1,0.1\nP1,2,0.3\nP2,1,0.2\nP2,2,0.5\nP3,1,0.3\nP3,2,0.2\n");
+  write_text(
+      pilot,
+      "participant,iteration,error\nP1,1,0.1\nP1,2,0.3\nP2,1,0.2\nP2,2,0.5\nP3,1,0.3\nP3,2,0.2\n");
   const RunResult r = run_feint("power simulate " + shell_quote(pilot.string()) + " --studies 10");
   EXPECT_EQ(r.exit_code, 65);
   EXPECT_NE(r.err.find("simulation power needs exactly two"), std::string::npos) << r.err;

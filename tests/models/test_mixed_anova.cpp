@@ -20,8 +20,8 @@ std::vector<Observation> grid(std::size_t n_per_group, std::size_t k, std::size_
       for (std::size_t j = 1; j <= k; ++j) {
         const double v = 0.5 + 0.01 * static_cast<double>((i * 7 + j * 3 + g * 5) % 11) +
                          0.02 * static_cast<double>(g * j);
-        obs.push_back({"P" + std::to_string(g) + "_" + std::to_string(i), g == 0 ? "adaptive" : "random",
-                       static_cast<long long>(j), v, ++line});
+        obs.push_back({"P" + std::to_string(g) + "_" + std::to_string(i),
+                       g == 0 ? "adaptive" : "random", static_cast<long long>(j), v, ++line});
       }
     }
   }
@@ -71,8 +71,8 @@ TEST(WideDesign, SingleIterationIsAnError) {
 
 TEST(WideDesign, IncompleteParticipantsAreExcludedAndNamedInFileOrder) {
   auto obs = grid(4, 3);
-  obs[4].value.reset();                         // P0_1 iteration 2: empty cell
-  obs.erase(obs.begin() + 20);                  // P1_2 iteration 3: row absent
+  obs[4].value.reset();         // P0_1 iteration 2: empty cell
+  obs.erase(obs.begin() + 20);  // P1_2 iteration 3: row absent
   const WideDesign d = make_wide_design(obs, "error", "scores.csv");
   EXPECT_EQ(d.excluded, (std::vector<std::string>{"P0_1", "P1_2"}));
   EXPECT_EQ(d.n(), 6u);

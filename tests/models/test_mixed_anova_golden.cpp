@@ -37,7 +37,8 @@ std::map<std::string, std::vector<Observation>> load_cases() {
   return cases;
 }
 
-void expect_rel(std::optional<double> actual, std::optional<double> expected, const std::string& what) {
+void expect_rel(std::optional<double> actual, std::optional<double> expected,
+                const std::string& what) {
   ASSERT_EQ(actual.has_value(), expected.has_value()) << what;
   if (!expected) return;
   const double tol = 1e-10 * std::max(std::abs(*expected), 1e-300);

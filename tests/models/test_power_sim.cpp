@@ -39,8 +39,8 @@ TEST(SimulationPower, FastPathAgreesWithTheMixedAnovaAndWelchTestsOnTheSameData)
     const std::size_t k = d.means_a.size();
     for (std::size_t i = 0; i < d.n_a + d.n_b; ++i) {
       for (std::size_t j = 0; j < k; ++j) {
-        obs.push_back({"P" + std::to_string(i), i < d.n_a ? "A" : "B", static_cast<long long>(j + 1),
-                       s.y[i * k + j], 0});
+        obs.push_back({"P" + std::to_string(i), i < d.n_a ? "A" : "B",
+                       static_cast<long long>(j + 1), s.y[i * k + j], 0});
       }
     }
     const MixedAnova a = mixed_anova(make_wide_design(obs, "y", "sim"), SphericityCorrection::GG);
@@ -50,7 +50,8 @@ TEST(SimulationPower, FastPathAgreesWithTheMixedAnovaAndWelchTestsOnTheSameData)
     EXPECT_NEAR(s.f_condition, a.effects[0].f, 1e-9 * a.effects[0].f);
     for (std::size_t j = 0; j < k; ++j) {
       std::vector<double> xa, xb;
-      for (std::size_t i = 0; i < d.n_a + d.n_b; ++i) (i < d.n_a ? xa : xb).push_back(s.y[i * k + j]);
+      for (std::size_t i = 0; i < d.n_a + d.n_b; ++i)
+        (i < d.n_a ? xa : xb).push_back(s.y[i * k + j]);
       const auto w = stats::t_test_welch(xa, xb);
       EXPECT_NEAR(s.p_iteration[j], *w.p_value, 1e-10 * *w.p_value + 1e-15) << j;
     }
@@ -71,7 +72,8 @@ TEST(SimulationPower, TrueNullRejectsAtAlphaWithinMonteCarloError) {
   EXPECT_NEAR(r.condition.power, 0.05, 4 * se);
   // Holm controls the family-wise rate: at most alpha (+ Monte Carlo error).
   EXPECT_LE(r.any_iteration.power, 0.05 + 4 * se);
-  EXPECT_NEAR(r.interaction.mc_se, std::sqrt(r.interaction.power * (1 - r.interaction.power) / 4000), 1e-15);
+  EXPECT_NEAR(r.interaction.mc_se,
+              std::sqrt(r.interaction.power * (1 - r.interaction.power) / 4000), 1e-15);
   o.correction = SphericityCorrection::GG;
   const auto gg = simulate_power(d, o);
   EXPECT_LE(gg.interaction.power, 0.05 + 4 * se);
@@ -111,7 +113,8 @@ TEST(SimulationPower, PilotGivesCellMeansAndVarianceComponents) {
   std::vector<Observation> obs;
   for (int i = 0; i < 6; ++i) {
     for (int j = 1; j <= 3; ++j) {
-      const double v = (i < 3 ? 0.5 : 0.3) + 0.1 * j + 0.05 * (i % 3) + ((i + j) % 2 ? 0.01 : -0.01);
+      const double v =
+          (i < 3 ? 0.5 : 0.3) + 0.1 * j + 0.05 * (i % 3) + ((i + j) % 2 ? 0.01 : -0.01);
       obs.push_back({"P" + std::to_string(i), i < 3 ? "A" : "B", j, v, 0});
     }
   }

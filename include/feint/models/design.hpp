@@ -26,19 +26,22 @@ struct Observation {
 /// Participants x iterations, complete cases only (as afex: a participant with a missing value is
 /// excluded from the whole analysis of that metric).
 struct WideDesign {
-  std::string source;                  ///< file name, for messages
+  std::string source;  ///< file name, for messages
   std::string metric;
-  std::vector<std::string> conditions; ///< levels in order of first appearance (the between factor)
-  std::vector<long long> iterations;   ///< levels, ascending (the within factor)
+  std::vector<std::string>
+      conditions;                     ///< levels in order of first appearance (the between factor)
+  std::vector<long long> iterations;  ///< levels, ascending (the within factor)
   std::vector<std::string> participants;  ///< complete participants, sorted by condition, then
                                           ///< order of first appearance
-  std::vector<std::size_t> group;      ///< condition index of each participant
-  std::vector<double> y;               ///< participants x iterations, row-major
-  std::vector<std::string> excluded;   ///< participants left out for a missing iteration/value
+  std::vector<std::size_t> group;         ///< condition index of each participant
+  std::vector<double> y;                  ///< participants x iterations, row-major
+  std::vector<std::string> excluded;      ///< participants left out for a missing iteration/value
 
   std::size_t n() const noexcept { return participants.size(); }
   std::size_t k() const noexcept { return iterations.size(); }
-  double at(std::size_t participant, std::size_t iteration) const { return y[participant * k() + iteration]; }
+  double at(std::size_t participant, std::size_t iteration) const {
+    return y[participant * k() + iteration];
+  }
   /// Participants per condition (complete cases).
   std::vector<std::size_t> group_sizes() const;
 };

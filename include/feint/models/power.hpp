@@ -3,11 +3,12 @@
 //
 // With delta the true difference, sd the standard deviation(s), alpha' = alpha / m (Bonferroni for
 // a family of m tests), T ~ noncentral t(nu, ncp) (boost::math::non_central_t):
-//   one-sample / paired:    nu = n - 1,        ncp = sqrt(n) delta / sd   (paired: sd of differences)
-//   two-sample (Student):   nu = n1 + n2 - 2,  ncp = delta / (sd sqrt(1/n1 + 1/n2))
+//   one-sample / paired:    nu = n - 1,        ncp = sqrt(n) delta / sd   (paired: sd of
+//   differences) two-sample (Student):   nu = n1 + n2 - 2,  ncp = delta / (sd sqrt(1/n1 + 1/n2))
 //   two-sample (Welch):     ncp = delta / sqrt(sd1^2/n1 + sd2^2/n2) and nu the Welch-Satterthwaite
-//                           df of the population variances (the approach of MESS::power_welch_t_test;
-//                           an approximation: the Welch statistic is not exactly noncentral t)
+//                           df of the population variances (the approach of
+//                           MESS::power_welch_t_test; an approximation: the Welch statistic is not
+//                           exactly noncentral t)
 //   two.sided: power = P(T > q) + P(T < -q), q = qt(1 - alpha'/2, nu)   (strict = TRUE: both tails)
 //   greater:   power = P(T > qt(1 - alpha', nu));  less: P(T < -qt(1 - alpha', nu)).
 // Solving for n (per group; n2 = ratio * n1), for delta, or for alpha-level power: a bracketed
@@ -33,23 +34,23 @@ struct TTestPowerSpec {
   std::optional<double> n;      ///< per group (two-sample: group 1); may be fractional
   std::optional<double> delta;  ///< true difference in means (metric units; > 0)
   std::optional<double> power;  ///< in (alpha', 1)
-  double sd = 1.0;              ///< sd (two-sample: of group 1, or common); with sd = 1 delta is Cohen's d
-  std::optional<double> sd2;    ///< Welch: sd of group 2 (default sd)
-  double ratio = 1.0;           ///< two-sample: n2 = ratio * n1
-  bool welch = false;           ///< two-sample: Welch's test instead of Student's
-  double alpha = 0.05;          ///< family-wise level
-  int tests = 1;                ///< m: the tests share alpha by Bonferroni (alpha / m each)
+  double sd = 1.0;  ///< sd (two-sample: of group 1, or common); with sd = 1 delta is Cohen's d
+  std::optional<double> sd2;  ///< Welch: sd of group 2 (default sd)
+  double ratio = 1.0;         ///< two-sample: n2 = ratio * n1
+  bool welch = false;         ///< two-sample: Welch's test instead of Student's
+  double alpha = 0.05;        ///< family-wise level
+  int tests = 1;              ///< m: the tests share alpha by Bonferroni (alpha / m each)
   stats::Alternative alternative = stats::Alternative::two_sided;
 };
 
 struct TTestPowerResult {
-  TTestPowerSpec spec;     ///< with the solved quantity filled in
+  TTestPowerSpec spec;  ///< with the solved quantity filled in
   double alpha_per_test = 0.05;
   double n1 = 0, n2 = 0;   ///< exact (fractional) sample sizes; n2 = 0 for one group
   double df = 0, ncp = 0;  ///< of the noncentral t at n1/n2
   // When n was solved: the whole-participant sizes and the power they give (>= the target).
   std::optional<double> n1_ceiling, n2_ceiling, power_at_ceiling;
-  std::string method;      ///< e.g. "Two-sample t test power calculation (Student)"
+  std::string method;  ///< e.g. "Two-sample t test power calculation (Student)"
   std::string note;
 };
 

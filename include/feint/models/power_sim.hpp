@@ -3,8 +3,8 @@
 // per-iteration contrasts of the paper's Table 1 (Welch t per iteration, p adjusted over the k
 // iterations).
 //
-// Generating model (compound symmetry): y_ij = mu_{g(i), j} + u_i + e_ij, u_i ~ N(0, sd_participant^2),
-// e_ij ~ N(0, sd_residual^2), all independent; the intra-class correlation is
+// Generating model (compound symmetry): y_ij = mu_{g(i), j} + u_i + e_ij, u_i ~ N(0,
+// sd_participant^2), e_ij ~ N(0, sd_residual^2), all independent; the intra-class correlation is
 // sd_participant^2 / (sd_participant^2 + sd_residual^2). Each simulated study is analysed as the
 // real one: mixed ANOVA with the chosen sphericity correction (epsilon estimated from the simulated
 // data, as afex does), Welch t-tests per iteration with stats::p_adjust.
@@ -53,11 +53,11 @@ struct SimulatedPower {
 struct SimulationPowerResult {
   SimulationDesign design;
   SimulationOptions options;
-  SimulatedPower interaction;            ///< condition:iteration F (corrected) p < alpha
-  SimulatedPower condition;              ///< condition main effect p < alpha
-  SimulatedPower any_iteration;          ///< at least one per-iteration contrast (adjusted) < alpha
-  std::vector<SimulatedPower> iteration; ///< per iteration: adjusted Welch p < alpha
-  double mean_gg_eps = 0;                ///< average estimated epsilon (GG)
+  SimulatedPower interaction;    ///< condition:iteration F (corrected) p < alpha
+  SimulatedPower condition;      ///< condition main effect p < alpha
+  SimulatedPower any_iteration;  ///< at least one per-iteration contrast (adjusted) < alpha
+  std::vector<SimulatedPower> iteration;  ///< per iteration: adjusted Welch p < alpha
+  double mean_gg_eps = 0;                 ///< average estimated epsilon (GG)
 };
 
 /// The design a pilot suggests: per-condition means of every iteration, and the variance
@@ -69,7 +69,8 @@ SimulationDesign design_from_pilot(const WideDesign& pilot);
 
 /// Runs `options.studies` simulated studies. Throws UsageError for a bad design (lengths differ,
 /// k < 2, fewer than 2 participants per condition, sd_residual <= 0, studies == 0).
-SimulationPowerResult simulate_power(const SimulationDesign& design, const SimulationOptions& options);
+SimulationPowerResult simulate_power(const SimulationDesign& design,
+                                     const SimulationOptions& options);
 
 namespace detail {
 /// One simulated study and its analysis (for tests: the fast path against mixed_anova and

@@ -14,7 +14,8 @@ namespace feint::report {
 std::string solved_for(const models::TTestPowerSpec& given);
 
 /// Analytic t-test power. Tidy columns: method, type, alternative, solved, n1, n2, n1_ceiling,
-/// n2_ceiling, delta, sd, sd2, alpha, tests, alpha_per_test, power, power_at_ceiling, df, ncp, note.
+/// n2_ceiling, delta, sd, sd2, alpha, tests, alpha_per_test, power, power_at_ceiling, df, ncp,
+/// note.
 std::string render_t_test_power(const models::TTestPowerResult& result, const std::string& solved,
                                 OutputFormat format);
 
