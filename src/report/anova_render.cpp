@@ -245,8 +245,9 @@ TextTable people_table(const AnovaReport& r, bool apa) {
   }
   // The note: design, sample, exclusions, correction, and what the columns mean.
   for (const auto& a : r.analyses) {
-    std::string n = fmt::format("{}: {}; {} participants with every iteration ({}).", a.metric,
-                                design_text(a), a.n_participants, sizes_text(a));
+    std::string n = fmt::format("{}: {}; {} participants with every iteration{}.", a.metric,
+                                design_text(a), a.n_participants,
+                                a.one_way() ? "" : " (" + sizes_text(a) + ")");
     if (!a.excluded.empty()) {
       n += fmt::format(" Excluded for a missing value (as afex): {} ({}).", a.excluded.size(),
                        join(a.excluded, ", "));
