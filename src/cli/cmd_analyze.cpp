@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "analyze_anova.hpp"
 #include "commands.hpp"
 #include "feint/error.hpp"
 #include "feint/io/number.hpp"
@@ -248,6 +249,9 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
               [&](report::OutputFormat f) {
                 return report::render_table1(two_sample, f, report_opts.presentation);
               });
+  }
+  if (const auto anova = analyze_anova(scores)) {  // the mixed ANOVA (docs/anova-power.md)
+    write_all("anova", [&](report::OutputFormat f) { return report::render_anova(*anova, f, t.apa); });
   }
 
   // 3. The questionnaire, when the study has one.

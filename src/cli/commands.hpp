@@ -15,5 +15,7 @@ void add_analyze_command(CLI::App& app);   // cmd_analyze.cpp  (issue: Table 1)
 void add_likert_command(CLI::App& app);    // cmd_likert.cpp   (issue: Likert)
 void add_simulate_command(CLI::App& app);  // cmd_simulate.cpp (issue: selection simulator)
 void add_collect_command(CLI::App& app);   // cmd_collect.cpp  (issue 11: data collection)
+void add_anova_command(CLI::App& app);     // cmd_anova.cpp    (issue 10: mixed ANOVA)
+void add_power_command(CLI::App& app);     // cmd_power.cpp    (issue 10: power)
 
 }  // namespace feint::cli

@@ -36,6 +36,8 @@ int main(int argc, char** argv) {
   feint::cli::add_likert_command(app);
   feint::cli::add_simulate_command(app);
   feint::cli::add_collect_command(app);
+  feint::cli::add_anova_command(app);
+  feint::cli::add_power_command(app);
 
   // `feint help [COMMAND]` is `feint [COMMAND] --help`; a first word that is no command is named
   // as such (CLI11 would only say "The following argument was not expected").

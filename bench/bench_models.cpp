@@ -1,0 +1,66 @@
+// Benchmarks of the repeated-measures models (issue 10): the mixed ANOVA of the paper's design
+// (2 conditions x 20 iterations, 30 participants each) and simulation power (studies per second).
+//   cmake -S . -B build -DFEINT_BUILD_BENCH=ON && cmake --build build --target bench_models
+//   build/bench/bench_models
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+#include "feint/models/mixed_anova.hpp"
+#include "feint/models/power_sim.hpp"
+
+namespace {
+
+using namespace feint::models;
+
+SimulationDesign paper_design() {
+  SimulationDesign d;
+  for (int j = 0; j < 20; ++j) {
+    d.means_a.push_back(0.6);
+    d.means_b.push_back(0.6 - 0.004 * j);
+  }
+  d.sd_participant = 0.1;
+  d.sd_residual = 0.15;
+  return d;
+}
+
+std::vector<Observation> paper_observations() {
+  const auto study = detail::analyse_simulated_study(paper_design(), {}, 0);
+  std::vector<Observation> obs;
+  for (std::size_t i = 0; i < 60; ++i) {
+    for (std::size_t j = 0; j < 20; ++j) {
+      obs.push_back({"P" + std::to_string(i), i < 30 ? "adaptive" : "random",
+                     static_cast<long long>(j + 1), study.y[i * 20 + j], 0});
+    }
+  }
+  return obs;
+}
+
+void BM_MixedAnovaPaperDesign(benchmark::State& state) {
+  const auto obs = paper_observations();
+  for (auto _ : state) {
+    const WideDesign d = make_wide_design(obs, "error", "bench");
+    benchmark::DoNotOptimize(mixed_anova(d));
+  }
+}
+BENCHMARK(BM_MixedAnovaPaperDesign)->Unit(benchmark::kMicrosecond);
+
+void BM_SimulationPower(benchmark::State& state) {
+  SimulationOptions o;
+  o.studies = static_cast<std::size_t>(state.range(0));
+  o.threads = static_cast<unsigned>(state.range(1));
+  for (auto _ : state) benchmark::DoNotOptimize(simulate_power(paper_design(), o));
+  state.counters["studies_per_s"] =
+      benchmark::Counter(static_cast<double>(o.studies) * static_cast<double>(state.iterations()),
+                         benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_SimulationPower)
+    ->Args({10000, 1})
+    ->Args({10000, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,88 @@
+// feint anova SCORES.csv: the mixed ANOVA (condition between x iteration within) of each metric,
+// as afex::aov_ez (see docs/anova-power.md).
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "feint/error.hpp"
+#include "feint/io/scores.hpp"
+#include "feint/report/anova_render.hpp"
+#include "report_options.hpp"
+
+namespace feint::cli {
+
+namespace {
+
+struct AnovaArgs {
+  std::string input;
+  std::vector<std::string> metrics;
+  std::string correction = "GG";
+  bool apa = false;
+  std::string participant_column = "participant";
+  std::string iteration_column = "iteration";
+  std::string condition_column = "condition";
+  ReportOptions report;
+};
+
+void run_anova(const AnovaArgs& a) {
+  const ResolvedReportOptions r = resolve_report_options(a.report);
+  const auto correction = models::parse_sphericity_correction(a.correction);
+  io::ScoresOptions so;
+  so.participant_column = a.participant_column;
+  so.iteration_column = a.iteration_column;
+  so.condition_column = a.condition_column;
+  if (!a.metrics.empty()) {
+    so.metrics.clear();
+    for (const auto& m : a.metrics) {
+      if (m.empty() || m.find('=') != std::string::npos) {
+        throw UsageError("--metric '" + m + "': expected a metric column name, e.g. error");
+      }
+      if (std::find(so.metrics.begin(), so.metrics.end(), m) != so.metrics.end()) {
+        throw UsageError("--metric '" + m + "' given twice");
+      }
+      so.metrics.push_back(m);
+    }
+  }
+  const io::ScoresTable scores = io::load_scores(a.input, so);
+  const report::AnovaReport report = report::build_anova_report(scores, correction);
+  write_report(r.output, report::render_anova(report, r.format, a.apa));
+}
+
+}  // namespace
+
+void add_anova_command(CLI::App& app) {
+  auto args = std::make_shared<AnovaArgs>();
+  auto* cmd = app.add_subcommand(
+      "anova",
+      "Mixed ANOVA per metric: condition (between) x iteration (within), as afex::aov_ez - "
+      "type-III "
+      "F tests, Mauchly's test, Greenhouse-Geisser/Huynh-Feldt corrections, generalized eta "
+      "squared. One condition: one-way repeated-measures ANOVA.");
+  cmd->add_option("SCORES", args->input,
+                  "Scores CSV: participant, iteration, optional condition, numeric metric columns "
+                  "(- = standard input)")
+      ->required();
+  cmd->add_option("--metric", args->metrics,
+                  "Metric column to analyse (repeatable; default error and confusion)")
+      ->allow_extra_args(false);
+  cmd->add_option("--correction", args->correction,
+                  "Sphericity correction of the within-participant df: GG (default, as afex), HF "
+                  "or none")
+      ->capture_default_str();
+  cmd->add_flag("--apa", args->apa,
+                "Add an APA string per effect, e.g. 'F(1.93, 112.1) = 4.31, p = .017, ηG² = .031'");
+  cmd->add_option("--participant-column", args->participant_column,
+                  "Name of the participant column")
+      ->capture_default_str();
+  cmd->add_option("--iteration-column", args->iteration_column, "Name of the iteration column")
+      ->capture_default_str();
+  cmd->add_option("--condition-column", args->condition_column,
+                  "Name of the (optional) condition column")
+      ->capture_default_str();
+  add_report_options(*cmd, args->report, ReportOptionSet{false});
+  cmd->callback([args] { run_anova(*args); });
+}
+
+}  // namespace feint::cli

@@ -1,0 +1,122 @@
+#include "feint/models/design.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+#include <unordered_map>
+
+#include "feint/error.hpp"
+
+namespace feint::models {
+
+std::vector<std::size_t> WideDesign::group_sizes() const {
+  std::vector<std::size_t> sizes(conditions.size(), 0);
+  for (std::size_t g : group) ++sizes[g];
+  return sizes;
+}
+
+WideDesign make_wide_design(std::span<const Observation> observations, const std::string& metric,
+                            const std::string& source) {
+  WideDesign d;
+  d.source = source;
+  d.metric = metric;
+  if (observations.empty()) {
+    throw InvalidData(fmt::format("{}: metric '{}': no data rows", source, metric));
+  }
+
+  struct Person {
+    std::size_t condition = 0;
+    std::uint64_t first_line = 0;
+    std::map<long long, std::optional<double>> values;
+  };
+  std::vector<std::string> order;  // participants in order of first appearance
+  std::unordered_map<std::string, Person> people;
+  std::map<long long, std::size_t> with_value;  // iteration -> number of values present
+  for (const Observation& o : observations) {
+    auto c = std::find(d.conditions.begin(), d.conditions.end(), o.condition);
+    const auto ci = static_cast<std::size_t>(c - d.conditions.begin());
+    if (c == d.conditions.end()) d.conditions.push_back(o.condition);
+    auto [it, fresh] = people.try_emplace(o.participant);
+    if (fresh) {
+      it->second.condition = ci;
+      it->second.first_line = o.line;
+      order.push_back(o.participant);
+    } else if (it->second.condition != ci) {
+      throw InvalidData(fmt::format(
+          "{}:{}: participant '{}' is in condition '{}' but line {} put it in '{}'; the mixed "
+          "ANOVA needs each participant in exactly one condition (condition is between "
+          "participants)",
+          source, o.line, o.participant, o.condition, it->second.first_line,
+          d.conditions[it->second.condition]));
+    }
+    it->second.values[o.iteration] = o.value;
+    auto& count = with_value[o.iteration];
+    if (o.value) ++count;
+  }
+  for (const auto& [iteration, count] : with_value) {
+    if (count == 0) {
+      throw InvalidData(fmt::format(
+          "{}: metric '{}': iteration {} has no value for any participant; drop the iteration "
+          "or fill in its values",
+          source, metric, iteration));
+    }
+    d.iterations.push_back(iteration);
+  }
+  if (d.iterations.size() < 2) {
+    throw InvalidData(fmt::format(
+        "{}: metric '{}': only one iteration ({}); a repeated-measures ANOVA needs at least two",
+        source, metric, d.iterations.front()));
+  }
+
+  // Complete cases, grouped by condition (order of first appearance within each).
+  for (std::size_t g = 0; g < d.conditions.size(); ++g) {
+    for (const std::string& name : order) {
+      const Person& p = people.at(name);
+      if (p.condition != g) continue;
+      bool complete = true;
+      for (long long it : d.iterations) {
+        auto v = p.values.find(it);
+        if (v == p.values.end() || !v->second) {
+          complete = false;
+          break;
+        }
+      }
+      if (!complete) {
+        d.excluded.push_back(name);
+        continue;
+      }
+      d.participants.push_back(name);
+      d.group.push_back(g);
+      for (long long it : d.iterations) d.y.push_back(*p.values.at(it));
+    }
+  }
+  if (d.participants.empty()) {
+    throw InvalidData(fmt::format(
+        "{}: metric '{}': no participant has a value for every iteration ({} to {}); the "
+        "repeated-measures ANOVA uses complete cases only (feint model keeps incomplete ones)",
+        source, metric, d.iterations.front(), d.iterations.back()));
+  }
+  // A condition whose participants were all excluded is not a level of the analysis.
+  std::vector<std::size_t> sizes(d.conditions.size(), 0);
+  for (std::size_t g : d.group) ++sizes[g];
+  std::vector<std::size_t> remap(d.conditions.size(), 0);
+  std::vector<std::string> kept;
+  for (std::size_t g = 0; g < d.conditions.size(); ++g) {
+    remap[g] = kept.size();
+    if (sizes[g] > 0) kept.push_back(d.conditions[g]);
+  }
+  for (auto& g : d.group) g = remap[g];
+  d.conditions = std::move(kept);
+
+  const auto [lo, hi] = std::minmax_element(d.y.begin(), d.y.end());
+  if (*lo == *hi) {
+    throw InvalidData(fmt::format(
+        "{}: metric '{}' has no variance: every value of the {} complete participants is {}; an "
+        "ANOVA of a constant is undefined",
+        source, metric, d.participants.size(), *lo));
+  }
+  return d;
+}
+
+}  // namespace feint::models

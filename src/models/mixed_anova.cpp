@@ -1,0 +1,220 @@
+// Mixed ANOVA in closed form (see mixed_anova.hpp for the formulas and references).
+#include "feint/models/mixed_anova.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Dense>
+#include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/distributions/fisher_f.hpp>
+#include <cctype>
+#include <cmath>
+
+#include "feint/error.hpp"
+
+namespace feint::models {
+
+namespace detail {
+
+/// Upper tail of F(df1, df2) at f (Boost complement: no cancellation for small p).
+double f_upper(double f, double df1, double df2) {
+  if (!(f >= 0) || !std::isfinite(f)) return std::isinf(f) ? 0.0 : 1.0;
+  return boost::math::cdf(boost::math::complement(boost::math::fisher_f(df1, df2), f));
+}
+
+double chisq_upper(double x, double df) {
+  if (!(x > 0)) return 1.0;
+  if (std::isinf(x)) return 0.0;
+  return boost::math::cdf(boost::math::complement(boost::math::chi_squared(df), x));
+}
+
+/// Orthonormal Helmert contrasts, k x (k - 1): column j compares level j+1 with levels 1..j.
+Eigen::MatrixXd orthonormal_contrasts(Eigen::Index k) {
+  Eigen::MatrixXd p = Eigen::MatrixXd::Zero(k, k - 1);
+  for (Eigen::Index j = 1; j < k; ++j) {
+    const double s = std::sqrt(static_cast<double>(j) * static_cast<double>(j + 1));
+    for (Eigen::Index i = 0; i < j; ++i) p(i, j - 1) = 1.0 / s;
+    p(j, j - 1) = -static_cast<double>(j) / s;
+  }
+  return p;
+}
+
+}  // namespace detail
+
+SphericityCorrection parse_sphericity_correction(std::string_view text) {
+  std::string t;
+  for (char c : text) t += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (t == "none") return SphericityCorrection::none;
+  if (t == "gg") return SphericityCorrection::GG;
+  if (t == "hf") return SphericityCorrection::HF;
+  throw UsageError(fmt::format("--correction '{}': expected none, GG or HF", text));
+}
+
+std::string_view to_string(SphericityCorrection correction) noexcept {
+  switch (correction) {
+    case SphericityCorrection::none:
+      return "none";
+    case SphericityCorrection::GG:
+      return "GG";
+    case SphericityCorrection::HF:
+      return "HF";
+  }
+  return "none";
+}
+
+MixedAnova mixed_anova(const WideDesign& d, SphericityCorrection correction) {
+  const auto n = static_cast<Eigen::Index>(d.n());
+  const auto k = static_cast<Eigen::Index>(d.k());
+  const auto a = static_cast<Eigen::Index>(d.conditions.size());
+  const std::vector<std::size_t> sizes = d.group_sizes();
+  MixedAnova out;
+  out.metric = d.metric;
+  out.conditions = d.conditions;
+  out.group_sizes = sizes;
+  out.iterations = d.iterations;
+  out.n_participants = d.n();
+  out.excluded = d.excluded;
+  out.correction = correction;
+  const double dfe = static_cast<double>(n - a);
+  if (dfe < 1) {
+    throw InvalidData(fmt::format(
+        "{}: metric '{}': {} complete participant(s) in {} condition(s) leave no error degrees "
+        "of freedom; the ANOVA needs more participants than conditions",
+        d.source, d.metric, n, a));
+  }
+
+  Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> y(
+      d.y.data(), n, k);
+
+  // Cell means (condition profiles), their weighted and unweighted means.
+  Eigen::MatrixXd profile = Eigen::MatrixXd::Zero(a, k);
+  for (Eigen::Index i = 0; i < n; ++i)
+    profile.row(static_cast<Eigen::Index>(d.group[i])) += y.row(i);
+  Eigen::VectorXd ng(a);
+  for (Eigen::Index g = 0; g < a; ++g) {
+    ng(g) = static_cast<double>(sizes[static_cast<std::size_t>(g)]);
+    profile.row(g) /= ng(g);
+  }
+  const Eigen::RowVectorXd weighted = (ng.transpose() * profile) / static_cast<double>(n);
+  const Eigen::RowVectorXd unweighted = profile.colwise().mean();
+  const double c = ng.cwiseInverse().sum() / static_cast<double>(a * a);
+
+  // Residual SSP (k x k) around the condition profiles.
+  Eigen::MatrixXd resid(n, k);
+  for (Eigen::Index i = 0; i < n; ++i)
+    resid.row(i) = y.row(i) - profile.row(static_cast<Eigen::Index>(d.group[i]));
+  const Eigen::MatrixXd sspe_full = resid.transpose() * resid;
+
+  const double kd = static_cast<double>(k);
+  // Between stratum: participant sums.
+  const Eigen::VectorXd rsum = resid.rowwise().sum();
+  const double error_between = rsum.squaredNorm() / kd;
+  const Eigen::VectorXd prof_sum = profile.rowwise().sum();
+  const double mean_sum = weighted.sum();
+  double ss_condition = 0;
+  for (Eigen::Index g = 0; g < a; ++g) ss_condition += ng(g) * std::pow(prof_sum(g) - mean_sum, 2);
+  ss_condition /= kd;
+
+  // Within stratum.
+  const Eigen::MatrixXd P = detail::orthonormal_contrasts(k);
+  const Eigen::MatrixXd E = P.transpose() * sspe_full * P;
+  const double error_within = E.trace();
+  const double ss_iteration = (unweighted.array() - unweighted.mean()).square().sum() / c;
+  double ss_interaction = 0;
+  for (Eigen::Index g = 0; g < a; ++g) {
+    const Eigen::RowVectorXd dev = profile.row(g) - weighted;
+    ss_interaction += ng(g) * (dev * P).squaredNorm();
+  }
+  if (!(error_within > 0)) {
+    throw InvalidData(fmt::format(
+        "{}: metric '{}': no within-participant variation left (every participant's profile "
+        "equals its condition's mean profile); the F tests are undefined",
+        d.source, d.metric));
+  }
+
+  // Sphericity: eigenvalues of E.
+  const double p = kd - 1;
+  bool regular = false;
+  std::optional<double> gg, hf;
+  MauchlyTest mauchly;
+  if (k > 2) {
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(E, Eigen::EigenvaluesOnly);
+    const Eigen::VectorXd lambda = eig.eigenvalues();
+    regular = dfe >= p && lambda.minCoeff() > lambda.maxCoeff() * 1e-12;
+    if (regular) {
+      const double s1 = lambda.sum(), s2 = lambda.squaredNorm();
+      gg = (s1 / p) * (s1 / p) / (s2 / p);
+      hf = ((dfe + 1) * p * *gg - 2) / (p * (dfe - p * *gg));
+      // car:::summary.Anova.mlm's mauchly(); `3 * kd` (not 3 * p) as car has it.
+      const double logw = lambda.array().log().sum() - p * std::log(s1 / p);
+      const double rho = 1 - (2 * p * p + p + 2) / (6 * p * dfe);
+      const double w2 = (p + 2) * (p - 1) * (p - 2) * (2 * p * p * p + 6 * p * p + 3 * kd + 2) /
+                        (288 * std::pow(dfe * p * rho, 2));
+      const double z = -dfe * rho * logw;
+      const double f = p * (p + 1) / 2 - 1;
+      const double pr1 = detail::chisq_upper(z, f), pr2 = detail::chisq_upper(z, f + 4);
+      mauchly.statistic = std::exp(logw);
+      mauchly.p_value = pr1 + w2 * (pr2 - pr1);
+    } else {
+      out.sphericity_note = fmt::format(
+          "sphericity test and corrections not computable: the {}x{} error SSP matrix of the "
+          "within effects is singular ({} complete participants give {} error df for {} "
+          "iteration contrasts); the within tests assume sphericity",
+          k - 1, k - 1, n, n - a, k - 1);
+      mauchly.note = "error SSP matrix singular";
+    }
+  }
+
+  const double total_error = error_between + error_within;
+  auto make = [&](std::string name, bool within, double ss, double num_df) {
+    AnovaEffect e;
+    e.effect = std::move(name);
+    e.within = within;
+    e.ss = ss;
+    e.error_ss = within ? error_within : error_between;
+    e.num_df = num_df * (within ? p : 1);
+    e.den_df = dfe * (within ? p : 1);
+    e.f = (e.ss / e.num_df) / (e.error_ss / e.den_df);
+    e.p_value = detail::f_upper(e.f, e.num_df, e.den_df);
+    e.ges = ss / (ss + total_error);
+    e.pes = ss / (ss + e.error_ss);
+    if (within && gg) {
+      e.gg_eps = gg;
+      e.hf_eps = hf;
+      e.p_gg = detail::f_upper(e.f, *gg * e.num_df, *gg * e.den_df);
+      const double hfc = std::min(1.0, *hf);
+      e.p_hf = detail::f_upper(e.f, hfc * e.num_df, hfc * e.den_df);
+    }
+    e.report_num_df = e.num_df;
+    e.report_den_df = e.den_df;
+    e.report_p = e.p_value;
+    if (within && k > 2 && correction != SphericityCorrection::none) {
+      if (gg) {
+        const double eps = correction == SphericityCorrection::GG ? *gg : std::min(1.0, *hf);
+        e.report_eps = eps;
+        e.report_num_df = eps * e.num_df;
+        e.report_den_df = eps * e.den_df;
+        e.report_p = correction == SphericityCorrection::GG ? *e.p_gg : *e.p_hf;
+      } else {
+        e.correction_note = fmt::format("{} correction not computable (singular error SSP matrix)",
+                                        to_string(correction));
+      }
+    }
+    e.mse = e.error_ss / e.report_den_df;
+    return e;
+  };
+  const double a1 = static_cast<double>(a - 1);
+  if (a > 1) out.effects.push_back(make("condition", false, ss_condition, a1));
+  out.effects.push_back(make("iteration", true, ss_iteration, 1));
+  if (a > 1) out.effects.push_back(make("condition:iteration", true, ss_interaction, a1));
+  if (k > 2) {
+    for (const auto& e : out.effects) {
+      if (!e.within) continue;
+      MauchlyTest m = mauchly;
+      m.effect = e.effect;
+      out.sphericity.push_back(m);
+    }
+  }
+  return out;
+}
+
+}  // namespace feint::models

@@ -1,0 +1,285 @@
+// Rendering of the mixed ANOVA (see anova_render.hpp).
+#include "feint/report/anova_render.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "feint/io/number.hpp"
+
+namespace feint::report {
+
+namespace {
+
+std::string join(const std::vector<std::string>& parts, std::string_view sep) {
+  std::string out;
+  for (const auto& p : parts) out += (out.empty() ? "" : std::string(sep)) + p;
+  return out;
+}
+
+std::string df_text(double df) {
+  if (df == std::floor(df)) return io::format_double(df);
+  return format_mean(df, df < 100 ? 2 : 1);
+}
+
+/// Effect sizes and W: three decimals without the leading zero (APA style for values in [0, 1]).
+std::string no_leading_zero(double x) {
+  std::string s = format_mean(x, 3);
+  if (s.rfind("0.", 0) == 0) s.erase(0, 1);
+  return s;
+}
+
+std::string design_text(const models::MixedAnova& a) {
+  if (a.one_way()) {
+    return fmt::format("one-way repeated measures: iteration ({} levels) within participants",
+                       a.iterations.size());
+  }
+  return fmt::format(
+      "condition ({} levels) between \u00d7 iteration ({} levels) within participants",
+      a.conditions.size(), a.iterations.size());
+}
+
+std::string sizes_text(const models::MixedAnova& a) {
+  std::vector<std::string> parts;
+  for (std::size_t g = 0; g < a.conditions.size(); ++g) {
+    parts.push_back(a.one_way() && a.conditions[g].empty()
+                        ? fmt::format("{}", a.group_sizes[g])
+                        : fmt::format("{} = {}", a.conditions[g], a.group_sizes[g]));
+  }
+  return join(parts, ", ");
+}
+
+const models::MauchlyTest* mauchly_of(const models::MixedAnova& a, const std::string& effect) {
+  for (const auto& m : a.sphericity) {
+    if (m.effect == effect) return &m;
+  }
+  return nullptr;
+}
+
+std::string correction_name(models::SphericityCorrection c) {
+  switch (c) {
+    case models::SphericityCorrection::GG:
+      return "Greenhouse-Geisser";
+    case models::SphericityCorrection::HF:
+      return "Huynh-Feldt";
+    case models::SphericityCorrection::none:
+      break;
+  }
+  return "no";
+}
+
+/// Epsilon / Mauchly cells: the number, or why there is none.
+std::string sphericity_cell(const models::MixedAnova& a, const models::AnovaEffect& e,
+                            std::optional<double> value, bool leading_zero = false) {
+  if (!e.within) return "";
+  if (a.iterations.size() < 3) return "1 df";
+  if (!value) return "singular";
+  if (*value > 0 && *value < 0.0005) return "< .001";
+  return leading_zero ? format_mean(*value, 3) : no_leading_zero(*value);
+}
+
+}  // namespace
+
+std::vector<models::Observation> observations(const io::ScoresTable& scores,
+                                              const std::string& metric) {
+  const int m = scores.metric_index(metric);
+  std::vector<models::Observation> out;
+  if (m < 0) return out;
+  out.reserve(scores.records.size());
+  for (const auto& r : scores.records) {
+    out.push_back(
+        {r.participant, r.condition, r.iteration, r.values[static_cast<std::size_t>(m)], r.line});
+  }
+  return out;
+}
+
+AnovaReport build_anova_report(const io::ScoresTable& scores,
+                               models::SphericityCorrection correction) {
+  AnovaReport report;
+  report.source = scores.path;
+  report.correction = correction;
+  for (const auto& metric : scores.metrics) {
+    const auto obs = observations(scores, metric);
+    const models::WideDesign d = models::make_wide_design(obs, metric, scores.path);
+    report.analyses.push_back(models::mixed_anova(d, correction));
+  }
+  return report;
+}
+
+std::string anova_apa(const models::AnovaEffect& e) {
+  return fmt::format("F({}, {}) = {}, {}, \u03b7G\u00b2 = {}", df_text(e.report_num_df),
+                     df_text(e.report_den_df), format_mean(e.f, 2), apa_p(e.report_p),
+                     no_leading_zero(e.ges));
+}
+
+std::vector<std::string_view> anova_columns(bool apa) {
+  std::vector<std::string_view> c = {"metric",
+                                     "effect",
+                                     "num_df",
+                                     "den_df",
+                                     "MSE",
+                                     "F",
+                                     "ges",
+                                     "pes",
+                                     "p.value",
+                                     "correction",
+                                     "eps",
+                                     "num_df_uncorrected",
+                                     "den_df_uncorrected",
+                                     "p.value_uncorrected",
+                                     "gg_eps",
+                                     "p.value_gg",
+                                     "hf_eps",
+                                     "p.value_hf",
+                                     "mauchly_W",
+                                     "mauchly_p.value",
+                                     "ss",
+                                     "error_ss",
+                                     "n",
+                                     "n_excluded",
+                                     "excluded",
+                                     "note"};
+  if (apa) c.push_back("apa");
+  return c;
+}
+
+namespace {
+
+std::string effect_note(const models::MixedAnova& a, const models::AnovaEffect& e) {
+  std::vector<std::string> notes;
+  if (!e.correction_note.empty())
+    notes.push_back(e.correction_note + "; df and p assume sphericity");
+  if (e.within && a.iterations.size() == 2)
+    notes.push_back("1 numerator df: sphericity holds trivially");
+  return join(notes, "; ");
+}
+
+std::vector<Record> tidy(const AnovaReport& r, bool apa) {
+  std::vector<Record> out;
+  for (const auto& a : r.analyses) {
+    for (const auto& e : a.effects) {
+      const models::MauchlyTest* m = mauchly_of(a, e.effect);
+      Record rec = {Cell::str(a.metric),
+                    Cell::str(e.effect),
+                    Cell::num(e.report_num_df),
+                    Cell::num(e.report_den_df),
+                    Cell::num(e.mse),
+                    Cell::num(e.f),
+                    Cell::num(e.ges),
+                    Cell::num(e.pes),
+                    Cell::num(e.report_p),
+                    Cell::str(e.within ? std::string(models::to_string(r.correction)) : "none"),
+                    Cell::num(e.report_eps),
+                    Cell::num(e.num_df),
+                    Cell::num(e.den_df),
+                    Cell::num(e.p_value),
+                    Cell::num(e.gg_eps),
+                    Cell::num(e.p_gg),
+                    Cell::num(e.hf_eps),
+                    Cell::num(e.p_hf),
+                    Cell::num(m ? m->statistic : std::nullopt),
+                    Cell::num(m ? m->p_value : std::nullopt),
+                    Cell::num(e.ss),
+                    Cell::num(e.error_ss),
+                    Cell::integer(static_cast<long long>(a.n_participants)),
+                    Cell::integer(static_cast<long long>(a.excluded.size())),
+                    a.excluded.empty() ? Cell::none() : Cell::str(join(a.excluded, ";")),
+                    [&] {
+                      const std::string n = effect_note(a, e);
+                      return n.empty() ? Cell::none() : Cell::str(n);
+                    }()};
+      if (apa) rec.push_back(Cell::str(anova_apa(e)));
+      out.push_back(std::move(rec));
+    }
+  }
+  return out;
+}
+
+TextTable people_table(const AnovaReport& r, bool apa) {
+  TextTable t;
+  t.caption = fmt::format("Mixed ANOVA (type III), {} correction of the within-participant df",
+                          correction_name(r.correction));
+  if (r.analyses.size() == 1 && r.analyses[0].one_way()) {
+    t.caption = fmt::format("Repeated-measures ANOVA, {} correction of the df",
+                            correction_name(r.correction));
+  }
+  t.header = {"Effect", "df1", "df2",    "MSE",    "F",         "ges",
+              "pes",    "p",   "GG eps", "HF eps", "Mauchly W", "Mauchly p"};
+  if (apa) t.header.push_back("APA");
+  t.right_align.assign(t.header.size(), true);
+  t.right_align[0] = false;
+  if (apa) t.right_align.back() = false;
+  t.latex_label = "tab:anova";
+  const std::size_t p_col = 7, mp_col = 11;
+  for (const auto& a : r.analyses) {
+    TextTable::Row sec;
+    sec.section = true;
+    sec.cells.assign(t.header.size(), "");
+    sec.cells[0] = fmt::format("Metric: {}", a.metric);
+    t.rows.push_back(sec);
+    t.latex_cells.emplace_back(t.header.size());
+    for (const auto& e : a.effects) {
+      const models::MauchlyTest* m = mauchly_of(a, e.effect);
+      std::vector<std::string> cells = {
+          e.effect,
+          df_text(e.report_num_df),
+          df_text(e.report_den_df),
+          format_mean(e.mse, 4),
+          format_mean(e.f, 2),
+          no_leading_zero(e.ges),
+          no_leading_zero(e.pes),
+          format_p(e.report_p) + (e.correction_note.empty() ? "" : " (a)"),
+          sphericity_cell(a, e, e.gg_eps),
+          sphericity_cell(a, e, e.hf_eps),
+          sphericity_cell(a, e, m ? m->statistic : std::nullopt),
+          m && m->p_value ? format_p(m->p_value) : sphericity_cell(a, e, std::nullopt)};
+      if (!e.within) cells[mp_col] = "";
+      if (apa) cells.push_back(anova_apa(e));
+      std::vector<std::string> latex(t.header.size());
+      latex[p_col] =
+          format_p(e.report_p, PStyle::latex) + (e.correction_note.empty() ? "" : " (a)");
+      if (m && m->p_value) latex[mp_col] = format_p(m->p_value, PStyle::latex);
+      t.rows.push_back({std::move(cells), false});
+      t.latex_cells.push_back(std::move(latex));
+    }
+  }
+  // The note: design, sample, exclusions, correction, and what the columns mean.
+  for (const auto& a : r.analyses) {
+    std::string n = fmt::format("{}: {}; {} participants with every iteration{}.", a.metric,
+                                design_text(a), a.n_participants,
+                                a.one_way() ? "" : " (" + sizes_text(a) + ")");
+    if (!a.excluded.empty()) {
+      n += fmt::format(" Excluded for a missing value (as afex): {} ({}).", a.excluded.size(),
+                       join(a.excluded, ", "));
+    }
+    if (!a.sphericity_note.empty()) n += " (a) " + a.sphericity_note + ".";
+    t.notes.push_back(n);
+  }
+  const std::string within =
+      r.correction == models::SphericityCorrection::none
+          ? std::string("no correction (sphericity assumed)")
+          : fmt::format("df multiplied by the {} epsilon, p from the corrected F distribution",
+                        correction_name(r.correction));
+  t.notes.push_back(fmt::format(
+      "Type-III sums of squares with sum-to-zero contrasts (afex::aov_ez). Within-participant "
+      "effects: {}; MSE = error SS / reported df2. ges = generalized eta squared (all factors "
+      "manipulated), pes = partial eta squared. GG eps = Greenhouse-Geisser, HF eps = Huynh-Feldt "
+      "(Lecoutre's correction, capped at 1 when applied); Mauchly's W tests sphericity (p < .05: "
+      "violated). '1 df' = two iterations, sphericity holds trivially; 'singular' = fewer error df "
+      "than iteration contrasts, not computable.",
+      within));
+  return t;
+}
+
+}  // namespace
+
+std::string render_anova(const AnovaReport& r, OutputFormat format, bool apa) {
+  if (format == OutputFormat::csv || format == OutputFormat::json) {
+    const auto cols = anova_columns(apa);
+    const auto recs = tidy(r, apa);
+    return format == OutputFormat::csv ? write_csv(cols, recs) : write_json(cols, recs);
+  }
+  return render_table(people_table(r, apa), format);
+}
+
+}  // namespace feint::report

@@ -1,0 +1,228 @@
+// End-to-end tests of `feint anova` (runs FEINT_EXE): the numbers of the R goldens through the
+// command line, every format, the notes, and the exit codes of bad input.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "cli/cli_helpers.hpp"
+#include "feint/io/csv.hpp"
+
+using feint::test::read_text;
+using feint::test::run_feint;
+using feint::test::RunResult;
+using feint::test::shell_quote;
+using feint::test::TempDir;
+using feint::test::write_text;
+
+namespace {
+
+const std::string kGolden = std::string(FEINT_SOURCE_DIR) + "/tests/golden/models/";
+
+/// One golden case as a scores file with metrics `error` (the case's values) and `confusion`
+/// (the same values, so both metrics must agree with R).
+std::string scores_of_case(const std::string& name) {
+  std::ifstream in(kGolden + "anova_data.csv");
+  std::string line, out = "participant,condition,iteration,error,confusion\n";
+  std::getline(in, line);
+  while (std::getline(in, line)) {
+    const auto f = feint::io::split_csv_line(line);
+    if (f[0] != name) continue;
+    const std::string v = f.size() > 4 ? f[4] : "";
+    out += f[1] + "," + f[2] + "," + f[3] + "," + v + "," + v + "\n";
+  }
+  return out;
+}
+
+/// Golden rows of a case: effect -> column -> text.
+std::map<std::string, std::map<std::string, std::string>> golden_of_case(const std::string& name) {
+  std::ifstream in(kGolden + "anova_golden.csv");
+  std::string line;
+  std::getline(in, line);
+  const auto header = feint::io::split_csv_line(line);
+  std::map<std::string, std::map<std::string, std::string>> out;
+  while (std::getline(in, line)) {
+    const auto f = feint::io::split_csv_line(line);
+    if (f[0] != name) continue;
+    for (std::size_t i = 0; i < header.size(); ++i) out[f[1]][header[i]] = f[i];
+  }
+  return out;
+}
+
+std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) rows.push_back(feint::io::split_csv_line(line));
+  return rows;
+}
+
+TEST(AnovaCli, CsvCarriesAfexNumbersForEveryMetricOfThePaperDesign) {
+  TempDir dir;
+  const auto scores = dir.path() / "scores.csv";
+  const std::string input = scores_of_case("paper_design");
+  write_text(scores, input);
+  const RunResult r = run_feint("anova " + shell_quote(scores.string()) + " --format csv --apa");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_text(scores), input);  // input untouched
+  const auto rows = parse_csv(r.out);
+  ASSERT_EQ(rows.size(), 7u);  // header + 2 metrics x 3 effects
+  std::map<std::string, std::size_t> col;
+  for (std::size_t i = 0; i < rows[0].size(); ++i) col[rows[0][i]] = i;
+  const auto golden = golden_of_case("paper_design");
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const auto& g = golden.at(rows[i][col.at("effect")]);
+    for (const auto& [ours, theirs] :
+         std::map<std::string, std::string>{{"F", "F"},
+                                            {"den_df", "afex_gg_den_df"},
+                                            {"p.value", "afex_gg_p"},
+                                            {"MSE", "afex_gg_mse"},
+                                            {"ges", "ges"},
+                                            {"pes", "pes"},
+                                            {"gg_eps", "gg_eps"},
+                                            {"hf_eps", "hf_eps"},
+                                            {"mauchly_W", "mauchly_w"},
+                                            {"p.value_uncorrected", "p"}}) {
+      const std::string& mine = rows[i][col.at(ours)];
+      if (g.at(theirs) == "NA") {
+        EXPECT_EQ(mine, "") << ours;
+        continue;
+      }
+      const double want = std::stod(g.at(theirs));
+      EXPECT_NEAR(std::stod(mine), want, 1e-10 * std::abs(want)) << rows[i][1] << " " << ours;
+    }
+  }
+  EXPECT_EQ(rows[2][col.at("correction")], "GG");
+  EXPECT_EQ(
+      rows[2][col.at("apa")].rfind("F(4.81, 278.8) = 2.32, p = .046, \u03b7G\u00b2 = .002", 0), 0u)
+      << rows[2][col.at("apa")];
+}
+
+TEST(AnovaCli, TextNamesExcludedParticipantsAndHfChangesTheDf) {
+  TempDir dir;
+  const auto scores = dir.path() / "scores.csv";
+  write_text(scores, scores_of_case("missing_trials"));
+  const RunResult r = run_feint("anova " + shell_quote(scores.string()) + " --metric error");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("Excluded for a missing value (as afex): 3 (P07, P08, P13)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("Greenhouse-Geisser"), std::string::npos);
+  const RunResult hf = run_feint("anova " + shell_quote(scores.string()) +
+                                 " --metric error --correction HF --format json");
+  ASSERT_EQ(hf.exit_code, 0) << hf.err;
+  EXPECT_NE(hf.out.find("\"correction\": \"HF\""), std::string::npos) << hf.out;
+  EXPECT_NE(hf.out.find("\"excluded\": \"P07;P08;P13\""), std::string::npos);
+}
+
+TEST(AnovaCli, SingularCaseSaysWhyInsteadOfEpsilons) {
+  TempDir dir;
+  const auto scores = dir.path() / "scores.csv";
+  write_text(scores, scores_of_case("singular"));
+  const RunResult r =
+      run_feint("anova " + shell_quote(scores.string()) + " --metric error --format markdown");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("| singular |"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("12 complete participants give 10 error df for 19 iteration contrasts"),
+            std::string::npos);
+}
+
+TEST(AnovaCli, LatexIsABooktabsTable) {
+  TempDir dir;
+  const auto scores = dir.path() / "scores.csv";
+  write_text(scores, scores_of_case("balanced_spherical"));
+  const RunResult r = run_feint("anova " + shell_quote(scores.string()) + " --format latex");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("\\toprule"), std::string::npos);
+  EXPECT_NE(r.out.find("\\label{tab:anova}"), std::string::npos);
+}
+
+TEST(AnovaCli, ParticipantInTwoConditionsExits65WithTheLine) {
+  TempDir dir;
+  const auto scores = dir.path() / "scores.csv";
+  write_text(scores,
+             "participant,condition,iteration,error\nP1,a,1,0.1\nP1,a,2,0.2\nP2,b,1,0.3\n"
+             "P2,a,2,0.4\nP3,b,1,0.5\nP3,b,2,0.3\n");
+  const RunResult r = run_feint("anova " + shell_quote(scores.string()) + " --metric error");
+  EXPECT_EQ(r.exit_code, 65);
+  EXPECT_NE(
+      r.err.find("scores.csv:5: participant 'P2' is in condition 'a' but line 4 put it in 'b'"),
+      std::string::npos)
+      << r.err;
+}
+
+TEST(AnovaCli, ConstantMetricExits65AndBadCorrectionExits64) {
+  TempDir dir;
+  const auto scores = dir.path() / "scores.csv";
+  write_text(scores, "participant,iteration,error\nP1,1,0.5\nP1,2,0.5\nP2,1,0.5\nP2,2,0.5\n");
+  RunResult r = run_feint("anova " + shell_quote(scores.string()) + " --metric error");
+  EXPECT_EQ(r.exit_code, 65);
+  EXPECT_NE(r.err.find("metric 'error' has no variance"), std::string::npos) << r.err;
+  r = run_feint("anova " + shell_quote(scores.string()) + " --metric error --correction LB");
+  EXPECT_EQ(r.exit_code, 64);
+  EXPECT_NE(r.err.find("--correction 'LB': expected none, GG or HF"), std::string::npos) << r.err;
+}
+
+}  // namespace
+
+namespace {
+
+TEST(AnovaCli, AnalyzeWritesTheAnovaOfItsScoresInEveryFormatAsked) {
+  TempDir dir;
+  const auto out = dir.path() / "out";
+  const std::string demo = std::string(FEINT_SOURCE_DIR) + "/data/demo";
+  const RunResult r = run_feint("analyze " + shell_quote(demo) + " -o " +
+                                shell_quote(out.string()) + " --formats csv,text");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(std::filesystem::exists(out / "anova.csv"));
+  ASSERT_TRUE(std::filesystem::exists(out / "anova.txt"));
+  EXPECT_FALSE(std::filesystem::exists(out / "anova.json"));
+  // The same numbers as `feint anova` on the scores analyze wrote.
+  const RunResult direct =
+      run_feint("anova " + shell_quote((out / "scores.csv").string()) + " --format csv");
+  ASSERT_EQ(direct.exit_code, 0) << direct.err;
+  EXPECT_EQ(read_text(out / "anova.csv"), direct.out);
+  EXPECT_EQ(parse_csv(direct.out).size(), 7u);  // error and confusion, 3 effects each
+}
+
+}  // namespace
+
+namespace {
+
+TEST(AnovaCli, LatexOfAnovaAndPowerCompilesInAPaper) {
+  if (std::system(
+          "command -v pdflatex >/dev/null 2>&1 && kpsewhich booktabs.sty >/dev/null 2>&1") != 0) {
+    GTEST_SKIP() << "pdflatex with booktabs not installed: LaTeX compile check skipped";
+  }
+  TempDir dir;
+  const auto scores = dir.path() / "scores.csv";
+  write_text(scores, scores_of_case("singular"));
+  const std::string s = shell_quote(scores.string());
+  ASSERT_EQ(
+      run_feint("anova " + s + " --apa --format latex -o " + shell_quote((dir / "a.tex").string()))
+          .exit_code,
+      0);
+  ASSERT_EQ(run_feint("power t-test --d 0.4 --power 0.9 --welch --sd2 1.5 --format latex -o " +
+                      shell_quote((dir / "b.tex").string()))
+                .exit_code,
+            0);
+  ASSERT_EQ(run_feint("power simulate " + s + " --studies 20 --format latex -o " +
+                      shell_quote((dir / "c.tex").string()))
+                .exit_code,
+            0);
+  write_text(dir / "paper.tex",
+             "\\documentclass{article}\n\\usepackage[T1]{fontenc}\n\\usepackage{booktabs}\n"
+             "\\usepackage{graphicx}\n\\usepackage{amsmath}\n\\begin{document}\nText.\n"
+             "\\input{a.tex}\n\\input{b.tex}\n\\input{c.tex}\n\\end{document}\n");
+  const std::string cmd =
+      "cd " + shell_quote(dir.path().string()) +
+      " && pdflatex -interaction=nonstopmode -halt-on-error paper.tex > out.txt 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << read_text(dir / "out.txt");
+  EXPECT_EQ(read_text(dir / "paper.log").find("Overfull \\hbox"), std::string::npos);
+}
+
+}  // namespace
