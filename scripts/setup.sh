@@ -10,7 +10,7 @@ build=${FEINT_BUILD_DIR:-$here/build}
 jobs=$(nproc 2>/dev/null || echo 2)
 
 # Debian packages feint needs to build and test (no others; nothing is downloaded from elsewhere).
-packages="g++ make cmake pkg-config ca-certificates libfmt-dev libcli11-dev libboost-dev libeigen3-dev zlib1g-dev libgtest-dev"
+packages="g++ make cmake pkg-config ca-certificates libfmt-dev libcli11-dev libboost-dev libeigen3-dev zlib1g-dev libgtest-dev libcairo2-dev libxml2-utils python3 chromium chromium-driver"
 
 missing=""
 for p in $packages; do

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "analyze_report.hpp"
 #include "commands.hpp"
 #include "feint/error.hpp"
 #include "feint/io/number.hpp"
@@ -59,6 +60,7 @@ struct AnalyzeArgs {
   // Shared report settings.
   ReportOptions report;
   std::vector<std::string> formats = {"text", "markdown", "latex", "csv", "json"};
+  FigureOptions figures;  // OUT/figures/ and OUT/report.html (analyze_report.cpp)
 };
 
 std::string extension(report::OutputFormat format) {
@@ -187,17 +189,19 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
   };
   const report::Table1 one_sample = report::build_table1(scores, t);
   write_all("table1", [&](report::OutputFormat f) { return report::render_table1(one_sample, f); });
+  std::optional<report::Table1> two_sample;
   if (!a.compare.empty()) {
     report::Table1Options c = t;
     c.compare = parse_compare(a.compare);
     c.var_equal = a.var_equal;
     c.paired = a.paired;
-    const report::Table1 two_sample = report::build_table1(scores, c);
+    two_sample.emplace(report::build_table1(scores, c));
     write_all("table1_compare",
-              [&](report::OutputFormat f) { return report::render_table1(two_sample, f); });
+              [&](report::OutputFormat f) { return report::render_table1(*two_sample, f); });
   }
 
   // 3. The questionnaire, when the study has one.
+  std::optional<report::LikertAnalysis> likert, between;
   if (!questionnaire.empty()) {
     report::LikertSettings l;
     const auto [lo, hi] = io::parse_scale(a.likert_scale);
@@ -210,19 +214,27 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
     l.alpha = report_opts.alpha;
     l.p_adjust = report_opts.p_adjust;
     l.apa = report_opts.apa;
-    const report::LikertAnalysis likert = report::analyze_likert_file(questionnaire, l);
-    write_all("likert", [&](report::OutputFormat f) { return report::render_likert(likert, f); });
+    likert.emplace(report::analyze_likert_file(questionnaire, l));
+    write_all("likert", [&](report::OutputFormat f) { return report::render_likert(*likert, f); });
     const std::string summary = (out / "likert_summary.csv").string();
-    write_report(summary, report::likert_summary_csv(likert));
+    write_report(summary, report::likert_summary_csv(*likert));
     written.push_back(summary);
     if (!a.compare.empty()) {
       report::LikertSettings lc = l;
       lc.compare = parse_compare(a.compare);
-      const report::LikertAnalysis between = report::analyze_likert_file(questionnaire, lc);
+      between.emplace(report::analyze_likert_file(questionnaire, lc));
       write_all("likert_compare",
-                [&](report::OutputFormat f) { return report::render_likert(between, f); });
+                [&](report::OutputFormat f) { return report::render_likert(*between, f); });
     }
   }
+
+  // 4. Figures and report.html.
+  const auto drawn = write_figures_and_report(
+      {&cmd, a.study, a.out, config, logs, &s, &scored, scores_path, &scores, &one_sample,
+       two_sample ? &*two_sample : nullptr, questionnaire, likert ? &*likert : nullptr,
+       between ? &*between : nullptr, FEINT_VERSION},
+      a.figures);
+  written.insert(written.end(), drawn.begin(), drawn.end());
 
   fmt::print(stderr,
              "feint analyze: {} rows read, {} trials scored, {} rejected; {} files written to {}\n",
@@ -296,6 +308,7 @@ void add_analyze_command(CLI::App& app) {
                   ->delimiter(',')
                   ->capture_default_str())
       ->group(out);
+  add_figure_options(*cmd, args->figures, out);
   cmd->add_flag("--apa", args->report.apa, "Add APA-style strings")->group(out);
   cmd->add_option("--alpha", args->report.alpha, "Significance level")
       ->capture_default_str()
