@@ -238,17 +238,25 @@ std::string design_html(const AnalyzeContext& c) {
     metrics.push_back(fmt::format("{} against {:g}", m.column, m.reference));
   }
   rows[3].second = fmt::format("{}", fmt::join(metrics, "; "));
-  std::string o = facts(rows);
-  if (!c.one_sample->provenance.settings.empty()) {
-    o += "<h3>Scoring settings (the scores' sidecar)</h3>\n";
-    o += facts(c.one_sample->provenance.settings);
+  return facts(rows);
+}
+
+// Every setting: how the scores were made (the sidecar), the settings file, every option.
+std::string settings_html(const AnalyzeContext& c) {
+  std::string o;
+  std::vector<std::pair<std::string, std::string>> scoring;
+  for (const auto& [k, v] : c.one_sample->provenance.settings) {
+    if (k.rfind("settings.", 0) == 0) scoring.emplace_back(k.substr(9), v);
+  }
+  if (!scoring.empty()) {
+    o += "<h3>Scoring (from the scores' sidecar)</h3>\n" + facts(scoring);
   }
   if (!c.config_path.empty()) {
     o += fmt::format("<h3>{}</h3>\n<pre>{}</pre>\n", html_escape(c.config_path),
                      html_escape(read_all(c.config_path)));
   }
   if (c.command != nullptr) {
-    o += "<h3>Every setting of this run</h3>\n<pre>" +
+    o += "<h3>Every option of this run (feint.toml syntax)</h3>\n<pre>" +
          html_escape(c.command->config_to_str(true, false)) + "</pre>\n";
   }
   return o;
@@ -310,7 +318,7 @@ std::vector<std::string> write_figures_and_report(const AnalyzeContext& c,
                                                 : fs::path(c.study).filename().string());
   r.subtitle = fmt::format("feint {} analyze, {} trials of {} log files", c.version,
                            c.scored->trials_scored, c.scored->files);
-  r.sections.push_back({"design", "Design and settings", design_html(c)});
+  r.sections.push_back({"design", "Design", design_html(c)});
   r.sections.push_back({"accounting", "Accounting", accounting_html(c)});
   if (!figures.empty() || !notes.empty()) {
     std::string html;
@@ -336,6 +344,7 @@ std::vector<std::string> write_figures_and_report(const AnalyzeContext& c,
     }
     r.sections.push_back({"questionnaire", "Questionnaire", html});
   }
+  r.sections.push_back({"settings", "Settings", settings_html(c)});
   r.sections.push_back(
       {"reproduce", "Reproduce",
        fmt::format("<p>This report was made by feint {} with the command</p>\n<pre>{}</pre>\n"
