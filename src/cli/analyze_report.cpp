@@ -110,6 +110,11 @@ class FigureWriter {
   std::vector<std::string> written_;
 };
 
+std::string capitalised(std::string s) {
+  if (!s.empty()) s[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(s[0])));
+  return s;
+}
+
 std::string adjustment_words(stats::PAdjustMethod m) {
   return m == stats::PAdjustMethod::none
              ? "not adjusted for multiple comparisons"
@@ -133,11 +138,11 @@ void draw_figures(const AnalyzeContext& c, FigureWriter& w, std::vector<std::str
           d.group1, d.group2,
           d.marked.empty() ? std::string("none") : fmt::format("{}", fmt::join(d.marked, ", ")));
     }
-    w.add(m.column, fmt::format("{} per iteration", plot::metric_axis_label(m.column)), caption,
+    w.add(m.column, fmt::format("Mean {} per iteration", m.column), caption,
           plot::metric_figure(d));
   }
   for (const auto& m : t.options.metrics) {
-    w.add("participants-" + m.column, fmt::format("{} of each participant", m.column),
+    w.add("participants-" + m.column, capitalised(m.column) + " of each participant",
           fmt::format("Each participant's {} over the iterations (thin grey lines), one panel per "
                       "condition, with the condition's mean from Table 1 (thick line). A "
                       "participant who stopped playing or an outlier stands out.",

@@ -104,13 +104,22 @@ namespace detail {
 std::vector<double> nice_ticks(double lo, double hi, int target) {
   if (!(std::isfinite(lo) && std::isfinite(hi)) || hi < lo) return {};
   if (hi == lo) return {lo};
+  // Of the round steps near (hi - lo) / target, the one whose tick count is closest to target
+  // (at least 3 ticks when possible; ties go to more ticks).
   const double raw = (hi - lo) / std::max(1, target);
   const double mag = std::pow(10.0, std::floor(std::log10(raw)));
   double step = 10 * mag;
-  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0}) {
-    if (m * mag >= raw * (1 - 1e-9)) {
-      step = m * mag;
-      break;
+  long long best = -1;
+  for (double scale : {0.1, 1.0, 10.0}) {
+    for (double m : {1.0, 2.0, 2.5, 5.0}) {
+      const double st = m * mag * scale;
+      const long long count = static_cast<long long>(std::floor(hi / st + 1e-9)) -
+                              static_cast<long long>(std::ceil(lo / st - 1e-9)) + 1;
+      const long long score = std::llabs(count - target) + (count < 3 ? 100 : 0);
+      if (best < 0 || score < best || (score == best && st < step)) {
+        best = score;
+        step = st;
+      }
     }
   }
   std::vector<double> ticks;
@@ -388,6 +397,7 @@ struct Layout {
   double cell_width = 0, cell_height = 0;
   double left = 0, right = 0, top = 0, bottom = 0;  // around each plot area
   double left_other = 0;  // left margin of the columns after the first
+  bool note_line = false;  // panel notes on their own line under the titles
   double plot_width = 0, plot_height = 0;
 };
 
@@ -445,6 +455,15 @@ Layout make_layout(cairo_t* cr, const Figure& f, Width width,
   L.cell_width = L.plot_width + L.right + L.left_other;
   // Tall figures waste a page: a plot area is at most 2.5 in high.
   L.plot_height = std::min(L.plot_width * f.aspect, 180.0);
+  // A panel's note goes beside its title when both fit, else on a line of its own below it.
+  for (const auto& p : f.panels) {
+    if (p.note.empty()) continue;
+    set_font(cr, kFontSize, true);
+    const double tw = text_width(cr, p.title);
+    set_font(cr, kTickFontSize);
+    if (tw + 6 + text_width(cr, p.note) > L.plot_width) L.note_line = true;
+  }
+  if (L.note_line) L.top += kTickFontSize + 3;
   L.cell_height = L.top + L.plot_height + L.bottom;
   L.height = kMargin + L.legend_height + L.rows * L.cell_height + kMargin;
   return L;
@@ -663,11 +682,16 @@ void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, d
   }
 
   set_font(cr, kFontSize);
-  if (!p.note.empty()) {  // beside the title, right-aligned
+  const double note_room = L.note_line ? kTickFontSize + 3 : 0;
+  if (!p.note.empty()) {  // beside the title, right-aligned, or under it
     set_font(cr, kTickFontSize);
     cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
     const double marks_room = p.marks.empty() ? 0 : kFontSize + 1;
-    draw_text(cr, p.note, px + pw, py - marks_room - kFontSize * 0.75, 1);
+    if (L.note_line) {
+      draw_text(cr, p.note, px, py - marks_room - kTickFontSize * 0.9, 0);
+    } else {
+      draw_text(cr, p.note, px + pw, py - marks_room - kFontSize * 0.75, 1);
+    }
     cairo_set_source_rgb(cr, 0, 0, 0);
     set_font(cr, kFontSize);
   }
@@ -688,7 +712,7 @@ void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, d
   if (!p.title.empty()) {
     set_font(cr, kFontSize, true);
     const double marks_room = p.marks.empty() ? 0 : kFontSize + 1;
-    draw_text(cr, p.title, px, py - marks_room - kFontSize * 0.75, 0);
+    draw_text(cr, p.title, px, py - marks_room - note_room - kFontSize * 0.75, 0);
   }
 }
 

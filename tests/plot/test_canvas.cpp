@@ -19,7 +19,11 @@ using namespace feint::plot;
 namespace fs = std::filesystem;
 
 TEST(Ticks, AreRoundNumbersInsideTheRange) {
-  EXPECT_EQ(detail::nice_ticks(0, 1), (std::vector<double>{0, 0.2, 0.4, 0.6000000000000001, 0.8, 1}));
+  EXPECT_EQ(detail::nice_ticks(0, 1), (std::vector<double>{0, 0.25, 0.5, 0.75, 1}));
+  const auto fine = detail::nice_ticks(0.3, 0.58);  // not just 0.3, 0.4, 0.5
+  const std::vector<double> expected = {0.3, 0.35, 0.4, 0.45, 0.5, 0.55};
+  ASSERT_EQ(fine.size(), expected.size());
+  for (std::size_t i = 0; i < fine.size(); ++i) EXPECT_NEAR(fine[i], expected[i], 1e-12);
   const auto t = detail::nice_ticks(0.27, 0.59);
   ASSERT_FALSE(t.empty());
   for (double v : t) {
