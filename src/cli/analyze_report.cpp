@@ -67,7 +67,7 @@ std::string facts(const std::vector<std::pair<std::string, std::string>>& rows) 
 
 class FigureWriter {
  public:
-  FigureWriter(const AnalyzeContext& c, const FigureOptions& o) : c_(c), o_(o) {
+  FigureWriter(const AnalyzeContext& c, const FigureOptions& o) {
     for (const auto& f : o.formats) formats_.push_back(plot::parse_file_format(f));
     dir_ = fs::path(c.out) / "figures";
     std::error_code ec;
@@ -102,8 +102,6 @@ class FigureWriter {
   std::vector<std::string>& written() { return written_; }
 
  private:
-  const AnalyzeContext& c_;
-  const FigureOptions& o_;
   std::vector<plot::FileFormat> formats_;
   fs::path dir_;
   std::vector<DrawnFigure> figures_;
