@@ -453,8 +453,8 @@ Layout make_layout(cairo_t* cr, const Figure& f, Width width,
   L.left_other = f.shared_axes ? ytick + kTick + 3 + 6 : L.left;
   L.plot_width = (avail - L.left - (cols - 1) * L.left_other - cols * L.right) / cols;
   L.cell_width = L.plot_width + L.right + L.left_other;
-  // Tall figures waste a page: a plot area is at most 2.5 in high.
-  L.plot_height = std::min(L.plot_width * f.aspect, 180.0);
+  // Tall figures waste a page: a plot area is at most 2.5 in high (or as the figure says).
+  L.plot_height = std::min(L.plot_width * f.aspect, std::min(f.max_plot_height, 180.0));
   // A panel's note goes beside its title when both fit, else on a line of its own below it.
   for (const auto& p : f.panels) {
     if (p.note.empty()) continue;

@@ -214,6 +214,7 @@ Figure likert_means_figure(const report::LikertAnalysis& a) {
   p.x.label = fmt::format("Mean rating \u00b1 {:g}% CI (scale {}\u2013{})",
                           a.settings.test.conf_level * 100, a.scale_min, a.scale_max);
   f.aspect = std::clamp(0.12 * static_cast<double>(items * groups) + 0.1, 0.3, 0.9);
+  f.max_plot_height = 12.0 * static_cast<double>(items * groups) + 20;
   f.panels.push_back(std::move(p));
   return f;
 }
@@ -314,6 +315,7 @@ Figure likert_distribution_figure(const report::LikertAnalysis& a) {
   f.columns = 1;
   f.shared_axes = true;
   f.aspect = std::clamp(0.09 * static_cast<double>(items) + 0.08, 0.25, 0.8);
+  f.max_plot_height = 16.0 * static_cast<double>(items) + 12;  // bars of the same thickness
   return f;
 }
 
@@ -496,6 +498,7 @@ Figure participants_figure(const io::ScoresTable& scores, const std::string& met
     f.panels.push_back(std::move(p));
   }
   f.shared_axes = true;
+  f.max_columns_narrow = 1;  // one panel per row in a column: the lines need the width
   f.legend.push_back({LegendEntry::Kind::line, "one participant",
                       Style{Colour{0.6, 0.6, 0.6}, Dash::solid, Marker::none}, false});
   if (means) {

@@ -133,6 +133,8 @@ struct Figure {
   /// Small multiples: the y label only left of the first column, the x label only under the
   /// last row, and the columns closer together.
   bool shared_axes = false;
+  /// Upper bound of a plot area's height in pt (e.g. bar charts: a fixed height per bar).
+  double max_plot_height = 180.0;
 };
 
 /// Draws `figure` at `width` in `format`; returns the file's bytes. Throws std::runtime_error when
