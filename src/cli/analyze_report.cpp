@@ -26,10 +26,10 @@ namespace fs = std::filesystem;
 using plot::html_escape;
 
 struct DrawnFigure {
-  std::string name;     // file stem
-  std::string title;    // heading in the report
-  std::string caption;  // plain text
-  std::string svg;      // two-column SVG, for the page
+  std::string name;                // file stem
+  std::string title;               // heading in the report
+  std::string caption;             // plain text
+  std::string svg;                 // two-column SVG, for the page
   std::vector<std::string> files;  // relative to OUT
 };
 
@@ -48,8 +48,8 @@ std::string command_line() {
     if (end == std::string::npos) end = raw.size();
     std::string arg = raw.substr(start, end - start);
     if (start == 0) arg = fs::path(arg).filename().string();
-    const bool plain = !arg.empty() && arg.find_first_of(" \t\"'$\\;&|<>*?()[]{}`") ==
-                                           std::string::npos;
+    const bool plain =
+        !arg.empty() && arg.find_first_of(" \t\"'$\\;&|<>*?()[]{}`") == std::string::npos;
     if (!out.empty()) out += ' ';
     out += plain ? arg : "'" + arg + "'";
     start = end + 1;
@@ -225,9 +225,8 @@ std::string design_html(const AnalyzeContext& c) {
   std::vector<std::pair<std::string, std::string>> rows = {
       {"Study folder", c.study},
       {"Conditions", fmt::format("{}", fmt::join(per_condition, ", "))},
-      {"Iterations", its.empty() ? "none"
-                                 : fmt::format("{} ({} to {})", its.size(), its.front(),
-                                               its.back())},
+      {"Iterations",
+       its.empty() ? "none" : fmt::format("{} ({} to {})", its.size(), its.front(), its.back())},
       {"Metrics and references", ""},
       {"Comparison", c.comparison != nullptr
                          ? fmt::format("{} against {}", c.comparison->blocks.front().group1,
@@ -301,8 +300,7 @@ void add_figure_options(CLI::App& cmd, FigureOptions& options, const std::string
       ->group(group);
 }
 
-std::vector<std::string> write_figures_and_report(const AnalyzeContext& c,
-                                                  const FigureOptions& o) {
+std::vector<std::string> write_figures_and_report(const AnalyzeContext& c, const FigureOptions& o) {
   for (const auto& f : o.formats) plot::parse_file_format(f);  // UsageError before any work
   std::vector<std::string> written;
   std::vector<DrawnFigure> figures;
@@ -329,17 +327,17 @@ std::vector<std::string> write_figures_and_report(const AnalyzeContext& c,
     for (const auto& n : notes) html += "<p>" + html_escape(n) + "</p>\n";
     r.sections.push_back({"figures", "Figures", html});
   }
-  r.sections.push_back(
-      {"table1", "Table 1 per condition",
-       plot::markdown_to_html(report::render_table1(*c.one_sample, report::OutputFormat::markdown))});
+  r.sections.push_back({"table1", "Table 1 per condition",
+                        plot::markdown_to_html(
+                            report::render_table1(*c.one_sample, report::OutputFormat::markdown))});
   if (c.comparison != nullptr) {
     r.sections.push_back({"comparison", "Comparison",
                           plot::markdown_to_html(report::render_table1(
                               *c.comparison, report::OutputFormat::markdown))});
   }
   if (c.likert != nullptr) {
-    std::string html = plot::markdown_to_html(
-        report::render_likert(*c.likert, report::OutputFormat::markdown));
+    std::string html =
+        plot::markdown_to_html(report::render_likert(*c.likert, report::OutputFormat::markdown));
     if (c.likert_compare != nullptr) {
       html += "<h3>Between the conditions</h3>\n" +
               plot::markdown_to_html(

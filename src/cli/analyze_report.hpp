@@ -27,8 +27,8 @@ struct AnalyzeContext {
   const CLI::App* command = nullptr;  ///< for the effective settings
   std::string study;
   std::string out;
-  std::string config_path;         ///< "" when no settings file was read
-  std::vector<std::string> logs;   ///< the scoring inputs (files, folders, globs)
+  std::string config_path;        ///< "" when no settings file was read
+  std::vector<std::string> logs;  ///< the scoring inputs (files, folders, globs)
   const metrics::ScoreSettings* scoring = nullptr;
   const metrics::ScoreSummary* scored = nullptr;
   std::string scores_path;

@@ -94,8 +94,8 @@ plot::Figure build(const PlotArgs& a, const ResolvedReportOptions& r) {
     scores = io::load_scores(a.input, so);
   } catch (const InvalidData& e) {
     if (known) throw;
-    throw UsageError(fmt::format("--figure '{}': expected one of {} ({})", a.figure, kFigures,
-                                 e.what()));
+    throw UsageError(
+        fmt::format("--figure '{}': expected one of {} ({})", a.figure, kFigures, e.what()));
   }
   const report::Table1 one_sample = report::build_table1(scores, t);
   if (a.figure == "participants") return plot::participants_figure(scores, metric, &one_sample);

@@ -5,11 +5,13 @@
 #include <cairo-pdf.h>
 #include <cairo-svg.h>
 #include <cairo.h>
+#include <fontconfig/fontconfig.h>
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <stdexcept>
@@ -77,13 +79,13 @@ double width_inches(Width width) noexcept {
 
 Colour okabe_ito(std::size_t i) noexcept {
   static constexpr Colour k[] = {
-      {0.0, 0.0, 0.0},                       // black
-      {230 / 255.0, 159 / 255.0, 0.0},       // orange
+      {0.0, 0.0, 0.0},                         // black
+      {230 / 255.0, 159 / 255.0, 0.0},         // orange
       {86 / 255.0, 180 / 255.0, 233 / 255.0},  // sky blue
-      {0.0, 158 / 255.0, 115 / 255.0},       // bluish green
+      {0.0, 158 / 255.0, 115 / 255.0},         // bluish green
       {240 / 255.0, 228 / 255.0, 66 / 255.0},  // yellow
-      {0.0, 114 / 255.0, 178 / 255.0},       // blue
-      {213 / 255.0, 94 / 255.0, 0.0},        // vermillion
+      {0.0, 114 / 255.0, 178 / 255.0},         // blue
+      {213 / 255.0, 94 / 255.0, 0.0},          // vermillion
       {204 / 255.0, 121 / 255.0, 167 / 255.0}  // reddish purple
   };
   return k[i % 8];
@@ -396,7 +398,7 @@ struct Layout {
   std::vector<double> legend_entry_width;
   double cell_width = 0, cell_height = 0;
   double left = 0, right = 0, top = 0, bottom = 0;  // around each plot area
-  double left_other = 0;  // left margin of the columns after the first
+  double left_other = 0;                            // left margin of the columns after the first
   bool note_line = false;  // panel notes on their own line under the titles
   double plot_width = 0, plot_height = 0;
 };
@@ -411,7 +413,8 @@ Layout make_layout(cairo_t* cr, const Figure& f, Width width,
   L.width = width_inches(width) * 72.0;
   const std::size_t n = std::max<std::size_t>(1, f.panels.size());
   std::size_t cols = std::max<std::size_t>(1, f.columns);
-  if (width == Width::one_column) cols = std::min(cols, std::max<std::size_t>(1, f.max_columns_narrow));
+  if (width == Width::one_column)
+    cols = std::min(cols, std::max<std::size_t>(1, f.max_columns_narrow));
   cols = std::min(cols, n);
   L.columns = cols;
   L.rows = (n + cols - 1) / cols;
@@ -433,7 +436,7 @@ Layout make_layout(cairo_t* cr, const Figure& f, Width width,
   L.bottom = kTick + 3 + kTickFontSize + (xlabel ? kFontSize + 5 : 2);
   // Legend: entries flow left to right, wrapping at the figure's width.
   set_font(cr, kFontSize);
-    double x = 0;
+  double x = 0;
   std::size_t row_start = 0;
   for (std::size_t i = 0; i < f.legend.size(); ++i) {
     const double w = legend_sample_width(f.legend[i]) + 3 + text_width(cr, f.legend[i].label) + 10;
@@ -515,8 +518,8 @@ void draw_legend(cairo_t* cr, const Figure& f, const Layout& L) {
   }
 }
 
-void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, double px,
-                double oy, const Layout& L, bool ylabel, bool xlabel, double ylabel_x) {
+void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, double px, double oy,
+                const Layout& L, bool ylabel, bool xlabel, double ylabel_x) {
   const double py = oy + L.top, pw = L.plot_width, ph = L.plot_height;
   auto X = [&](double v) { return px + (v - xs.min) / (xs.max - xs.min) * pw; };
   auto Y = [&](double v) { return py + ph - (v - ys.min) / (ys.max - ys.min) * ph; };
@@ -730,9 +733,23 @@ void draw(cairo_t* cr, const Figure& f, const Layout& L,
   }
 }
 
+// cairo and fontconfig keep font caches for the life of the process; releasing them at exit keeps
+// leak checkers (the ASan build) quiet about memory that is not really lost.
+void release_font_caches_at_exit() {
+  static const bool registered = [] {
+    std::atexit([] {
+      cairo_debug_reset_static_data();
+      FcFini();
+    });
+    return true;
+  }();
+  (void)registered;
+}
+
 }  // namespace
 
 std::string render(const Figure& figure, Width width, FileFormat format) {
+  release_font_caches_at_exit();
   std::vector<std::pair<Scale, Scale>> scales;
   std::vector<std::pair<Range, Range>> ranges;
   Range all_x, all_y;
@@ -763,15 +780,15 @@ std::string render(const Figure& figure, Width width, FileFormat format) {
   const double dpi = 300.0;
   switch (format) {
     case FileFormat::pdf:
-      surface.reset(cairo_pdf_surface_create_for_stream(append_to_string, &bytes, L.width,
-                                                        L.height));
+      surface.reset(
+          cairo_pdf_surface_create_for_stream(append_to_string, &bytes, L.width, L.height));
       // pdflatex includes PDF up to version 1.5 without a warning.
       cairo_pdf_surface_restrict_to_version(surface.get(), CAIRO_PDF_VERSION_1_5);
       cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, "feint");
       break;
     case FileFormat::svg:
-      surface.reset(cairo_svg_surface_create_for_stream(append_to_string, &bytes, L.width,
-                                                        L.height));
+      surface.reset(
+          cairo_svg_surface_create_for_stream(append_to_string, &bytes, L.width, L.height));
       break;
     case FileFormat::png:
       surface.reset(cairo_image_surface_create(CAIRO_FORMAT_ARGB32,

@@ -62,7 +62,8 @@ MetricFigureData metric_figure_data(const report::Table1& one_sample,
   MetricFigureData d;
   d.metric = metric;
   const auto& ms = one_sample.options.metrics;
-  const auto it = std::find_if(ms.begin(), ms.end(), [&](const auto& m) { return m.column == metric; });
+  const auto it =
+      std::find_if(ms.begin(), ms.end(), [&](const auto& m) { return m.column == metric; });
   if (it == ms.end()) {
     throw InvalidData(fmt::format("figure '{}': not one of the table's metrics", metric));
   }
@@ -131,10 +132,11 @@ Figure metric_figure(const MetricFigureData& d) {
                       fmt::format("hollow: \u2248 R (p \u2265 {}{})", p_threshold(d.alpha), adjust),
                       Style{okabe_ito(0), Dash::solid, Marker::circle}, true});
   if (!d.group1.empty()) {
-    f.legend.push_back({LegendEntry::Kind::asterisk,
-                        fmt::format("{} \u2260 {} (p < {}{})", d.group1, d.group2,
-                                    p_threshold(d.alpha), adjust),
-                        {}, false});
+    f.legend.push_back(
+        {LegendEntry::Kind::asterisk,
+         fmt::format("{} \u2260 {} (p < {}{})", d.group1, d.group2, p_threshold(d.alpha), adjust),
+         {},
+         false});
     for (long long it : d.marked) p.marks.push_back(static_cast<double>(it));
   }
   p.refs.push_back({d.reference, false, fmt::format("R = {:g}", d.reference)});
@@ -183,8 +185,7 @@ Figure likert_means_figure(const report::LikertAnalysis& a) {
     l.style = series_style(g);
     l.connect = false;
     l.error_bars = ErrorBars::horizontal;
-    const double offset =
-        groups == 1 ? 0.0 : 0.36 * (static_cast<double>(g) / (groups - 1) - 0.5);
+    const double offset = groups == 1 ? 0.0 : 0.36 * (static_cast<double>(g) / (groups - 1) - 0.5);
     for (const auto& m : means) {
       if (m.group != a.groups[g]) continue;
       const auto pos = std::find(a.names.begin(), a.names.end(), m.name) - a.names.begin();
@@ -198,8 +199,7 @@ Figure likert_means_figure(const report::LikertAnalysis& a) {
     p.lines.push_back(std::move(l));
   }
   f.legend.push_back({LegendEntry::Kind::marker,
-                      fmt::format("hollow: \u2248 R (p \u2265 {}{})",
-                                  p_threshold(a.settings.alpha),
+                      fmt::format("hollow: \u2248 R (p \u2265 {}{})", p_threshold(a.settings.alpha),
                                   a.settings.p_adjust == stats::PAdjustMethod::none
                                       ? ""
                                       : fmt::format(", {}", stats::to_string(a.settings.p_adjust))),
@@ -275,10 +275,10 @@ Figure likert_distribution_figure(const report::LikertAnalysis& a) {
     std::string label = std::to_string(v);
     if (v == a.scale_min) label += " (lowest)";
     if (v == a.scale_max) label += " (highest)";
-    f.legend.push_back({LegendEntry::Kind::box, label,
-                        Style{colours[static_cast<std::size_t>(v - a.scale_min)], Dash::solid,
-                              Marker::none},
-                        false});
+    f.legend.push_back(
+        {LegendEntry::Kind::box, label,
+         Style{colours[static_cast<std::size_t>(v - a.scale_min)], Dash::solid, Marker::none},
+         false});
   }
   std::vector<std::string> groups = a.groups;
   if (groups.empty()) groups.push_back("");
@@ -328,12 +328,12 @@ std::vector<TrialLabel> read_trial_labels(const std::string& path) {
   const int iteration = csv.column("iteration");
   const int strategy = csv.column("strategy");
   const int variant = csv.column("variant");
-  for (const auto& [col, name] : {std::pair{participant, "participant"},
-                                  std::pair{iteration, "iteration"},
-                                  std::pair{strategy, "strategy"}}) {
+  for (const auto& [col, name] :
+       {std::pair{participant, "participant"}, std::pair{iteration, "iteration"},
+        std::pair{strategy, "strategy"}}) {
     if (col < 0) {
-      throw InvalidData(fmt::format("{}: no '{}' column (needed for the strategy figures)", path,
-                                    name));
+      throw InvalidData(
+          fmt::format("{}: no '{}' column (needed for the strategy figures)", path, name));
     }
   }
   std::vector<TrialLabel> out;
@@ -386,9 +386,8 @@ Occurrence strategy_occurrence(const std::vector<TrialLabel>& labels) {
     const auto i = std::lower_bound(o.iterations.begin(), o.iterations.end(), t.iteration);
     const auto s = std::lower_bound(o.strategies.begin(), o.strategies.end(),
                                     t.strategy.empty() ? "(none)" : t.strategy);
-    ++o.counts[static_cast<std::size_t>(c - o.conditions.begin())]
-              [static_cast<std::size_t>(i - o.iterations.begin())]
-              [static_cast<std::size_t>(s - o.strategies.begin())];
+    ++o.counts[static_cast<std::size_t>(c - o.conditions.begin())][static_cast<std::size_t>(
+        i - o.iterations.begin())][static_cast<std::size_t>(s - o.strategies.begin())];
   }
   return o;
 }
@@ -505,9 +504,8 @@ Figure participants_figure(const io::ScoresTable& scores, const std::string& met
     for (std::size_t c = 0; c < conditions.size(); ++c) {
       Style s = series_style(c);
       s.marker = Marker::none;
-      f.legend.push_back(
-          {LegendEntry::Kind::line, fmt::format("mean, {}", condition_name(conditions[c])), s,
-           false});
+      f.legend.push_back({LegendEntry::Kind::line,
+                          fmt::format("mean, {}", condition_name(conditions[c])), s, false});
     }
   }
   f.columns = 2;
@@ -517,14 +515,14 @@ Figure participants_figure(const io::ScoresTable& scores, const std::string& met
 // ---------------------------------------------------------------------------------------------
 
 std::vector<TraceCurve> mean_traces(const std::vector<std::string>& log_files,
-                                    io::TraceOptions options,
-                                    const std::vector<TrialLabel>& labels, double conf_level) {
+                                    io::TraceOptions options, const std::vector<TrialLabel>& labels,
+                                    double conf_level) {
   // First exposure: the lowest iteration per (participant, condition, strategy, variant).
   using Key = std::tuple<std::string, std::string, std::string, std::string>;
   std::map<Key, long long> first;
   for (const auto& t : labels) {
-    auto [pos, fresh] = first.try_emplace(Key{t.participant, t.condition, t.strategy, t.variant},
-                                          t.iteration);
+    auto [pos, fresh] =
+        first.try_emplace(Key{t.participant, t.condition, t.strategy, t.variant}, t.iteration);
     if (!fresh) pos->second = std::min(pos->second, t.iteration);
   }
   struct Sums {
@@ -538,8 +536,8 @@ std::vector<TraceCurve> mean_traces(const std::vector<std::string>& log_files,
   io::Trial trial;
   std::vector<double> y(kTracePoints);
   while (reader.next(trial)) {
-    const auto f = first.find(Key{trial.participant, trial.condition, trial.strategy,
-                                  trial.variant});
+    const auto f =
+        first.find(Key{trial.participant, trial.condition, trial.strategy, trial.variant});
     if (f == first.end()) continue;  // not in the scores (e.g. rejected there)
     const double t0 = trial.times.front(), t1 = trial.times.back();
     std::size_t j = 0;
@@ -566,8 +564,8 @@ std::vector<TraceCurve> mean_traces(const std::vector<std::string>& log_files,
     const double n = static_cast<double>(s.n);
     double q = kNaN;
     if (s.n >= 2) {
-      q = boost::math::quantile(boost::math::complement(boost::math::students_t(n - 1),
-                                                        (1 - conf_level) / 2));
+      q = boost::math::quantile(
+          boost::math::complement(boost::math::students_t(n - 1), (1 - conf_level) / 2));
     }
     for (std::size_t k = 0; k < kTracePoints; ++k) {
       const double mean = s.sum[k] / n;

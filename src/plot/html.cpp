@@ -280,8 +280,7 @@ std::string render_html(const HtmlReport& r) {
   }
   o << "</nav>\n";
   for (const auto& s : r.sections) {
-    o << "<section id=\"" << html_escape(s.id) << "\">\n<h2>" << html_escape(s.heading)
-      << "</h2>\n"
+    o << "<section id=\"" << html_escape(s.id) << "\">\n<h2>" << html_escape(s.heading) << "</h2>\n"
       << s.html << "</section>\n";
   }
   if (!r.footer.empty()) o << "<footer>" << html_escape(r.footer) << "</footer>\n";

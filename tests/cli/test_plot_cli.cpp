@@ -96,9 +96,11 @@ TEST(AnalyzeFigures, ReportIsOneSelfContainedPageWithEveryFigureAndTable) {
   }
   // Every id is unique: figures inline side by side must not share glyph or clip ids.
   std::set<std::string> ids;
-  for (std::size_t p = html.find(" id=\""); p != std::string::npos; p = html.find(" id=\"", p + 1)) {
+  for (std::size_t p = html.find(" id=\""); p != std::string::npos;
+       p = html.find(" id=\"", p + 1)) {
     const std::size_t end = html.find('"', p + 5);
-    EXPECT_TRUE(ids.insert(html.substr(p + 5, end - p - 5)).second) << html.substr(p + 5, end - p - 5);
+    EXPECT_TRUE(ids.insert(html.substr(p + 5, end - p - 5)).second)
+        << html.substr(p + 5, end - p - 5);
   }
 }
 
@@ -200,19 +202,19 @@ TEST(PlotCommand, BadRequestsAreUsageErrors) {
   const std::string scores = shell_quote((demo_output() / "scores.csv").string());
   TempDir dir;
   const std::string out = shell_quote((dir / "x.pdf").string());
-  EXPECT_EQ(run_feint("plot " + scores + " --figure error -o " +
-                      shell_quote((dir / "x.jpg").string()))
-                .exit_code,
-            64);
+  EXPECT_EQ(
+      run_feint("plot " + scores + " --figure error -o " + shell_quote((dir / "x.jpg").string()))
+          .exit_code,
+      64);
   EXPECT_EQ(run_feint("plot " + scores + " --figure error").exit_code, 64);  // no -o
   EXPECT_EQ(run_feint("plot " + scores + " --figure nonsense -o " + out).exit_code, 64);
   EXPECT_EQ(run_feint("plot " + scores + " --figure traces -o " + out).exit_code, 64);
   EXPECT_EQ(run_feint("plot " + scores + " --figure error --width 3 -o " + out).exit_code, 64);
   EXPECT_EQ(run_feint("plot " + scores + " --figure error --compare adaptive -o " + out).exit_code,
             64);
-  EXPECT_EQ(run_feint("plot " + scores + " --figure error --compare adaptive,nobody -o " + out)
-                .exit_code,
-            65);
+  EXPECT_EQ(
+      run_feint("plot " + scores + " --figure error --compare adaptive,nobody -o " + out).exit_code,
+      65);
   EXPECT_EQ(run_feint("plot missing.csv --figure error -o " + out).exit_code, 74);
   EXPECT_FALSE(fs::exists(dir / "x.pdf"));
 }

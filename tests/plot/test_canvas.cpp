@@ -1,7 +1,5 @@
 // The drawing layer: round-number ticks, file formats, every kind of figure rendered to PDF, SVG
 // and PNG (the SVG parses as XML), and the self-contained HTML page.
-#include "feint/plot/canvas.hpp"
-
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -12,6 +10,7 @@
 #include <string>
 
 #include "feint/error.hpp"
+#include "feint/plot/canvas.hpp"
 #include "feint/plot/html.hpp"
 
 using namespace feint;
@@ -61,7 +60,8 @@ TEST(Palette, SeriesDifferInColourDashAndMarker) {
       const Style a = series_style(i), b = series_style(j);
       EXPECT_NE(a.dash, b.dash);
       EXPECT_NE(a.marker, b.marker);
-      EXPECT_FALSE(a.colour.r == b.colour.r && a.colour.g == b.colour.g && a.colour.b == b.colour.b);
+      EXPECT_FALSE(a.colour.r == b.colour.r && a.colour.g == b.colour.g &&
+                   a.colour.b == b.colour.b);
     }
   }
 }
@@ -137,7 +137,8 @@ TEST(Render, WritesPdfSvgAndPngAtBothWidths) {
 
 TEST(Render, SvgParsesAsXml) {
   if (!have_xmllint()) GTEST_SKIP() << "xmllint not installed (Debian: libxml2-utils): skipped";
-  const fs::path p = fs::temp_directory_path() / ("feint-svg-" + std::to_string(::getpid()) + ".svg");
+  const fs::path p =
+      fs::temp_directory_path() / ("feint-svg-" + std::to_string(::getpid()) + ".svg");
   std::ofstream(p, std::ios::binary) << render(every_element(), Width::one_column, FileFormat::svg);
   EXPECT_EQ(std::system(("xmllint --noout '" + p.string() + "'").c_str()), 0);
   fs::remove(p);

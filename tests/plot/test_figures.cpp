@@ -1,8 +1,6 @@
 // The figures' data are the tables' numbers (no statistic computed twice), marked iterations are
 // exactly the significant ones, occurrence shares sum to 1, and the trace means are what the
 // traces say.
-#include "feint/plot/figures.hpp"
-
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -14,6 +12,7 @@
 
 #include "feint/error.hpp"
 #include "feint/io/scores.hpp"
+#include "feint/plot/figures.hpp"
 #include "feint/report/likert.hpp"
 #include "feint/report/table1.hpp"
 
@@ -290,9 +289,10 @@ TEST(Traces, MeanOfMirroredResampledTraces) {
       "P1,A,3,s,main,right,0,0.5\nP1,A,3,s,main,right,3,0.5\n"
       "P2,A,1,s,main,left,0,0.5\nP2,A,1,s,main,left,1,0.3\nP2,A,1,s,main,left,2,0.1\n";
   const fs::path log = temp_file("log.csv", logs);
-  const std::vector<plot::TrialLabel> labels = {
-      {"P1", "A", 1, "s", "main"}, {"P1", "A", 2, "o", "main"}, {"P1", "A", 3, "s", "main"},
-      {"P2", "A", 1, "s", "main"}};
+  const std::vector<plot::TrialLabel> labels = {{"P1", "A", 1, "s", "main"},
+                                                {"P1", "A", 2, "o", "main"},
+                                                {"P1", "A", 3, "s", "main"},
+                                                {"P2", "A", 1, "s", "main"}};
   const auto curves = plot::mean_traces({log.string()}, io::TraceOptions{}, labels);
   ASSERT_EQ(curves.size(), 3u);  // o first; s first; s later
   EXPECT_EQ(curves[0].strategy, "o");

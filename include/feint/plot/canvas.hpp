@@ -73,7 +73,8 @@ struct Line {
   std::vector<bool> filled;
 };
 
-/// A horizontal (vertical = false) or vertical reference line, dashed grey, with a label at its end.
+/// A horizontal (vertical = false) or vertical reference line, dashed grey, with a label at its
+/// end.
 struct RefLine {
   double value = 0;
   bool vertical = false;
@@ -98,8 +99,8 @@ struct Axis {
   std::vector<double> ticks;
   /// Category names at positions (replaces numeric tick labels).
   std::vector<std::pair<double, std::string>> categories;
-  bool percent = false;         ///< tick labels as "50%" (values in percent)
-  bool absolute_labels = false; ///< tick labels of |value| (diverging bars)
+  bool percent = false;          ///< tick labels as "50%" (values in percent)
+  bool absolute_labels = false;  ///< tick labels of |value| (diverging bars)
 };
 
 struct Panel {

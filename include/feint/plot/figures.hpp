@@ -34,9 +34,9 @@ namespace feint::plot {
 
 struct MetricPoint {
   long long iteration = 0;
-  double mean = 0;                ///< the one-sample test's mean1 (NaN: no participant)
+  double mean = 0;                     ///< the one-sample test's mean1 (NaN: no participant)
   double conf_low = 0, conf_high = 0;  ///< its interval at the table's conf_level (NaN: none)
-  bool differs = false;           ///< the table's label is M>R or M<R
+  bool differs = false;                ///< the table's label is M>R or M<R
 };
 
 struct MetricSeries {
@@ -49,7 +49,7 @@ struct MetricFigureData {
   double reference = 0;
   double conf_level = 0.95;
   double alpha = 0.05;
-  std::string p_adjust;  ///< the tables' adjustment ("none", "holm", ...)
+  std::string p_adjust;              ///< the tables' adjustment ("none", "holm", ...)
   std::vector<MetricSeries> series;  ///< one per condition, the table's order
   std::string group1, group2;        ///< the comparison's conditions ("" without one)
   /// Iterations where the comparison's label is A>B or A<B (adjusted p < alpha when adjusted).
@@ -69,10 +69,10 @@ std::string metric_axis_label(const std::string& metric);
 // Likert (Fig. 11)
 
 struct LikertMean {
-  std::string name;   ///< item or composite
-  std::string group;  ///< condition ("" = everybody)
+  std::string name;                              ///< item or composite
+  std::string group;                             ///< condition ("" = everybody)
   double mean = 0, conf_low = 0, conf_high = 0;  ///< the one-sample t-test's (NaN: none)
-  bool differs = false;  ///< the t-test's label is M>R or M<R
+  bool differs = false;                          ///< the t-test's label is M>R or M<R
 };
 
 /// The one-sample t-test rows of a one-sample analysis, per group and name, in the table's order.
@@ -145,8 +145,7 @@ inline constexpr std::size_t kTracePoints = 101;
 /// (the scores): the lowest iteration of a (participant, condition, strategy, variant).
 /// Memory is O(strategies x kTracePoints), whatever the size of the logs.
 std::vector<TraceCurve> mean_traces(const std::vector<std::string>& log_files,
-                                    io::TraceOptions options,
-                                    const std::vector<TrialLabel>& labels,
+                                    io::TraceOptions options, const std::vector<TrialLabel>& labels,
                                     double conf_level = 0.95);
 Figure traces_figure(const std::vector<TraceCurve>& curves, double conf_level = 0.95);
 
