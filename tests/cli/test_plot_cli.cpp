@@ -139,12 +139,12 @@ TEST(AnalyzeFigures, PdfFiguresCompileInAPaperWithoutWarnings) {
 TEST(AnalyzeFigures, OptionsChooseFormatsOrNoFigures) {
   TempDir dir;
   auto r = run_feint("analyze " + shell_quote(kDemo.string()) + " -o " +
-                     shell_quote((dir / "png").string()) + " --figure-formats png");
+                     shell_quote((dir / "svg").string()) + " --figure-formats svg");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto png = files_in(dir / "png" / "figures");
-  EXPECT_TRUE(png.count("error-1col.png"));
-  EXPECT_FALSE(png.count("error-1col.pdf"));
-  EXPECT_NE(read_text(dir / "png" / "report.html").find("<svg"), std::string::npos);
+  const auto svg = files_in(dir / "svg" / "figures");
+  EXPECT_TRUE(svg.count("error-1col.svg"));
+  EXPECT_FALSE(svg.count("error-1col.pdf"));
+  EXPECT_NE(read_text(dir / "svg" / "report.html").find("<svg"), std::string::npos);
 
   r = run_feint("analyze " + shell_quote(kDemo.string()) + " -o " +
                 shell_quote((dir / "none").string()) + " --no-figures");
