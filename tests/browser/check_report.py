@@ -69,6 +69,8 @@ def main():
     ap.add_argument("--work", default=None)
     ap.add_argument("--screenshot", default=None, help="save a PNG at 1280 px width here")
     ap.add_argument("--height", type=int, default=0, help="screenshot height (0 = whole page)")
+    ap.add_argument("--scroll", type=int, default=0,
+                    help="screenshot from this page offset (px; needs --height)")
     ap.add_argument("--print-pdf", default=None, help="save the A4 print here")
     args = ap.parse_args()
 
@@ -167,6 +169,8 @@ def main():
         if args.screenshot:
             shot_h = args.height or height
             d.s("POST", "/window/rect", {"width": 1280, "height": shot_h})
+            if args.scroll:
+                js(f"window.scrollTo(0, {args.scroll}); return 0")
             png = base64.b64decode(d.s("GET", "/screenshot"))
             with open(args.screenshot, "wb") as f:
                 f.write(png)
