@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "analyze_anova.hpp"
+#include "analyze_report.hpp"
 #include "commands.hpp"
 #include "feint/error.hpp"
 #include "feint/io/number.hpp"
@@ -74,6 +75,7 @@ struct AnalyzeArgs {
   // Shared report settings.
   ReportOptions report;
   std::vector<std::string> formats = {"text", "markdown", "latex", "csv", "json"};
+  FigureOptions figures;  // OUT/figures/ and OUT/report.html (analyze_report.cpp)
 };
 
 std::string extension(report::OutputFormat format) {
@@ -239,15 +241,16 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
   write_all("table1", [&](report::OutputFormat f) {
     return report::render_table1(one_sample, f, report_opts.presentation);
   });
+  std::optional<report::Table1> two_sample;
   if (!a.compare.empty()) {
     report::Table1Options c = t;
     c.compare = parse_compare(a.compare);
     c.var_equal = a.var_equal;
     c.paired = a.paired;
-    const report::Table1 two_sample = report::build_table1(scores, c);
+    two_sample.emplace(report::build_table1(scores, c));
     write_all("table1_compare",
               [&](report::OutputFormat f) {
-                return report::render_table1(two_sample, f, report_opts.presentation);
+                return report::render_table1(*two_sample, f, report_opts.presentation);
               });
   }
   if (const auto anova = analyze_anova(scores)) {  // the mixed ANOVA (docs/anova-power.md)
@@ -255,6 +258,7 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
   }
 
   // 3. The questionnaire, when the study has one.
+  std::optional<report::LikertAnalysis> likert, between;
   if (!inputs.questionnaire.empty()) {
     report::LikertSettings l;
     const auto [lo, hi] = io::parse_scale(a.likert_scale);
@@ -277,21 +281,27 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
     l.alpha = report_opts.alpha;
     l.p_adjust = report_opts.p_adjust;
     l.apa = report_opts.apa;
-    const report::LikertAnalysis likert = report::analyze_likert_file(inputs.questionnaire, l);
+    likert.emplace(report::analyze_likert_file(inputs.questionnaire, l));
     write_all("likert", [&](report::OutputFormat f) {
-      return report::render_likert(likert, f, report_opts.presentation);
+      return report::render_likert(*likert, f, report_opts.presentation);
     });
-    write_report(out.path("likert_summary.csv"), report::likert_summary_csv(likert));
+    write_report(out.path("likert_summary.csv"), report::likert_summary_csv(*likert));
     if (!a.compare.empty()) {
       report::LikertSettings lc = l;
       lc.compare = parse_compare(a.compare);
-      const report::LikertAnalysis between = report::analyze_likert_file(inputs.questionnaire, lc);
-      write_all("likert_compare",
-                [&](report::OutputFormat f) {
-                  return report::render_likert(between, f, report_opts.presentation);
-                });
+      between.emplace(report::analyze_likert_file(inputs.questionnaire, lc));
+      write_all("likert_compare", [&](report::OutputFormat f) {
+        return report::render_likert(*between, f, report_opts.presentation);
+      });
     }
   }
+
+  // 4. Figures and report.html, drawn into the staging folder like every other output.
+  write_figures_and_report(
+      {&cmd, a.study, out.staging().string(), config, inputs.logs, &s, &scored, scores_path,
+       &scores, &one_sample, two_sample ? &*two_sample : nullptr, inputs.questionnaire,
+       likert ? &*likert : nullptr, between ? &*between : nullptr, FEINT_VERSION},
+      a.figures);
 
   const std::vector<std::string> written = out.commit(FEINT_VERSION);
   fmt::print(stderr,
@@ -402,6 +412,7 @@ void add_analyze_command(CLI::App& app) {
                   ->delimiter(',')
                   ->capture_default_str())
       ->group(out);
+  add_figure_options(*cmd, args->figures, out);
   cmd->add_flag("--apa", args->report.apa, "Add APA-style strings")->group(out);
   cmd->add_flag("--latex-wide", args->report.latex_wide,
                 "LaTeX table* (both columns of a two-column paper); each table has its own "

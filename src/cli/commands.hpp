@@ -17,5 +17,6 @@ void add_simulate_command(CLI::App& app);  // cmd_simulate.cpp (issue: selection
 void add_collect_command(CLI::App& app);   // cmd_collect.cpp  (issue 11: data collection)
 void add_anova_command(CLI::App& app);     // cmd_anova.cpp    (issue 10: mixed ANOVA)
 void add_power_command(CLI::App& app);     // cmd_power.cpp    (issue 10: power)
+void add_plot_command(CLI::App& app);      // cmd_plot.cpp     (issue #9: figures)
 
 }  // namespace feint::cli

@@ -1,0 +1,224 @@
+#!/usr/bin/env python3
+"""The study report in a real browser (issue #9).
+
+Runs `feint analyze STUDY -o WORK/out`, then opens WORK/out/report.html from disk in Debian's
+headless Chromium (driven by chromedriver over WebDriver, on 127.0.0.1 only) with the network
+disabled, and checks that the page
+  - makes no request other than for the file itself (performance log: Network.requestWillBeSent),
+  - logs no console error or warning (browser log),
+  - shows every figure as inline SVG with a size, and has no horizontal scroll at 1280 px,
+  - prints on A4 (WebDriver print).
+Optionally saves a screenshot at 1280 px width (--screenshot) and the A4 print (--print-pdf).
+
+Python 3 standard library only. Exits 77 (ctest SKIP_RETURN_CODE) with a message when chromium,
+chromedriver or the feint binary is missing.
+"""
+import argparse
+import base64
+import json
+import os
+import shutil
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.error
+import urllib.request
+
+SKIP = 77
+
+
+def find(names):
+    for n in names:
+        p = shutil.which(n)
+        if p:
+            return p
+    return None
+
+
+def free_port():
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class Driver:
+    def __init__(self, port):
+        self.base = f"http://127.0.0.1:{port}"
+        self.session = None
+
+    def call(self, method, path, body=None, timeout=60):
+        data = None if body is None else json.dumps(body).encode()
+        req = urllib.request.Request(self.base + path, data=data, method=method,
+                                     headers={"Content-Type": "application/json"})
+        try:
+            with urllib.request.urlopen(req, timeout=timeout) as r:
+                return json.loads(r.read().decode() or "{}").get("value")
+        except urllib.error.HTTPError as e:
+            raise RuntimeError(f"WebDriver {method} {path}: {e.code} {e.read().decode()[:500]}")
+
+    def s(self, method, path, body=None):
+        return self.call(method, f"/session/{self.session}{path}", body)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--feint", required=True)
+    ap.add_argument("--study", required=True)
+    ap.add_argument("--work", default=None)
+    ap.add_argument("--screenshot", default=None, help="save a PNG at 1280 px width here")
+    ap.add_argument("--height", type=int, default=0, help="screenshot height (0 = whole page)")
+    ap.add_argument("--scroll", type=int, default=0,
+                    help="screenshot from this page offset (px; needs --height)")
+    ap.add_argument("--print-pdf", default=None, help="save the A4 print here")
+    args = ap.parse_args()
+
+    chromium = find(["chromium", "chromium-browser", "google-chrome"])
+    driver_bin = find(["chromedriver"])
+    if not chromium or not driver_bin:
+        print("chromium or chromedriver not installed (Debian: chromium chromium-driver): "
+              "browser check skipped")
+        return SKIP
+    if not os.access(args.feint, os.X_OK):
+        print(f"{args.feint}: feint binary not built: browser check skipped")
+        return SKIP
+
+    work = args.work or tempfile.mkdtemp(prefix="feint-browser-")
+    out = os.path.join(work, "out")
+    shutil.rmtree(out, ignore_errors=True)
+    os.makedirs(work, exist_ok=True)
+    r = subprocess.run([args.feint, "analyze", args.study, "-o", out], capture_output=True,
+                       text=True)
+    if r.returncode != 0:
+        print(f"feint analyze failed ({r.returncode}): {r.stderr}")
+        return 1
+    report = os.path.abspath(os.path.join(out, "report.html"))
+    page_url = "file://" + report
+    with open(report, encoding="utf-8") as f:
+        html = f.read()
+    expected_figures = html.count("<figure")
+
+    port = free_port()
+    profile = tempfile.mkdtemp(prefix="feint-chromium-")
+    log = open(os.path.join(work, "chromedriver.log"), "w")
+    proc = subprocess.Popen([driver_bin, f"--port={port}", "--allowed-ips=127.0.0.1"],
+                            stdout=log, stderr=subprocess.STDOUT)
+    d = Driver(port)
+    failures = []
+    try:
+        for _ in range(100):
+            try:
+                if d.call("GET", "/status", timeout=2).get("ready"):
+                    break
+            except Exception:
+                pass
+            time.sleep(0.1)
+        caps = {
+            "browserName": "chrome",
+            "goog:chromeOptions": {
+                "binary": chromium,
+                "args": [
+                    "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
+                    "--no-first-run", "--disable-background-networking",
+                    "--disable-component-update", "--disable-sync",
+                    "--disable-default-apps", "--disable-extensions",
+                    "--disable-dev-shm-usage", "--hide-scrollbars",
+                    f"--user-data-dir={profile}",
+                    # No network: every host resolves to nothing and every proxy is refused.
+                    "--host-resolver-rules=MAP * ~NOTFOUND", "--proxy-server=127.0.0.1:9",
+                    "--force-device-scale-factor=1", "--window-size=1280,1000",
+                ],
+            },
+            "goog:loggingPrefs": {"browser": "ALL", "performance": "ALL"},
+        }
+        created = d.call("POST", "/session", {"capabilities": {"alwaysMatch": caps}})
+        d.session = created["sessionId"]
+        d.s("POST", "/window/rect", {"width": 1280, "height": 1000})
+        # Reading a log empties it: what the browser's own start page loaded is not counted.
+        d.s("POST", "/url", {"url": "about:blank"})
+        for kind in ("browser", "performance"):
+            d.s("POST", "/se/log", {"type": kind})
+        d.s("POST", "/url", {"url": page_url})
+
+        def js(script):
+            return d.s("POST", "/execute/sync", {"script": script, "args": []})
+
+        for _ in range(50):
+            if js("return document.readyState") == "complete":
+                break
+            time.sleep(0.1)
+        inner = js("return window.innerWidth")
+        scroll_width = js("return document.documentElement.scrollWidth")
+        if scroll_width > inner:
+            failures.append(f"horizontal scroll at 1280 px: page {scroll_width} px wide, "
+                            f"window {inner} px")
+        sizes = js("return Array.from(document.querySelectorAll('figure svg'))"
+                   ".map(s => [s.getBoundingClientRect().width, s.getBoundingClientRect().height])")
+        if len(sizes) != expected_figures or expected_figures == 0:
+            failures.append(f"{len(sizes)} inline SVG figures shown, {expected_figures} expected")
+        for i, (w, h) in enumerate(sizes):
+            if w < 300 or h < 100:
+                failures.append(f"figure {i + 1} is drawn {w:.0f} x {h:.0f} px")
+        external = js("return Array.from(document.querySelectorAll('[src],link[href],script'))"
+                      ".length")
+        if external:
+            failures.append(f"{external} elements that load something (src, link, script)")
+
+        height = js("return document.documentElement.scrollHeight")
+        if args.screenshot:
+            shot_h = args.height or height
+            d.s("POST", "/window/rect", {"width": 1280, "height": shot_h})
+            if args.scroll:
+                js(f"window.scrollTo(0, {args.scroll}); return 0")
+            png = base64.b64decode(d.s("GET", "/screenshot"))
+            with open(args.screenshot, "wb") as f:
+                f.write(png)
+        pdf = base64.b64decode(d.s("POST", "/print", {
+            "page": {"width": 21.0, "height": 29.7}, "background": True,
+            "margin": {"top": 1, "bottom": 1, "left": 1, "right": 1}}))
+        pages = pdf.count(b"/Type /Page") - pdf.count(b"/Type /Pages")
+        if not pdf.startswith(b"%PDF") or pages < 1:
+            failures.append("printing on A4 gave no PDF")
+        if args.print_pdf:
+            with open(args.print_pdf, "wb") as f:
+                f.write(pdf)
+
+        console = d.s("POST", "/se/log", {"type": "browser"}) or []
+        for e in console:
+            if e.get("level") in ("SEVERE", "WARNING"):
+                failures.append(f"console {e.get('level')}: {e.get('message')}")
+        perf = d.s("POST", "/se/log", {"type": "performance"}) or []
+        requests = []
+        for e in perf:
+            msg = json.loads(e["message"])["message"]
+            if msg.get("method") == "Network.requestWillBeSent":
+                requests.append(msg["params"]["request"]["url"])
+        if not requests:
+            failures.append("the performance log saw no request at all (is it working?)")
+        for url in requests:
+            if url != page_url:
+                failures.append(f"request made: {url}")
+        print(f"report.html: {len(sizes)} figures, page {scroll_width} x {height} px at width "
+              f"{inner}, {len(requests)} request(s) ({', '.join(requests)}), "
+              f"{len(console)} console message(s), A4 print {len(pdf)} bytes")
+    finally:
+        if d.session:
+            try:
+                d.call("DELETE", f"/session/{d.session}")
+            except Exception:
+                pass
+        proc.terminate()
+        try:
+            proc.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+        log.close()
+        shutil.rmtree(profile, ignore_errors=True)
+    for f in failures:
+        print("FAIL:", f)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
