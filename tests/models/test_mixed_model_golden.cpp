@@ -21,7 +21,7 @@ using feint::models::ModelSpec;
 using feint::models::TimeScale;
 
 const std::string kDir = std::string(FEINT_SOURCE_DIR) + "/tests/golden/models/";
-constexpr double kTol = 1e-6;  // relative; what an optimiser's tolerance allows (see docs)
+constexpr double kTol = 2e-7;  // relative; reached: worst 6e-8 (an optimiser tolerance, see docs)
 
 std::vector<std::vector<std::string>> read_csv(const std::string& path) {
   std::ifstream in(path);
@@ -77,12 +77,12 @@ void expect_rel(double got, double want, const std::string& what, double tol = k
 
 std::string fmt_level(double t) { return std::to_string(static_cast<long long>(t)); }
 
-void check_fit(const std::string& c, const MixedModelFit& fit) {
+void check_fit(const std::string& c, const MixedModelFit& fit, double tol = kTol) {
   auto& g = golden()[c];
   expect_rel(fit.reml_criterion, g["REMLcrit"][""], c + " REMLcrit", 1e-9);
-  expect_rel(fit.sigma, g["sigma"][""], c + " sigma");
+  expect_rel(fit.sigma, g["sigma"][""], c + " sigma", tol);
   for (Eigen::Index i = 0; i < fit.theta.size(); ++i)
-    expect_rel(fit.theta(i), g["theta"][std::to_string(i + 1)], c + " theta");
+    expect_rel(fit.theta(i), g["theta"][std::to_string(i + 1)], c + " theta", tol);
   ASSERT_EQ(static_cast<std::size_t>(fit.beta.size()), g["beta"].size()) << c;
   for (std::size_t i = 0; i < fit.coef_names.size(); ++i) {
     ASSERT_TRUE(g["beta"].count(fit.coef_names[i])) << c << " " << fit.coef_names[i];
@@ -90,17 +90,17 @@ void check_fit(const std::string& c, const MixedModelFit& fit) {
     EXPECT_NEAR(fit.beta(static_cast<Eigen::Index>(i)), g["beta"][fit.coef_names[i]], 1e-7)
         << c << " " << fit.coef_names[i];
   }
-  expect_rel(fit.variance.residual, g["vcov"]["Residual NA NA"], c + " residual variance");
+  expect_rel(fit.variance.residual, g["vcov"]["Residual NA NA"], c + " residual variance", tol);
   expect_rel(fit.variance.participant, g["vcov"]["participant (Intercept) NA"],
-             c + " participant variance");
+             c + " participant variance", tol);
   ASSERT_EQ(fit.anova.size(), g["F"].size()) << c;
   for (const auto& a : fit.anova) {
-    expect_rel(a.f, g["F"][a.term], c + " F " + a.term);
-    expect_rel(a.num_df, g["NumDF"][a.term], c + " NumDF " + a.term);
-    expect_rel(a.den_df, g["DenDF"][a.term], c + " DenDF " + a.term);
-    expect_rel(a.p, g["p"][a.term], c + " p " + a.term);
-    expect_rel(a.sum_sq, g["SumSq"][a.term], c + " SumSq " + a.term);
-    expect_rel(a.mean_sq, g["MeanSq"][a.term], c + " MeanSq " + a.term);
+    expect_rel(a.f, g["F"][a.term], c + " F " + a.term, tol);
+    expect_rel(a.num_df, g["NumDF"][a.term], c + " NumDF " + a.term, tol);
+    expect_rel(a.den_df, g["DenDF"][a.term], c + " DenDF " + a.term, tol);
+    expect_rel(a.p, g["p"][a.term], c + " p " + a.term, tol);
+    expect_rel(a.sum_sq, g["SumSq"][a.term], c + " SumSq " + a.term, tol);
+    expect_rel(a.mean_sq, g["MeanSq"][a.term], c + " MeanSq " + a.term, tol);
   }
 }
 
@@ -116,15 +116,15 @@ void check_contrasts(const std::string& c, const MixedModelFit& fit) {
     EXPECT_NEAR(*r.estimate, g["c.estimate"][it], 1e-7) << c << " " << it;
     expect_rel(*r.sd1, g["c.SE"][it], c + " SE " + it);
     expect_rel(*r.df, g["c.df"][it], c + " df " + it);
-    expect_rel(*r.statistic, g["c.t"][it], c + " t " + it, 1e-5);
-    expect_rel(*r.p_value, g["c.p"][it], c + " p " + it, 1e-5);
+    expect_rel(*r.statistic, g["c.t"][it], c + " t " + it, 2e-7);
+    expect_rel(*r.p_value, g["c.p"][it], c + " p " + it, 2e-7);
     EXPECT_NEAR(*r.conf_low, g["c.lower"][it], 1e-7) << c << " " << it;
     EXPECT_NEAR(*r.conf_high, g["c.upper"][it], 1e-7) << c << " " << it;
     ps.push_back(r.p_value);
     names.push_back(it);
   }
   const auto holm = feint::stats::p_adjust(ps, feint::stats::PAdjustMethod::holm);
-  for (std::size_t i = 0; i < holm.size(); ++i) expect_rel(*holm[i], g["c.p_holm"][names[i]], c + " holm", 1e-5);
+  for (std::size_t i = 0; i < holm.size(); ++i) expect_rel(*holm[i], g["c.p_holm"][names[i]], c + " holm", 2e-7);
 }
 
 }  // namespace
@@ -173,11 +173,12 @@ TEST(MixedModelGolden, LinearTrendRandomSlopeMatchesLmerTest) {
   spec.time_scale = TimeScale::linear;
   spec.random_slope = true;
   const MixedModelFit fit = feint::models::fit_mixed_model(d.long_data, spec, true);
-  check_fit("trend_slope", fit);
+  // Three variance parameters: the optimum is flatter, agreement 3e-7 (the issue allows 1e-6).
+  check_fit("trend_slope", fit, 1e-6);
   auto& g = golden()["trend_slope"];
-  expect_rel(*fit.variance.slope, g["vcov"]["participant iteration NA"], "slope variance", 1e-5);
+  expect_rel(*fit.variance.slope, g["vcov"]["participant iteration NA"], "slope variance", 1e-6);
   const double cov = *fit.variance.correlation * std::sqrt(fit.variance.participant * *fit.variance.slope);
-  expect_rel(cov, g["vcov"]["participant (Intercept) iteration"], "intercept-slope covariance", 1e-5);
+  expect_rel(cov, g["vcov"]["participant (Intercept) iteration"], "intercept-slope covariance", 1e-6);
   check_contrasts("trend_slope", fit);
 }
 
@@ -200,7 +201,7 @@ TEST(MixedModelGolden, ExposureSlopesPerStrategyMatchLmerTestContest) {
     EXPECT_NEAR(*r.estimate, g["s.estimate"][lv], 1e-8) << lv;
     expect_rel(*r.sd1, g["s.SE"][lv], "slope SE " + lv);
     expect_rel(*r.df, g["s.df"][lv], "slope df " + lv);
-    expect_rel(*r.p_value, g["s.p"][lv], "slope p " + lv, 1e-5);
+    expect_rel(*r.p_value, g["s.p"][lv], "slope p " + lv, 2e-7);
     EXPECT_NEAR(*r.conf_low, g["s.lower"][lv], 1e-8) << lv;
     EXPECT_NEAR(*r.conf_high, g["s.upper"][lv], 1e-8) << lv;
   }
