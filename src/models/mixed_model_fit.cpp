@@ -221,8 +221,9 @@ Eigen::VectorXd MixedModelFit::cell_row(std::size_t group_level, double time) co
   return row;
 }
 
-stats::TestResult contrast(const MixedModelFit& fit, const Eigen::VectorXd& L, double conf_level) {
-  stats::TestResult r;
+Contrast contrast(const MixedModelFit& fit, const Eigen::VectorXd& L, double conf_level) {
+  Contrast out;
+  stats::TestResult& r = out.test;
   r.test = "lmm_contrast";
   r.method = "Linear mixed model contrast (REML, Satterthwaite df)";
   r.conf_level = conf_level;
@@ -239,7 +240,7 @@ stats::TestResult contrast(const MixedModelFit& fit, const Eigen::VectorXd& L, d
     r.computed = false;
     r.note = "contrast variance or Satterthwaite df not positive";
     r.estimate.reset();
-    return r;
+    return out;
   }
   const double se = std::sqrt(var);
   r.statistic = est / se;
@@ -249,8 +250,8 @@ stats::TestResult contrast(const MixedModelFit& fit, const Eigen::VectorXd& L, d
   const double q = boost::math::quantile(boost::math::complement(dist, (1 - conf_level) / 2));
   r.conf_low = est - q * se;
   r.conf_high = est + q * se;
-  r.sd1 = se;  // callers read the standard error from here (documented in model_render)
-  return r;
+  out.std_error = se;
+  return out;
 }
 
 AnovaTerm contrast_md(const MixedModelFit& fit, const Eigen::MatrixXd& L) {
@@ -267,7 +268,7 @@ AnovaTerm contrast_md(const MixedModelFit& fit, const Eigen::MatrixXd& L) {
     return out;
   };
   if (L.rows() == 1) {
-    const stats::TestResult c = contrast(fit, L.row(0).transpose());
+    const stats::TestResult c = contrast(fit, L.row(0).transpose()).test;
     return table(*c.statistic * *c.statistic, 1, *c.df);
   }
   const Eigen::MatrixXd VL = L * fit.vcov_beta * L.transpose();
@@ -282,7 +283,7 @@ AnovaTerm contrast_md(const MixedModelFit& fit, const Eigen::MatrixXd& L) {
     if (d(i) > tol) ++q;
   const Eigen::MatrixXd PtL = (P.transpose() * L).topRows(q);
   if (q == 1) {
-    const stats::TestResult c = contrast(fit, PtL.row(0).transpose());
+    const stats::TestResult c = contrast(fit, PtL.row(0).transpose()).test;
     return table(*c.statistic * *c.statistic, 1, *c.df);
   }
   double F = 0;

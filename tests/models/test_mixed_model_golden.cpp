@@ -110,11 +110,12 @@ void check_contrasts(const std::string& c, const MixedModelFit& fit) {
   std::vector<std::string> names;
   for (const double t : fit.time_levels) {
     const Eigen::VectorXd L = fit.cell_row(0, t) - fit.cell_row(1, t);
-    const auto r = feint::models::contrast(fit, L, 0.95);
+    const auto cr = feint::models::contrast(fit, L, 0.95);
+    const auto& r = cr.test;
     const std::string it = fmt_level(t);
     ASSERT_TRUE(r.computed) << c << " " << it;
     EXPECT_NEAR(*r.estimate, g["c.estimate"][it], 1e-7) << c << " " << it;
-    expect_rel(*r.sd1, g["c.SE"][it], c + " SE " + it);
+    expect_rel(cr.std_error, g["c.SE"][it], c + " SE " + it);
     expect_rel(*r.df, g["c.df"][it], c + " df " + it);
     expect_rel(*r.statistic, g["c.t"][it], c + " t " + it, 2e-7);
     expect_rel(*r.p_value, g["c.p"][it], c + " p " + it, 2e-7);
@@ -196,10 +197,11 @@ TEST(MixedModelGolden, ExposureSlopesPerStrategyMatchLmerTestContest) {
   auto& g = golden()["exposure"];
   for (std::size_t k = 0; k < fit.group_levels.size(); ++k) {
     const Eigen::VectorXd L = fit.cell_row(k, 1.0) - fit.cell_row(k, 0.0);
-    const auto r = feint::models::contrast(fit, L, 0.95);
+    const auto cr = feint::models::contrast(fit, L, 0.95);
+    const auto& r = cr.test;
     const std::string& lv = fit.group_levels[k];
     EXPECT_NEAR(*r.estimate, g["s.estimate"][lv], 1e-8) << lv;
-    expect_rel(*r.sd1, g["s.SE"][lv], "slope SE " + lv);
+    expect_rel(cr.std_error, g["s.SE"][lv], "slope SE " + lv);
     expect_rel(*r.df, g["s.df"][lv], "slope df " + lv);
     expect_rel(*r.p_value, g["s.p"][lv], "slope p " + lv, 2e-7);
     EXPECT_NEAR(*r.conf_low, g["s.lower"][lv], 1e-8) << lv;

@@ -99,11 +99,18 @@ struct MixedModelFit {
 /// time level without observations.
 MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool group_between);
 
+/// A contrast of the fixed effects: the test (TestResult: test "lmm_contrast", estimate, t, df, p,
+/// interval; not computable when its variance or df is not positive) and its standard error.
+struct Contrast {
+  stats::TestResult test;
+  double std_error = 0;
+};
+
 /// A linear function L'beta with Satterthwaite's df, as lmerTest::contest1D(m, L, confint = TRUE):
 /// estimate, SE = sqrt(L' V L), df = 2 (L'VL)^2 / (g' A g) with g_k = L' dV/dvarpar_k L and A the
 /// covariance of the variance parameters; t = estimate / SE; two-sided p; interval estimate -+
-/// qt(1 - (1 - conf)/2, df) SE. Returned as a TestResult (test "lmm_contrast", statistic "t").
-stats::TestResult contrast(const MixedModelFit& fit, const Eigen::VectorXd& L,
+/// qt(1 - (1 - conf)/2, df) SE.
+Contrast contrast(const MixedModelFit& fit, const Eigen::VectorXd& L,
                            double conf_level = 0.95);
 
 /// lmerTest::contestMD(m, L): the Wald F of the rows of L (F = sum of the squared t of the
