@@ -14,5 +14,6 @@ void add_describe_command(CLI::App& app);  // cmd_describe.cpp (issue: Table 1)
 void add_analyze_command(CLI::App& app);   // cmd_analyze.cpp  (issue: Table 1)
 void add_likert_command(CLI::App& app);    // cmd_likert.cpp   (issue: Likert)
 void add_simulate_command(CLI::App& app);  // cmd_simulate.cpp (issue: selection simulator)
+void add_model_command(CLI::App& app);     // cmd_model.cpp    (issue #10: mixed model)
 
 }  // namespace feint::cli

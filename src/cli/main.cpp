@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   feint::cli::add_analyze_command(app);
   feint::cli::add_likert_command(app);
   feint::cli::add_simulate_command(app);
+  feint::cli::add_model_command(app);
 
   try {
     app.parse(argc, argv);
