@@ -52,6 +52,10 @@ void run_model(const ModelArgs& a) {
   o.p_adjust = r.p_adjust;
   o.apa = r.apa;
   if (o.exposure && o.compare) throw UsageError("--compare does not apply to --exposure");
+  if (o.random_slope && !o.trend)
+    throw UsageError("--random-slope needs --trend (a random slope of the linear trend)");
+  if (o.exposure && (o.trend || o.random_slope))
+    throw UsageError("--exposure fits its own model (strategy * exposure); drop --trend/--random-slope");
 
   io::ScoresOptions so;
   so.participant_column = a.participant_column;
