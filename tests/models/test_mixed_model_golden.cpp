@@ -159,6 +159,22 @@ TEST(MixedModelGolden, PaperDesignTwentyIterationsWithMissingTrialsMatchesLmerTe
   check_contrasts("paper20_missing", fit);
 }
 
+TEST(MixedModelGolden, SingularFitAtZeroParticipantVarianceMatchesLmerTest) {
+  const Data d = load("singular");
+  const MixedModelFit fit = feint::models::fit_mixed_model(d.long_data, ModelSpec{}, true);
+  EXPECT_TRUE(fit.singular);
+  EXPECT_EQ(fit.theta(0), 0.0);
+  check_fit("singular", fit);
+  check_contrasts("singular", fit);
+}
+
+TEST(MixedModelGolden, OneConditionMatchesLmerTestTypeOneHypotheses) {
+  const Data d = load("one_condition");
+  const MixedModelFit fit = feint::models::fit_mixed_model(d.long_data, ModelSpec{}, true);
+  ASSERT_EQ(fit.group_levels.size(), 1u);
+  check_fit("one_condition", fit);
+}
+
 TEST(MixedModelGolden, LinearTrendRandomInterceptMatchesLmerTest) {
   const Data d = load("trend_intercept");
   ModelSpec spec;

@@ -18,14 +18,15 @@ put <- function(case, quantity, name, value)
   out[[length(out) + 1]] <<- data.frame(case = case, quantity = quantity, name = name,
                                         value = sprintf("%.17g", value))
 
-make_data <- function(n_a, n_b, iters, missing = 0, slope_sd = 0, strategies = NULL, seed = 1) {
+make_data <- function(n_a, n_b, iters, missing = 0, slope_sd = 0, strategies = NULL, seed = 1,
+                      participant_sd = 0.08) {
   set.seed(seed)
   ids <- sprintf("P%02d", seq_len(n_a + n_b))
   cond <- rep(c("adaptive", "random"), c(n_a, n_b))
   d <- expand.grid(iteration = iters, k = seq_along(ids))
   d$participant <- ids[d$k]
   d$condition <- cond[d$k]
-  u <- rnorm(length(ids), 0, 0.08)[d$k]
+  u <- rnorm(length(ids), 0, participant_sd)[d$k]
   s <- rnorm(length(ids), 0, slope_sd)[d$k]
   eff <- ifelse(d$condition == "adaptive", 0.02, -0.01 * (d$iteration - 1) / max(1, length(iters)))
   d$error <- round(0.5 + eff + u + s * d$iteration + rnorm(nrow(d), 0, 0.1), 6)
@@ -87,6 +88,13 @@ fit_factor("balanced5", make_data(12, 12, 1:5, seed = 11))
 fit_factor("unbalanced4_missing", make_data(10, 14, 1:4, missing = 0.1, seed = 12))
 fit_factor("two_iterations", make_data(9, 7, 1:2, missing = 0.05, seed = 13))
 fit_factor("paper20_missing", make_data(30, 30, 1:20, missing = 0.03, seed = 14))
+# No participant variance: a singular fit (theta = 0), Satterthwaite at the boundary.
+fit_factor("singular", make_data(10, 10, 1:3, seed = 22, participant_sd = 0))
+# One condition: the one-way repeated-measures model (lmerTest's type-I hypotheses for one term).
+d1 <- make_data(14, 0, 1:4, missing = 0.05, seed = 22)
+write.csv(d1, "lmm_one_condition.csv", row.names = FALSE, quote = FALSE)
+d1$iteration <- factor(d1$iteration)
+anova_golden("one_condition", lmer(error ~ iteration + (1 | participant), d1, control = ctrl))
 # Linear trend, random intercept and random slope.
 fit_trend("trend_intercept", make_data(15, 11, 1:8, missing = 0.05, seed = 15), slope = FALSE)
 fit_trend("trend_slope", make_data(15, 13, 1:10, missing = 0.05, slope_sd = 0.02, seed = 16),
