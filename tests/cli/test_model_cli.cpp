@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -230,3 +231,32 @@ TEST(ModelCli, CompareChoosesTheDirectionOfTheContrasts) {
 }
 
 }  // namespace
+
+namespace {
+
+bool have_latex() {
+  return std::system(
+             "command -v pdflatex >/dev/null 2>&1 && kpsewhich booktabs.sty >/dev/null 2>&1") == 0;
+}
+
+}  // namespace
+
+TEST(ModelCli, LatexCompilesAsAFragmentOfAPaperWithoutOverfullLines) {
+  if (!have_latex())
+    GTEST_SKIP() << "pdflatex with booktabs not installed: LaTeX compile check skipped";
+  TempDir dir;
+  const auto tex = dir.path() / "model.tex";
+  const auto r = run_feint("model " + shell_quote(kGolden + "lmm_paper20_missing.csv") +
+                           " --metric error --p-adjust holm --apa --format latex -o " +
+                           shell_quote(tex.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  write_text(dir.path() / "paper.tex",
+             "\\documentclass{article}\n\\usepackage[T1]{fontenc}\n\\usepackage{booktabs}\n"
+             "\\usepackage{graphicx}\n\\usepackage{amsmath}\n\\begin{document}\nText.\n"
+             "\\input{model.tex}\n\\end{document}\n");
+  const std::string cmd = "cd " + shell_quote(dir.path().string()) +
+                          " && pdflatex -interaction=nonstopmode -halt-on-error paper.tex > out.txt 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << feint::test::read_text(dir.path() / "out.txt");
+  EXPECT_EQ(feint::test::read_text(dir.path() / "paper.log").find("Overfull \\hbox"),
+            std::string::npos);
+}
