@@ -55,7 +55,8 @@ void run_model(const ModelArgs& a) {
   if (o.random_slope && !o.trend)
     throw UsageError("--random-slope needs --trend (a random slope of the linear trend)");
   if (o.exposure && (o.trend || o.random_slope))
-    throw UsageError("--exposure fits its own model (strategy * exposure); drop --trend/--random-slope");
+    throw UsageError(
+        "--exposure fits its own model (strategy * exposure); drop --trend/--random-slope");
 
   io::ScoresOptions so;
   so.participant_column = a.participant_column;
@@ -97,7 +98,8 @@ void add_model_command(CLI::App& app) {
   cmd->add_flag("--exposure", args->exposure,
                 "Fit metric ~ strategy * exposure + (1 | participant), exposure = earlier trials "
                 "of the same strategy; report the slope per strategy");
-  cmd->add_option("--participant-column", args->participant_column, "Name of the participant column")
+  cmd->add_option("--participant-column", args->participant_column,
+                  "Name of the participant column")
       ->capture_default_str();
   cmd->add_option("--iteration-column", args->iteration_column, "Name of the iteration column")
       ->capture_default_str();

@@ -25,7 +25,8 @@ std::vector<double> exposure_counts(std::span<const std::string> participant,
   std::map<std::pair<std::string, std::string>, double> seen;
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = order[k];
-    if (k > 0 && participant[order[k - 1]] == participant[i] && iteration[order[k - 1]] == iteration[i])
+    if (k > 0 && participant[order[k - 1]] == participant[i] &&
+        iteration[order[k - 1]] == iteration[i])
       throw std::invalid_argument("exposure_counts: participant " + participant[i] +
                                   " has two trials at one iteration");
     double& count = seen[{participant[i], strategy[i]}];

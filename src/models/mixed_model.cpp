@@ -3,19 +3,13 @@
 #include "feint/models/mixed_model.hpp"
 
 #include <algorithm>
+#include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <map>
+#include <numbers>
 #include <numeric>
-#include <stdexcept>
 
-#include <boost/math/distributions/fisher_f.hpp>
-#include <boost/math/distributions/students_t.hpp>
-#include <boost/math/tools/minima.hpp>
-#include <fmt/format.h>
-
-#include "feint/error.hpp"
 #include "mixed_model_detail.hpp"
 
 namespace feint::models {
@@ -94,8 +88,7 @@ Evaluation Problem::evaluate(const Eigen::VectorXd& theta) const {
   Eigen::VectorXd XtHy = Xty;
   std::vector<Eigen::LLT<Eigen::MatrixXd>> chol(ZtZ.size());
   for (std::size_t i = 0; i < ZtZ.size(); ++i) {
-    const Eigen::MatrixXd M =
-        Eigen::MatrixXd::Identity(q, q) + L.transpose() * ZtZ[i] * L;
+    const Eigen::MatrixXd M = Eigen::MatrixXd::Identity(q, q) + L.transpose() * ZtZ[i] * L;
     chol[i].compute(M);
     const Eigen::MatrixXd Lc = chol[i].matrixL();
     ev.logdet_m += 2.0 * Lc.diagonal().array().log().sum();
@@ -129,7 +122,8 @@ double Problem::profiled_reml(const Eigen::VectorXd& theta) const {
   if (!ev.ok || !(ev.r2 > 0)) return std::numeric_limits<double>::infinity();
   const double n = static_cast<double>(y.size());
   const double p = static_cast<double>(X.cols());
-  return ev.logdet_m + ev.logdet_x + (n - p) * (1.0 + std::log(2.0 * M_PI * ev.r2 / (n - p)));
+  return ev.logdet_m + ev.logdet_x +
+         (n - p) * (1.0 + std::log(2.0 * std::numbers::pi * ev.r2 / (n - p)));
 }
 
 double Problem::reml_deviance(const Eigen::VectorXd& varpar) const {
@@ -139,8 +133,8 @@ double Problem::reml_deviance(const Eigen::VectorXd& varpar) const {
   if (!ev.ok) return std::numeric_limits<double>::infinity();
   const double n = static_cast<double>(y.size());
   const double p = static_cast<double>(X.cols());
-  return ev.logdet_m + ev.r2 / sigma2 + n * std::log(2.0 * M_PI * sigma2) + ev.logdet_x -
-         p * std::log(2.0 * M_PI * sigma2);
+  return ev.logdet_m + ev.r2 / sigma2 + n * std::log(2.0 * std::numbers::pi * sigma2) +
+         ev.logdet_x - p * std::log(2.0 * std::numbers::pi * sigma2);
 }
 
 Eigen::MatrixXd Problem::vcov_beta(const Eigen::VectorXd& varpar) const {
@@ -197,8 +191,8 @@ Eigen::VectorXd nelder_mead(const std::function<double(const Eigen::VectorXd&)>&
       fs[worst] = fr;
     } else {
       const bool outside = fr < fs[worst];
-      const Eigen::VectorXd xc = outside ? Eigen::VectorXd(c + 0.5 * (xr - c))
-                                         : Eigen::VectorXd(c + 0.5 * (s[worst] - c));
+      const Eigen::VectorXd xc =
+          outside ? Eigen::VectorXd(c + 0.5 * (xr - c)) : Eigen::VectorXd(c + 0.5 * (s[worst] - c));
       const double fc = f(xc);
       ++evals;
       if (fc < std::min(fr, fs[worst])) {
@@ -246,8 +240,8 @@ double optimise_intercept(const Problem& problem) {
   }
   // Polish in theta itself (Brent's bracket on the log scale stops near sqrt(eps) relative).
   if (theta > 0) {
-    const auto r2 = boost::math::tools::brent_find_minima(
-        f, theta * (1 - 1e-6), theta * (1 + 1e-6), std::numeric_limits<double>::digits / 2);
+    const auto r2 = boost::math::tools::brent_find_minima(f, theta * (1 - 1e-6), theta * (1 + 1e-6),
+                                                          std::numeric_limits<double>::digits / 2);
     if (r2.second <= f_theta) theta = r2.first;
   }
   return theta;
@@ -264,15 +258,16 @@ Eigen::VectorXd optimise_theta(const Problem& problem) {
   auto f = [&](const Eigen::VectorXd& t) { return problem.profiled_reml(t); };
   Eigen::VectorXd x(3);
   x << 1.0, 0.0, 1.0;  // lme4's start
-  for (int restart = 0; restart < 4; ++restart) x = nelder_mead(f, x, restart == 0 ? 0.5 : 0.05, 4000);
+  for (int restart = 0; restart < 4; ++restart)
+    x = nelder_mead(f, x, restart == 0 ? 0.5 : 0.05, 4000);
   // Newton polish with Richardson derivatives (the criterion is smooth inside the domain).
   for (int it = 0; it < 6; ++it) {
     const Eigen::MatrixXd H = numderiv_hessian(f, x);
     const Eigen::VectorXd g = numderiv_gradient(f, x);
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
     if (es.eigenvalues().minCoeff() <= 0) break;
-    const Eigen::VectorXd step = -es.eigenvectors() *
-                                 (es.eigenvectors().transpose() * g).cwiseQuotient(es.eigenvalues());
+    const Eigen::VectorXd step =
+        -es.eigenvectors() * (es.eigenvectors().transpose() * g).cwiseQuotient(es.eigenvalues());
     const Eigen::VectorXd xn = x + step;
     if (f(xn) <= f(x)) {
       x = xn;
@@ -387,9 +382,9 @@ std::vector<Eigen::MatrixXd> numderiv_jacobian(
     }
     for (int m = 1; m < r; ++m)
       for (int k = 0; k < r - m; ++k)
-        a[static_cast<std::size_t>(k)] =
-            (a[static_cast<std::size_t>(k + 1)] * std::pow(4.0, m) - a[static_cast<std::size_t>(k)]) /
-            (std::pow(4.0, m) - 1);
+        a[static_cast<std::size_t>(k)] = (a[static_cast<std::size_t>(k + 1)] * std::pow(4.0, m) -
+                                          a[static_cast<std::size_t>(k)]) /
+                                         (std::pow(4.0, m) - 1);
     out.push_back(a[0]);
   }
   return out;

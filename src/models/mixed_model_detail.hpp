@@ -1,11 +1,10 @@
 // src/models/mixed_model_detail.hpp - internals of the mixed model shared by its .cpp files.
 #pragma once
 
+#include <Eigen/Dense>
 #include <cstddef>
 #include <functional>
 #include <vector>
-
-#include <Eigen/Dense>
 
 namespace feint::models::detail {
 

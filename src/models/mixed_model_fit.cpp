@@ -1,15 +1,15 @@
 // fit_mixed_model(): design (treatment coding as R), REML fit, lmerTest's Satterthwaite machinery
 // and type-III hypotheses; contrast() and contrast_md().
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <boost/math/distributions/fisher_f.hpp>
+#include <boost/math/distributions/students_t.hpp>
 #include <cmath>
 #include <limits>
 #include <map>
 #include <set>
 #include <stdexcept>
-
-#include <boost/math/distributions/fisher_f.hpp>
-#include <boost/math/distributions/students_t.hpp>
-#include <fmt/format.h>
 
 #include "feint/error.hpp"
 #include "feint/models/mixed_model.hpp"
@@ -153,7 +153,8 @@ std::vector<Eigen::MatrixXd> type3_hypotheses(const Layout& lay, const Eigen::Ma
     const Eigen::MatrixXd Lt = detail::doolittle_lower(X.transpose() * X).transpose();
     for (const auto& t : lay.terms) {
       Eigen::MatrixXd L(static_cast<Eigen::Index>(t.cols.size()), p);
-      for (std::size_t r = 0; r < t.cols.size(); ++r) L.row(static_cast<Eigen::Index>(r)) = Lt.row(t.cols[r]);
+      for (std::size_t r = 0; r < t.cols.size(); ++r)
+        L.row(static_cast<Eigen::Index>(r)) = Lt.row(t.cols[r]);
       out.push_back(L);
     }
     return out;
@@ -177,11 +178,14 @@ std::vector<Eigen::MatrixXd> type3_hypotheses(const Layout& lay, const Eigen::Ma
       if (contained_in(t, o)) ccols.insert(ccols.end(), o.cols.begin(), o.cols.end());
     if (ccols.empty()) continue;
     Eigen::MatrixXd A(L.rows(), static_cast<Eigen::Index>(ccols.size()));
-    for (std::size_t c = 0; c < ccols.size(); ++c) A.col(static_cast<Eigen::Index>(c)) = L.col(ccols[c]);
+    for (std::size_t c = 0; c < ccols.size(); ++c)
+      A.col(static_cast<Eigen::Index>(c)) = L.col(ccols[c]);
     Eigen::MatrixXd Y(L.rows(), static_cast<Eigen::Index>(t.cols.size()));
-    for (std::size_t c = 0; c < t.cols.size(); ++c) Y.col(static_cast<Eigen::Index>(c)) = L.col(t.cols[c]);
+    for (std::size_t c = 0; c < t.cols.size(); ++c)
+      Y.col(static_cast<Eigen::Index>(c)) = L.col(t.cols[c]);
     const Eigen::MatrixXd R = detail::zapsmall(lsq_residuals(A, Y));
-    for (std::size_t c = 0; c < t.cols.size(); ++c) L.col(t.cols[c]) = R.col(static_cast<Eigen::Index>(c));
+    for (std::size_t c = 0; c < t.cols.size(); ++c)
+      L.col(t.cols[c]) = R.col(static_cast<Eigen::Index>(c));
   }
   Eigen::MatrixXd Lsel(p, p);
   for (Eigen::Index r = 0; r < p; ++r) Lsel.row(r) = L.row(cd.x_to_rd[static_cast<std::size_t>(r)]);
@@ -362,8 +366,8 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
   for (std::size_t i = 0; i < n; ++i) {
     const auto it = std::find(fit.group_levels.begin(), fit.group_levels.end(), data.group[i]);
     if (it == fit.group_levels.end())
-      throw InvalidData(fmt::format("{} '{}' is not one of the levels given", spec.group,
-                                    data.group[i]));
+      throw InvalidData(
+          fmt::format("{} '{}' is not one of the levels given", spec.group, data.group[i]));
     gi[i] = static_cast<std::size_t>(it - fit.group_levels.begin());
     ti[i] = static_cast<std::size_t>(
         std::lower_bound(fit.time_levels.begin(), fit.time_levels.end(), data.time[i]) -
@@ -372,9 +376,10 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
   {
     const double y0 = data.y[0];
     if (std::all_of(data.y.begin(), data.y.end(), [&](double v) { return v == y0; }))
-      throw InvalidData(fmt::format("metric '{}' has no variance (every value is {}): the mixed "
-                                    "model cannot be fitted",
-                                    spec.response, y0));
+      throw InvalidData(
+          fmt::format("metric '{}' has no variance (every value is {}): the mixed "
+                      "model cannot be fitted",
+                      spec.response, y0));
   }
   const Layout lay = make_layout(fit);
   if (spec.time_scale == TimeScale::factor && lay.has_group) {
@@ -383,10 +388,10 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
     for (std::size_t j = 0; j < fit.time_levels.size(); ++j)
       for (std::size_t k = 0; k < lay.n_group; ++k)
         if (count[j * lay.n_group + k] == 0)
-          throw InvalidData(fmt::format(
-              "{}: no observation of {} '{}' at {} {}: every {} x {} cell needs data",
-              spec.response, spec.group, fit.group_levels[k], spec.time,
-              level_text(fit.time_levels[j]), spec.group, spec.time));
+          throw InvalidData(
+              fmt::format("{}: no observation of {} '{}' at {} {}: every {} x {} cell needs data",
+                          spec.response, spec.group, fit.group_levels[k], spec.time,
+                          level_text(fit.time_levels[j]), spec.group, spec.time));
   }
   if (spec.time_scale == TimeScale::linear && fit.time_levels.size() < 2)
     throw InvalidData(fmt::format("{}: a trend in {} needs at least two distinct values",
@@ -421,13 +426,14 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
     if (r + 1 == n || pidx[data.participant[order[r + 1]]] != pi) start.push_back(r + 1);
   }
   if (static_cast<Eigen::Index>(n) <= p)
-    throw InvalidData(fmt::format("{}: {} observations cannot estimate {} fixed effects",
-                                  spec.response, n, p));
+    throw InvalidData(
+        fmt::format("{}: {} observations cannot estimate {} fixed effects", spec.response, n, p));
   {
     Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(X);
     qr.setThreshold(1e-9);
     if (qr.rank() < p)
-      throw InvalidData(fmt::format("{}: the fixed-effects design is rank deficient", spec.response));
+      throw InvalidData(
+          fmt::format("{}: the fixed-effects design is rank deficient", spec.response));
   }
   fit.coef_names = lay.coef_names;
 
@@ -446,7 +452,8 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
   fit.singular = Lam.diagonal().minCoeff() < 1e-4;  // lme4's isSingular(tol = 1e-4)
   if (q == 2) {
     fit.variance.slope = Sb(1, 1);
-    if (Sb(0, 0) > 0 && Sb(1, 1) > 0) fit.variance.correlation = Sb(0, 1) / std::sqrt(Sb(0, 0) * Sb(1, 1));
+    if (Sb(0, 0) > 0 && Sb(1, 1) > 0)
+      fit.variance.correlation = Sb(0, 1) / std::sqrt(Sb(0, 0) * Sb(1, 1));
   } else {
     fit.variance.icc = Sb(0, 0) / (Sb(0, 0) + fit.variance.residual);
   }

@@ -1,13 +1,15 @@
 // `feint model`: scores -> long data -> mixed model per metric -> tables and tidy records.
 #include "feint/report/model_render.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <tuple>
-
-#include <fmt/format.h>
 
 #include "feint/error.hpp"
 #include "feint/io/csv.hpp"
@@ -59,8 +61,7 @@ std::vector<std::string> load_strategies(const io::ScoresTable& scores,
       throw InvalidData(fmt::format("{}:{}: column '{}': empty strategy (trial {}/{}/{})",
                                     scores.path, reader.line(), strategy_column, participant,
                                     condition, iteration ? whole_or_double(*iteration) : "?"));
-    if (iteration)
-      by_key[{participant, condition, static_cast<long long>(*iteration)}] = strategy;
+    if (iteration) by_key[{participant, condition, static_cast<long long>(*iteration)}] = strategy;
   }
   std::vector<std::string> out;
   out.reserve(scores.records.size());
@@ -79,7 +80,8 @@ ModelAnalysis build_model_analysis(const io::ScoresTable& scores, const ModelOpt
   if (options.random_slope && !options.trend)
     throw UsageError("--random-slope needs --trend (a random slope of the linear trend)");
   if (options.exposure && (options.trend || options.random_slope))
-    throw UsageError("--exposure fits its own model (strategy * exposure); drop --trend/--random-slope");
+    throw UsageError(
+        "--exposure fits its own model (strategy * exposure); drop --trend/--random-slope");
   if (options.exposure && (strategy == nullptr || strategy->size() != scores.records.size()))
     throw std::invalid_argument("build_model_analysis: --exposure needs one strategy per record");
   if (!(options.alpha > 0 && options.alpha < 1)) throw UsageError("--alpha must be in (0, 1)");
@@ -160,14 +162,13 @@ ModelAnalysis build_model_analysis(const io::ScoresTable& scores, const ModelOpt
     spec.response = metric;
     spec.group = options.exposure ? "strategy" : "condition";
     spec.time = options.exposure ? "exposure" : "iteration";
-    spec.time_scale = options.exposure || options.trend ? models::TimeScale::linear
-                                                        : models::TimeScale::factor;
+    spec.time_scale =
+        options.exposure || options.trend ? models::TimeScale::linear : models::TimeScale::factor;
     spec.random_slope = options.random_slope;
     mm.fit = models::fit_mixed_model(d, spec, !options.exposure);
     const auto& fit = mm.fit;
     const bool one_group = fit.group_levels.size() < 2;
-    const std::string rhs =
-        one_group ? spec.time : fmt::format("{} * {}", spec.group, spec.time);
+    const std::string rhs = one_group ? spec.time : fmt::format("{} * {}", spec.group, spec.time);
     mm.formula = fmt::format("{} ~ {} + ({} | participant)", metric, rhs,
                              options.random_slope ? "1 + iteration" : "1");
 
@@ -175,7 +176,8 @@ ModelAnalysis build_model_analysis(const io::ScoresTable& scores, const ModelOpt
     if (!options.exposure) {
       std::map<std::string, std::set<std::string>> per;
       for (std::size_t i = 0; i < d.y.size(); ++i) per[d.group[i]].insert(d.participant[i]);
-      for (const auto& g : fit.group_levels) mm.participants_per_group.emplace_back(g, per[g].size());
+      for (const auto& g : fit.group_levels)
+        mm.participants_per_group.emplace_back(g, per[g].size());
     }
 
     // Contrasts A - B per iteration, or exposure slopes per strategy.
@@ -184,8 +186,8 @@ ModelAnalysis build_model_analysis(const io::ScoresTable& scores, const ModelOpt
       for (std::size_t k = 0; k < fit.group_levels.size(); ++k) {
         ModelContrast c;
         c.level = fit.group_levels[k];
-        c.contrast = models::contrast(fit, fit.cell_row(k, 1.0) - fit.cell_row(k, 0.0),
-                                      options.conf_level);
+        c.contrast =
+            models::contrast(fit, fit.cell_row(k, 1.0) - fit.cell_row(k, 0.0), options.conf_level);
         mm.contrasts.push_back(std::move(c));
       }
     } else if (!one_group) {
@@ -194,8 +196,8 @@ ModelAnalysis build_model_analysis(const io::ScoresTable& scores, const ModelOpt
         auto find = [&](const std::string& name) {
           const auto it = std::find(fit.group_levels.begin(), fit.group_levels.end(), name);
           if (it == fit.group_levels.end())
-            throw InvalidData(fmt::format("{}: --compare: no condition '{}' in the data",
-                                          scores.path, name));
+            throw InvalidData(
+                fmt::format("{}: --compare: no condition '{}' in the data", scores.path, name));
           return static_cast<std::size_t>(it - fit.group_levels.begin());
         };
         ia = find(options.compare->first);
@@ -261,7 +263,8 @@ std::vector<std::string> model_notes(const ModelAnalysis& a, const MetricModel& 
         "participant{} with missing trials {} kept with {} other trials (unlike the "
         "repeated-measures ANOVA, which drops them).",
         m.trials_missing, m.trials_missing == 1 ? "" : "s", m.metric, m.participants_with_missing,
-        m.participants_with_missing == 1 ? "" : "s", m.participants_with_missing == 1 ? "is" : "are",
+        m.participants_with_missing == 1 ? "" : "s",
+        m.participants_with_missing == 1 ? "is" : "are",
         m.participants_with_missing == 1 ? "its" : "their"));
   } else {
     notes.push_back("No missing trials.");
@@ -281,12 +284,11 @@ std::vector<std::string> model_notes(const ModelAnalysis& a, const MetricModel& 
         "Singular fit: a variance component is estimated at (or near) zero (lme4: isSingular); "
         "the F tests remain valid but the model may be simpler than specified.");
   if (!m.contrasts.empty()) {
-    const std::string adj =
-        o.p_adjust == stats::PAdjustMethod::none
-            ? "no p-value adjustment"
-            : fmt::format("p adjusted over the {} {} by {}", m.contrasts.size(),
-                          o.exposure ? "strategies" : "iterations",
-                          std::string(stats::to_string(o.p_adjust)));
+    const std::string adj = o.p_adjust == stats::PAdjustMethod::none
+                                ? "no p-value adjustment"
+                                : fmt::format("p adjusted over the {} {} by {}", m.contrasts.size(),
+                                              o.exposure ? "strategies" : "iterations",
+                                              std::string(stats::to_string(o.p_adjust)));
     if (o.exposure) {
       notes.push_back(fmt::format(
           "Slope of exposure per strategy: the change of {} per earlier exposure to the same "
@@ -295,7 +297,8 @@ std::vector<std::string> model_notes(const ModelAnalysis& a, const MetricModel& 
     } else {
       notes.push_back(fmt::format(
           "Contrasts A - B at each iteration from the model, as emmeans(m, pairwise ~ condition | "
-          "iteration, lmer.df = \"satterthwaite\"){}; two-sided, {}% intervals; {}. A = {}, B = {}. "
+          "iteration, lmer.df = \"satterthwaite\"){}; two-sided, {}% intervals; {}. A = {}, B = "
+          "{}. "
           "Labels at alpha = {}: A>B / A<B significant, A\u2248B not significantly different.",
           o.trend ? " at each observed iteration of the trend" : "", percent(o.conf_level), adj,
           m.group1, m.group2, io::format_double(o.alpha)));
@@ -304,10 +307,10 @@ std::vector<std::string> model_notes(const ModelAnalysis& a, const MetricModel& 
   if (o.apa) {
     for (const auto& t : fit.anova) notes.push_back(fmt::format("{}: {}", t.term, anova_apa(t)));
     for (const auto& c : m.contrasts)
-      notes.push_back(fmt::format("{}: {}",
-                                  c.iteration ? "iteration " + whole_or_double(*c.iteration)
-                                              : "exposure slope, " + c.level,
-                                  c.apa));
+      notes.push_back(fmt::format(
+          "{}: {}",
+          c.iteration ? "iteration " + whole_or_double(*c.iteration) : "exposure slope, " + c.level,
+          c.apa));
   }
   return notes;
 }
@@ -334,8 +337,8 @@ std::string label_id(const std::string& s) {
 
 TextTable anova_table(const MetricModel& m) {
   Builder b;
-  b.table.caption = fmt::format("Linear mixed model of {}: type III ANOVA (Satterthwaite's df)",
-                                m.metric);
+  b.table.caption =
+      fmt::format("Linear mixed model of {}: type III ANOVA (Satterthwaite's df)", m.metric);
   b.table.header = {"Term", "Sum Sq", "Mean Sq", "NumDF", "DenDF", "F", "p"};
   b.table.right_align = {false, true, true, true, true, true, true};
   b.p_columns = {6};
@@ -390,15 +393,18 @@ TextTable contrast_table(const ModelAnalysis& a, const MetricModel& m) {
   b.table.right_align.assign(b.table.header.size(), true);
   b.table.right_align[0] = slopes ? false : true;
   if (!slopes) b.table.right_align.back() = false;
-  b.table.latex_label = "tab:lmm-" + std::string(slopes ? "slopes-" : "contrasts-") + label_id(m.metric);
+  b.table.latex_label =
+      "tab:lmm-" + std::string(slopes ? "slopes-" : "contrasts-") + label_id(m.metric);
   for (const auto& c : m.contrasts) {
     const auto& t = c.contrast.test;
     std::vector<std::string> cells = {
-        slopes ? c.level : whole_or_double(*c.iteration), fixed(t.estimate, 4),
+        slopes ? c.level : whole_or_double(*c.iteration),
+        fixed(t.estimate, 4),
         t.computed ? fixed(c.contrast.std_error, 4) : "",
         t.df ? fmt::format("{:.1f}", *t.df) : "",
         t.conf_low ? fmt::format("[{}, {}]", fixed(t.conf_low, 4), fixed(t.conf_high, 4)) : "",
-        fixed(t.statistic, 2), format_p(t.p_value)};
+        fixed(t.statistic, 2),
+        format_p(t.p_value)};
     if (adj) cells.push_back(format_p(t.p_adjusted));
     if (!slopes) cells.push_back(c.label);
     b.add(std::move(cells), {t.p_value, t.p_adjusted});
@@ -407,9 +413,9 @@ TextTable contrast_table(const ModelAnalysis& a, const MetricModel& m) {
 }
 
 constexpr std::string_view kColumns[] = {
-    "metric", "table",    "term",      "group",    "iteration", "level",    "contrast",
-    "estimate", "std.error", "statistic", "df",     "NumDF",     "DenDF",   "sumsq",
-    "meansq",  "p.value", "p.adjusted", "conf.low", "conf.high", "label",   "apa"};
+    "metric",   "table",     "term",       "group",    "iteration", "level", "contrast",
+    "estimate", "std.error", "statistic",  "df",       "NumDF",     "DenDF", "sumsq",
+    "meansq",   "p.value",   "p.adjusted", "conf.low", "conf.high", "label", "apa"};
 
 std::size_t column(std::string_view name) {
   for (std::size_t i = 0; i < std::size(kColumns); ++i)

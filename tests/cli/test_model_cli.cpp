@@ -137,8 +137,10 @@ TEST(ModelCli, TextReportShowsAnovaRandomEffectsContrastsAndNote) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* want :
        {"type III ANOVA (Satterthwaite's df)", "condition:iteration", "Random effects of error",
-        "adaptive - random per iteration", "fitted by REML", "24 participants (10 in adaptive, 14 "
-        "in random), 86 trials.", "10 participant x iteration trials without a value of error",
+        "adaptive - random per iteration", "fitted by REML",
+        "24 participants (10 in adaptive, 14 "
+        "in random), 86 trials.",
+        "10 participant x iteration trials without a value of error",
         "ICC = ", "condition: F(1, 22.0) = 0.65, p = .430"})
     EXPECT_NE(r.out.find(want), std::string::npos) << want << "\n" << r.out;
 }
@@ -254,8 +256,9 @@ TEST(ModelCli, LatexCompilesAsAFragmentOfAPaperWithoutOverfullLines) {
              "\\documentclass{article}\n\\usepackage[T1]{fontenc}\n\\usepackage{booktabs}\n"
              "\\usepackage{graphicx}\n\\usepackage{amsmath}\n\\begin{document}\nText.\n"
              "\\input{model.tex}\n\\end{document}\n");
-  const std::string cmd = "cd " + shell_quote(dir.path().string()) +
-                          " && pdflatex -interaction=nonstopmode -halt-on-error paper.tex > out.txt 2>&1";
+  const std::string cmd =
+      "cd " + shell_quote(dir.path().string()) +
+      " && pdflatex -interaction=nonstopmode -halt-on-error paper.tex > out.txt 2>&1";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << feint::test::read_text(dir.path() / "out.txt");
   EXPECT_EQ(feint::test::read_text(dir.path() / "paper.log").find("Overfull \\hbox"),
             std::string::npos);

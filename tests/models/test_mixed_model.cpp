@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -25,7 +26,7 @@ struct Normal {
   }
   double operator()() {
     const double u = uniform(), v = uniform();
-    return std::sqrt(-2 * std::log(u)) * std::cos(2 * M_PI * v);
+    return std::sqrt(-2 * std::log(u)) * std::cos(2 * std::numbers::pi * v);
   }
 };
 
@@ -58,7 +59,8 @@ SplitPlot split_plot(const LongData& d, int a, int n, int b) {
   for (double v : d.y) grand += v;
   grand /= a * n * b;
   std::vector<double> mg(a, 0), mj(b, 0);
-  std::vector<std::vector<double>> mgj(a, std::vector<double>(b, 0)), ms(a, std::vector<double>(n, 0));
+  std::vector<std::vector<double>> mgj(a, std::vector<double>(b, 0)),
+      ms(a, std::vector<double>(n, 0));
   for (int g = 0; g < a; ++g)
     for (int k = 0; k < n; ++k)
       for (int j = 0; j < b; ++j) {

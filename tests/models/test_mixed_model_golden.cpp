@@ -64,7 +64,8 @@ std::map<std::string, std::map<std::string, std::map<std::string, double>>>& gol
   static auto g = [] {
     std::map<std::string, std::map<std::string, std::map<std::string, double>>> m;
     const auto rows = read_csv(kDir + "lmm_golden.csv");
-    for (std::size_t r = 1; r < rows.size(); ++r) m[rows[r][0]][rows[r][1]][rows[r][2]] = std::stod(rows[r][3]);
+    for (std::size_t r = 1; r < rows.size(); ++r)
+      m[rows[r][0]][rows[r][1]][rows[r][2]] = std::stod(rows[r][3]);
     return m;
   }();
   return g;
@@ -125,7 +126,8 @@ void check_contrasts(const std::string& c, const MixedModelFit& fit) {
     names.push_back(it);
   }
   const auto holm = feint::stats::p_adjust(ps, feint::stats::PAdjustMethod::holm);
-  for (std::size_t i = 0; i < holm.size(); ++i) expect_rel(*holm[i], g["c.p_holm"][names[i]], c + " holm", 2e-7);
+  for (std::size_t i = 0; i < holm.size(); ++i)
+    expect_rel(*holm[i], g["c.p_holm"][names[i]], c + " holm", 2e-7);
 }
 
 }  // namespace
@@ -194,8 +196,10 @@ TEST(MixedModelGolden, LinearTrendRandomSlopeMatchesLmerTest) {
   check_fit("trend_slope", fit, 1e-6);
   auto& g = golden()["trend_slope"];
   expect_rel(*fit.variance.slope, g["vcov"]["participant iteration NA"], "slope variance", 1e-6);
-  const double cov = *fit.variance.correlation * std::sqrt(fit.variance.participant * *fit.variance.slope);
-  expect_rel(cov, g["vcov"]["participant (Intercept) iteration"], "intercept-slope covariance", 1e-6);
+  const double cov =
+      *fit.variance.correlation * std::sqrt(fit.variance.participant * *fit.variance.slope);
+  expect_rel(cov, g["vcov"]["participant (Intercept) iteration"], "intercept-slope covariance",
+             1e-6);
   check_contrasts("trend_slope", fit);
 }
 

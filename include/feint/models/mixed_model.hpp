@@ -11,12 +11,11 @@
 // for the formulas and the golden tests (tests/golden/models/).
 #pragma once
 
+#include <Eigen/Dense>
 #include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Dense>
 
 #include "feint/stats/htest.hpp"
 
@@ -36,7 +35,7 @@ enum class TimeScale {
 };
 
 struct ModelSpec {
-  std::string response = "y";          ///< names used in term labels and notes
+  std::string response = "y";  ///< names used in term labels and notes
   std::string group = "condition";
   std::string time = "iteration";
   std::string participant = "participant";
@@ -55,10 +54,10 @@ struct AnovaTerm {
 
 /// Variance components (lme4's VarCorr) on the variance scale.
 struct VarianceComponents {
-  double participant = 0;               ///< variance of the random intercept
-  std::optional<double> slope;          ///< variance of the random slope
-  std::optional<double> correlation;    ///< intercept-slope correlation
-  double residual = 0;                  ///< sigma^2
+  double participant = 0;             ///< variance of the random intercept
+  std::optional<double> slope;        ///< variance of the random slope
+  std::optional<double> correlation;  ///< intercept-slope correlation
+  double residual = 0;                ///< sigma^2
   /// Intraclass correlation participant / (participant + residual): the share of the variance
   /// between participants. Empty with a random slope (it then depends on time).
   std::optional<double> icc;
@@ -76,12 +75,12 @@ struct MixedModelFit {
   std::vector<std::string> coef_names;  ///< lme4's fixef names, e.g. "conditionrandom:iteration3"
   Eigen::VectorXd beta;                 ///< fixef(m)
   Eigen::MatrixXd vcov_beta;            ///< vcov(m)
-  Eigen::VectorXd theta;                ///< getME(m, "theta"): relative Cholesky factor, column-wise
-  double sigma = 0;                     ///< sigma(m)
-  double reml_criterion = 0;            ///< REMLcrit(m) (-2 REML log-likelihood)
-  bool singular = false;                ///< a variance estimate on the boundary (lme4: isSingular)
+  Eigen::VectorXd theta;      ///< getME(m, "theta"): relative Cholesky factor, column-wise
+  double sigma = 0;           ///< sigma(m)
+  double reml_criterion = 0;  ///< REMLcrit(m) (-2 REML log-likelihood)
+  bool singular = false;      ///< a variance estimate on the boundary (lme4: isSingular)
   VarianceComponents variance;
-  std::vector<AnovaTerm> anova;         ///< type III, Satterthwaite
+  std::vector<AnovaTerm> anova;  ///< type III, Satterthwaite
 
   // Satterthwaite machinery (lmerTest): the variance parameters (theta, sigma), the asymptotic
   // covariance 2 H^-1 of their REML deviance, and d vcov(beta) / d varpar.
@@ -110,8 +109,7 @@ struct Contrast {
 /// estimate, SE = sqrt(L' V L), df = 2 (L'VL)^2 / (g' A g) with g_k = L' dV/dvarpar_k L and A the
 /// covariance of the variance parameters; t = estimate / SE; two-sided p; interval estimate -+
 /// qt(1 - (1 - conf)/2, df) SE.
-Contrast contrast(const MixedModelFit& fit, const Eigen::VectorXd& L,
-                           double conf_level = 0.95);
+Contrast contrast(const MixedModelFit& fit, const Eigen::VectorXd& L, double conf_level = 0.95);
 
 /// lmerTest::contestMD(m, L): the Wald F of the rows of L (F = sum of the squared t of the
 /// eigen-components of L V L' / q) with the Satterthwaite denominator df of lmerTest.

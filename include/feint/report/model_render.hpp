@@ -44,14 +44,15 @@ struct ModelContrast {
 struct MetricModel {
   std::string metric;
   models::MixedModelFit fit;
-  std::string formula;                   ///< lme4 syntax, e.g. "error ~ condition * iteration + (1 | participant)"
+  std::string formula;  ///< lme4 syntax, e.g. "error ~ condition * iteration + (1 | participant)"
   /// Participant x iteration trials without a value (empty, or no row), over the participants
   /// with at least one value and the iterations of the file.
   std::size_t trials_missing = 0;
   std::size_t participants_with_missing = 0;  ///< kept in the model
   std::vector<std::pair<std::string, std::size_t>> participants_per_group;
-  std::vector<ModelContrast> contrasts;  ///< per iteration (A - B), or per strategy (exposure slope)
-  std::string group1, group2;            ///< A and B of the contrasts
+  std::vector<ModelContrast>
+      contrasts;               ///< per iteration (A - B), or per strategy (exposure slope)
+  std::string group1, group2;  ///< A and B of the contrasts
 };
 
 struct ModelAnalysis {
@@ -60,10 +61,10 @@ struct ModelAnalysis {
   std::vector<MetricModel> models;
 };
 
-/// Fits the model of every metric. `strategy` (one per scores record, needed with `exposure`) is the
-/// strategy of each trial. Throws InvalidData for: a participant in two conditions, an iteration
-/// present in the file but without a value of the metric for any participant, a metric without
-/// variance, an empty condition x iteration cell, a --compare condition not in the data;
+/// Fits the model of every metric. `strategy` (one per scores record, needed with `exposure`) is
+/// the strategy of each trial. Throws InvalidData for: a participant in two conditions, an
+/// iteration present in the file but without a value of the metric for any participant, a metric
+/// without variance, an empty condition x iteration cell, a --compare condition not in the data;
 /// UsageError for impossible options (random slope without trend, exposure with trend).
 ModelAnalysis build_model_analysis(const io::ScoresTable& scores, const ModelOptions& options,
                                    const std::vector<std::string>* strategy = nullptr);
