@@ -262,6 +262,12 @@ AnovaTerm contrast_md(const MixedModelFit& fit, const Eigen::MatrixXd& L) {
   AnovaTerm out;
   const double s2 = fit.sigma * fit.sigma;
   auto table = [&](double F, double ndf, double ddf) {
+    if (!(std::isfinite(F) && std::isfinite(ddf) && ddf > 0)) {
+      out.computed = false;
+      out.note = "Satterthwaite's df not positive and finite";
+      out.num_df = ndf;
+      return out;
+    }
     out.f = F;
     out.num_df = ndf;
     out.den_df = ddf;
@@ -273,6 +279,7 @@ AnovaTerm contrast_md(const MixedModelFit& fit, const Eigen::MatrixXd& L) {
   };
   if (L.rows() == 1) {
     const stats::TestResult c = contrast(fit, L.row(0).transpose()).test;
+    if (!c.computed) return table(std::nan(""), 1, std::nan(""));
     return table(*c.statistic * *c.statistic, 1, *c.df);
   }
   const Eigen::MatrixXd VL = L * fit.vcov_beta * L.transpose();
@@ -288,6 +295,7 @@ AnovaTerm contrast_md(const MixedModelFit& fit, const Eigen::MatrixXd& L) {
   const Eigen::MatrixXd PtL = (P.transpose() * L).topRows(q);
   if (q == 1) {
     const stats::TestResult c = contrast(fit, PtL.row(0).transpose()).test;
+    if (!c.computed) return table(std::nan(""), 1, std::nan(""));
     return table(*c.statistic * *c.statistic, 1, *c.df);
   }
   double F = 0;

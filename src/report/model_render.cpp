@@ -34,6 +34,7 @@ std::string percent(double conf) { return io::format_double(std::round(conf * 1e
 }  // namespace
 
 std::string anova_apa(const models::AnovaTerm& a) {
+  if (!a.computed) return fmt::format("{}: {}", kNotComputable, a.note);
   std::string f = fmt::format("{:.2f}", a.f);
   return fmt::format("F({}, {:.1f}) = {}, {}", df_text(a.num_df), a.den_df, f, apa_p(a.p));
 }
@@ -252,6 +253,11 @@ std::vector<std::string> model_notes(const ModelAnalysis& a, const MetricModel& 
   notes.push_back(
       "Type III F tests with Satterthwaite's denominator degrees of freedom, as "
       "lmerTest::anova(m) (its type-III hypotheses do not depend on the contrast coding).");
+  if (o.trend && fit.group_levels.size() > 1)
+    notes.push_back(
+        "With a linear trend, the condition term tests the difference of the lines at iteration 0 "
+        "(the covariate is not centred, as in R); condition:iteration tests the difference of "
+        "the slopes.");
   std::string groups;
   for (const auto& [g, n] : m.participants_per_group)
     groups += fmt::format("{}{} in {}", groups.empty() ? "" : ", ", n, g.empty() ? "all" : g);
@@ -343,11 +349,16 @@ TextTable anova_table(const MetricModel& m) {
   b.table.right_align = {false, true, true, true, true, true, true};
   b.p_columns = {6};
   b.table.latex_label = "tab:lmm-anova-" + label_id(m.metric);
-  for (const auto& t : m.fit.anova)
+  for (const auto& t : m.fit.anova) {
+    if (!t.computed) {
+      b.add({t.term, "", "", df_text(t.num_df), "", std::string(kNotComputable), ""}, {});
+      continue;
+    }
     b.add({t.term, fmt::format("{:.4g}", t.sum_sq), fmt::format("{:.4g}", t.mean_sq),
            df_text(t.num_df), fmt::format("{:.1f}", t.den_df), fmt::format("{:.2f}", t.f),
            format_p(t.p)},
           {t.p});
+  }
   return b.table;
 }
 
@@ -438,10 +449,12 @@ std::vector<Record> tidy(const ModelAnalysis& a) {
     for (const auto& t : fit.anova) {
       RecordBuilder b;
       b.set("metric", Cell::str(m.metric)).set("table", Cell::str("anova"));
-      b.set("term", Cell::str(t.term)).set("sumsq", Cell::num(t.sum_sq));
-      b.set("meansq", Cell::num(t.mean_sq)).set("NumDF", Cell::num(t.num_df));
-      b.set("DenDF", Cell::num(t.den_df)).set("statistic", Cell::num(t.f));
-      b.set("p.value", Cell::num(t.p));
+      b.set("term", Cell::str(t.term)).set("NumDF", Cell::num(t.num_df));
+      if (t.computed) {
+        b.set("sumsq", Cell::num(t.sum_sq)).set("meansq", Cell::num(t.mean_sq));
+        b.set("DenDF", Cell::num(t.den_df)).set("statistic", Cell::num(t.f));
+        b.set("p.value", Cell::num(t.p));
+      }
       if (a.options.apa) b.set("apa", Cell::str(anova_apa(t)));
       out.push_back(std::move(b.r));
     }
@@ -465,7 +478,8 @@ std::vector<Record> tidy(const ModelAnalysis& a) {
       RecordBuilder b;
       b.set("metric", Cell::str(m.metric)).set("table", Cell::str("fixef"));
       b.set("term", Cell::str(fit.coef_names[i])).set("estimate", Cell::num(c.test.estimate));
-      b.set("std.error", Cell::num(c.std_error)).set("statistic", Cell::num(c.test.statistic));
+      if (c.test.computed) b.set("std.error", Cell::num(c.std_error));
+      b.set("statistic", Cell::num(c.test.statistic));
       b.set("df", Cell::num(c.test.df)).set("p.value", Cell::num(c.test.p_value));
       b.set("conf.low", Cell::num(c.test.conf_low)).set("conf.high", Cell::num(c.test.conf_high));
       out.push_back(std::move(b.r));

@@ -50,6 +50,10 @@ struct ModelSpec {
 struct AnovaTerm {
   std::string term;  ///< "condition", "iteration", "condition:iteration"
   double sum_sq = 0, mean_sq = 0, num_df = 0, den_df = 0, f = 0, p = 1;
+  /// False when the test cannot be computed (a zero variance of the contrast, or Satterthwaite's
+  /// df not positive and finite); the numbers are then meaningless and `note` says why.
+  bool computed = true;
+  std::string note;
 };
 
 /// Variance components (lme4's VarCorr) on the variance scale.
