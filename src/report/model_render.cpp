@@ -260,7 +260,8 @@ std::vector<std::string> model_notes(const ModelAnalysis& a, const MetricModel& 
         "the slopes.");
   std::string groups;
   for (const auto& [g, n] : m.participants_per_group)
-    groups += fmt::format("{}{} in {}", groups.empty() ? "" : ", ", n, g.empty() ? "all" : g);
+    if (m.participants_per_group.size() > 1)
+      groups += fmt::format("{}{} in {}", groups.empty() ? "" : ", ", n, g.empty() ? "all" : g);
   notes.push_back(fmt::format("{} participants{}, {} trials.", fit.participants.size(),
                               groups.empty() ? "" : " (" + groups + ")", fit.n_obs));
   if (m.trials_missing > 0) {
