@@ -18,5 +18,6 @@ void add_collect_command(CLI::App& app);   // cmd_collect.cpp  (issue 11: data c
 void add_anova_command(CLI::App& app);     // cmd_anova.cpp    (issue 10: mixed ANOVA)
 void add_power_command(CLI::App& app);     // cmd_power.cpp    (issue 10: power)
 void add_plot_command(CLI::App& app);      // cmd_plot.cpp     (issue #9: figures)
+void add_model_command(CLI::App& app);     // cmd_model.cpp    (issue #10: mixed model)
 
 }  // namespace feint::cli

@@ -1,0 +1,115 @@
+// feint model SCORES.csv: the linear mixed model of each metric (see docs/mixed-model.md).
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "feint/error.hpp"
+#include "feint/io/scores.hpp"
+#include "feint/report/model_render.hpp"
+#include "report_options.hpp"
+
+namespace feint::cli {
+
+namespace {
+
+struct ModelArgs {
+  std::string input;
+  std::vector<std::string> metrics;
+  std::string compare;
+  bool trend = false;
+  bool random_slope = false;
+  bool exposure = false;
+  std::string participant_column = "participant";
+  std::string iteration_column = "iteration";
+  std::string condition_column = "condition";
+  std::string strategy_column = "strategy";
+  ReportOptions report;
+};
+
+void run_model(const ModelArgs& a) {
+  const ResolvedReportOptions r = resolve_report_options(a.report);
+  if (r.test.alternative != stats::Alternative::two_sided)
+    throw UsageError("feint model: contrasts are two-sided (--alternative two.sided)");
+  report::ModelOptions o;
+  if (!a.metrics.empty()) {
+    o.metrics.clear();
+    for (const auto& m : a.metrics) {
+      if (m.find('=') != std::string::npos)
+        throw UsageError("--metric " + m + ": feint model takes a metric name only (no reference)");
+      if (std::find(o.metrics.begin(), o.metrics.end(), m) != o.metrics.end())
+        throw UsageError("--metric " + m + " given twice");
+      o.metrics.push_back(m);
+    }
+  }
+  if (!a.compare.empty()) o.compare = parse_compare(a.compare);
+  o.trend = a.trend;
+  o.random_slope = a.random_slope;
+  o.exposure = a.exposure;
+  o.alpha = r.alpha;
+  o.conf_level = r.test.conf_level;
+  o.p_adjust = r.p_adjust;
+  o.apa = r.apa;
+  if (o.exposure && o.compare) throw UsageError("--compare does not apply to --exposure");
+  if (o.random_slope && !o.trend)
+    throw UsageError("--random-slope needs --trend (a random slope of the linear trend)");
+  if (o.exposure && (o.trend || o.random_slope))
+    throw UsageError(
+        "--exposure fits its own model (strategy * exposure); drop --trend/--random-slope");
+
+  io::ScoresOptions so;
+  so.participant_column = a.participant_column;
+  so.iteration_column = a.iteration_column;
+  so.condition_column = a.condition_column;
+  so.metrics = o.metrics;
+  if (o.exposure && a.input == "-")
+    throw UsageError("--exposure reads the file twice: give a file, not standard input");
+  const io::ScoresTable scores = io::load_scores(a.input, so);
+  std::vector<std::string> strategies;
+  if (o.exposure) strategies = report::load_strategies(scores, so, a.strategy_column);
+  const report::ModelAnalysis analysis =
+      report::build_model_analysis(scores, o, o.exposure ? &strategies : nullptr);
+  write_report(r.output, report::render_model(analysis, r.format));
+}
+
+}  // namespace
+
+void add_model_command(CLI::App& app) {
+  auto args = std::make_shared<ModelArgs>();
+  auto* cmd = app.add_subcommand(
+      "model",
+      "Linear mixed model per metric: metric ~ condition * iteration + (1 | participant) by REML, "
+      "type-III F tests with Satterthwaite df (as lmerTest), variance components, and contrasts "
+      "of two conditions per iteration (as emmeans).");
+  cmd->add_option("SCORES", args->input,
+                  "Scores CSV: participant, iteration, condition, numeric metric columns "
+                  "(- = standard input)")
+      ->required();
+  cmd->add_option("--metric", args->metrics,
+                  "Metric column (repeatable; default error and confusion)")
+      ->allow_extra_args(false);
+  cmd->add_option("--compare", args->compare,
+                  "Contrast A - B of these two conditions, e.g. adaptive,random (default: the "
+                  "first two conditions in sorted order)");
+  cmd->add_flag("--trend", args->trend, "Iteration as a linear trend instead of a factor");
+  cmd->add_flag("--random-slope", args->random_slope,
+                "With --trend: a random slope per participant, (1 + iteration | participant)");
+  cmd->add_flag("--exposure", args->exposure,
+                "Fit metric ~ strategy * exposure + (1 | participant), exposure = earlier trials "
+                "of the same strategy; report the slope per strategy");
+  cmd->add_option("--participant-column", args->participant_column,
+                  "Name of the participant column")
+      ->capture_default_str();
+  cmd->add_option("--iteration-column", args->iteration_column, "Name of the iteration column")
+      ->capture_default_str();
+  cmd->add_option("--condition-column", args->condition_column, "Name of the condition column")
+      ->capture_default_str();
+  cmd->add_option("--strategy-column", args->strategy_column,
+                  "Name of the strategy column (--exposure)")
+      ->capture_default_str();
+  add_report_options(*cmd, args->report);
+  cmd->callback([args] { run_model(*args); });
+}
+
+}  // namespace feint::cli

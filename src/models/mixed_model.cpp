@@ -1,0 +1,395 @@
+// Linear mixed model by REML (lme4's profiled deviance) with lmerTest's type-III F tests and
+// Satterthwaite degrees of freedom. See feint/models/mixed_model.hpp and docs/mixed-model.md.
+#include "feint/models/mixed_model.hpp"
+
+#include <algorithm>
+#include <boost/math/tools/minima.hpp>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <numeric>
+
+#include "mixed_model_detail.hpp"
+
+namespace feint::models {
+
+namespace detail {
+
+Eigen::MatrixXd zapsmall(const Eigen::MatrixXd& x, int digits) {
+  if (x.size() == 0) return x;
+  const double mx = x.cwiseAbs().maxCoeff();
+  const int d = mx > 0 ? std::max(0, digits - static_cast<int>(std::ceil(std::log10(mx)))) : digits;
+  const double scale = std::pow(10.0, d);
+  Eigen::MatrixXd out = x;
+  for (Eigen::Index i = 0; i < out.size(); ++i) {
+    out.data()[i] = std::round(out.data()[i] * scale) / scale;
+    if (out.data()[i] == 0.0) out.data()[i] = 0.0;  // no -0
+  }
+  return out;
+}
+
+Eigen::MatrixXd doolittle_lower(const Eigen::MatrixXd& x, double eps) {
+  const Eigen::Index n = x.rows();
+  Eigen::MatrixXd L = Eigen::MatrixXd::Identity(n, n);
+  Eigen::MatrixXd U = Eigen::MatrixXd::Zero(n, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    for (Eigen::Index j = 0; j < n; ++j) {
+      U(i, j) = x(i, j);
+      for (Eigen::Index k = 0; k < i; ++k) U(i, j) -= L(i, k) * U(k, j);
+    }
+    for (Eigen::Index j = i + 1; j < n; ++j) {
+      L(j, i) = x(j, i);
+      for (Eigen::Index k = 0; k < i; ++k) L(j, i) -= L(j, k) * U(k, i);
+      L(j, i) = std::abs(U(i, i)) < eps ? 0.0 : L(j, i) / U(i, i);
+    }
+  }
+  for (Eigen::Index i = 0; i < L.size(); ++i)
+    if (std::abs(L.data()[i]) < eps) L.data()[i] = 0.0;
+  return L;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The REML criterion
+
+Problem::Problem(Eigen::MatrixXd X_, Eigen::MatrixXd Z_, Eigen::VectorXd y_,
+                 std::vector<std::size_t> start_)
+    : X(std::move(X_)), Z(std::move(Z_)), y(std::move(y_)), start(std::move(start_)) {
+  const std::size_t m = start.size() - 1;
+  ZtZ.resize(m);
+  ZtX.resize(m);
+  Zty.resize(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    const auto r0 = static_cast<Eigen::Index>(start[i]);
+    const auto ni = static_cast<Eigen::Index>(start[i + 1] - start[i]);
+    const auto Zi = Z.middleRows(r0, ni);
+    ZtZ[i] = Zi.transpose() * Zi;
+    ZtX[i] = Zi.transpose() * X.middleRows(r0, ni);
+    Zty[i] = Zi.transpose() * y.segment(r0, ni);
+  }
+  XtX = X.transpose() * X;
+  Xty = X.transpose() * y;
+}
+
+Eigen::MatrixXd Problem::lambda(const Eigen::VectorXd& theta) const {
+  const Eigen::Index q = Z.cols();
+  Eigen::MatrixXd L = Eigen::MatrixXd::Zero(q, q);
+  Eigen::Index k = 0;
+  for (Eigen::Index j = 0; j < q; ++j)
+    for (Eigen::Index i = j; i < q; ++i) L(i, j) = theta(k++);
+  return L;
+}
+
+Evaluation Problem::evaluate(const Eigen::VectorXd& theta) const {
+  const Eigen::MatrixXd L = lambda(theta);
+  const Eigen::Index q = Z.cols();
+  Evaluation ev;
+  ev.XtHX = XtX;
+  Eigen::VectorXd XtHy = Xty;
+  std::vector<Eigen::LLT<Eigen::MatrixXd>> chol(ZtZ.size());
+  for (std::size_t i = 0; i < ZtZ.size(); ++i) {
+    const Eigen::MatrixXd M = Eigen::MatrixXd::Identity(q, q) + L.transpose() * ZtZ[i] * L;
+    chol[i].compute(M);
+    const Eigen::MatrixXd Lc = chol[i].matrixL();
+    ev.logdet_m += 2.0 * Lc.diagonal().array().log().sum();
+    // Woodbury: H^-1 = I - Z L M^-1 L' Z'.
+    const Eigen::MatrixXd W = L.transpose() * ZtX[i];
+    const Eigen::VectorXd w = L.transpose() * Zty[i];
+    ev.XtHX.noalias() -= W.transpose() * chol[i].solve(W);
+    XtHy.noalias() -= W.transpose() * chol[i].solve(w);
+  }
+  ev.xthx_chol.compute(ev.XtHX);
+  if (ev.xthx_chol.info() != Eigen::Success) {
+    ev.ok = false;
+    return ev;
+  }
+  const Eigen::MatrixXd Lx = ev.xthx_chol.matrixL();
+  ev.logdet_x = 2.0 * Lx.diagonal().array().log().sum();
+  ev.beta = ev.xthx_chol.solve(XtHy);
+  // Penalised residual sum of squares e' H^-1 e from the residuals themselves (no cancellation).
+  const Eigen::VectorXd e = y - X * ev.beta;
+  double r2 = e.squaredNorm();
+  for (std::size_t i = 0; i < ZtZ.size(); ++i) {
+    const Eigen::VectorXd u = L.transpose() * (Zty[i] - ZtX[i] * ev.beta);
+    r2 -= u.dot(chol[i].solve(u));
+  }
+  ev.r2 = r2;
+  return ev;
+}
+
+double Problem::profiled_reml(const Eigen::VectorXd& theta) const {
+  const Evaluation ev = evaluate(theta);
+  if (!ev.ok || !(ev.r2 > 0)) return std::numeric_limits<double>::infinity();
+  const double n = static_cast<double>(y.size());
+  const double p = static_cast<double>(X.cols());
+  return ev.logdet_m + ev.logdet_x +
+         (n - p) * (1.0 + std::log(2.0 * std::numbers::pi * ev.r2 / (n - p)));
+}
+
+double Problem::reml_deviance(const Eigen::VectorXd& varpar) const {
+  const Eigen::Index k = varpar.size() - 1;
+  const double sigma2 = varpar(k) * varpar(k);
+  const Evaluation ev = evaluate(varpar.head(k));
+  if (!ev.ok) return std::numeric_limits<double>::infinity();
+  const double n = static_cast<double>(y.size());
+  const double p = static_cast<double>(X.cols());
+  return ev.logdet_m + ev.r2 / sigma2 + n * std::log(2.0 * std::numbers::pi * sigma2) +
+         ev.logdet_x - p * std::log(2.0 * std::numbers::pi * sigma2);
+}
+
+Eigen::MatrixXd Problem::vcov_beta(const Eigen::VectorXd& varpar) const {
+  const Eigen::Index k = varpar.size() - 1;
+  const Evaluation ev = evaluate(varpar.head(k));
+  const Eigen::Index p = X.cols();
+  return varpar(k) * varpar(k) * ev.xthx_chol.solve(Eigen::MatrixXd::Identity(p, p));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Optimisation
+
+namespace {
+
+// Nelder–Mead (standard coefficients) on an unconstrained function; returns the best point.
+Eigen::VectorXd nelder_mead(const std::function<double(const Eigen::VectorXd&)>& f,
+                            Eigen::VectorXd x0, double step, int max_eval) {
+  const Eigen::Index n = x0.size();
+  std::vector<Eigen::VectorXd> s(static_cast<std::size_t>(n + 1), x0);
+  std::vector<double> fs(static_cast<std::size_t>(n + 1));
+  for (Eigen::Index i = 0; i < n; ++i) s[static_cast<std::size_t>(i + 1)](i) += step;
+  for (std::size_t i = 0; i < s.size(); ++i) fs[i] = f(s[i]);
+  int evals = static_cast<int>(n + 1);
+  std::vector<std::size_t> idx(s.size());
+  while (evals < max_eval) {
+    std::iota(idx.begin(), idx.end(), 0);
+    std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return fs[a] < fs[b]; });
+    const std::size_t best = idx.front(), worst = idx.back(), second = idx[idx.size() - 2];
+    if (std::abs(fs[worst] - fs[best]) <= 1e-14 * (1.0 + std::abs(fs[best]))) {
+      double size = 0;
+      for (const auto& v : s) size = std::max(size, (v - s[best]).cwiseAbs().maxCoeff());
+      if (size < 1e-10) break;
+    }
+    Eigen::VectorXd c = Eigen::VectorXd::Zero(n);
+    for (std::size_t i = 0; i < s.size(); ++i)
+      if (i != worst) c += s[i];
+    c /= static_cast<double>(n);
+    const Eigen::VectorXd xr = c + (c - s[worst]);
+    const double fr = f(xr);
+    ++evals;
+    if (fr < fs[best]) {
+      const Eigen::VectorXd xe = c + 2.0 * (c - s[worst]);
+      const double fe = f(xe);
+      ++evals;
+      if (fe < fr) {
+        s[worst] = xe;
+        fs[worst] = fe;
+      } else {
+        s[worst] = xr;
+        fs[worst] = fr;
+      }
+    } else if (fr < fs[second]) {
+      s[worst] = xr;
+      fs[worst] = fr;
+    } else {
+      const bool outside = fr < fs[worst];
+      const Eigen::VectorXd xc =
+          outside ? Eigen::VectorXd(c + 0.5 * (xr - c)) : Eigen::VectorXd(c + 0.5 * (s[worst] - c));
+      const double fc = f(xc);
+      ++evals;
+      if (fc < std::min(fr, fs[worst])) {
+        s[worst] = xc;
+        fs[worst] = fc;
+      } else {
+        for (std::size_t i = 0; i < s.size(); ++i) {
+          if (i == best) continue;
+          s[i] = s[best] + 0.5 * (s[i] - s[best]);
+          fs[i] = f(s[i]);
+          ++evals;
+        }
+      }
+    }
+  }
+  const auto it = std::min_element(fs.begin(), fs.end());
+  return s[static_cast<std::size_t>(it - fs.begin())];
+}
+
+// One-dimensional: theta >= 0. A grid on log(theta) brackets the global minimum, Brent refines
+// it; theta = 0 (a singular fit) wins when its criterion is lower.
+double optimise_intercept(const Problem& problem) {
+  auto f = [&](double t) {
+    Eigen::VectorXd th(1);
+    th(0) = t;
+    return problem.profiled_reml(th);
+  };
+  constexpr double lo = -12.0, hi = 6.0, stepsize = 0.25;
+  double best_u = lo, best_f = std::numeric_limits<double>::infinity();
+  for (double u = lo; u <= hi + 1e-12; u += stepsize) {
+    const double v = f(std::exp(u));
+    if (v < best_f) {
+      best_f = v;
+      best_u = u;
+    }
+  }
+  const auto g = [&](double u) { return f(std::exp(u)); };
+  const auto r = boost::math::tools::brent_find_minima(g, best_u - stepsize, best_u + stepsize,
+                                                       std::numeric_limits<double>::digits / 2);
+  double theta = std::exp(r.first);
+  double f_theta = r.second;
+  if (f(0.0) <= f_theta) {
+    theta = 0.0;
+    f_theta = f(0.0);
+  }
+  // Polish in theta itself (Brent's bracket on the log scale stops near sqrt(eps) relative).
+  if (theta > 0) {
+    const auto r2 = boost::math::tools::brent_find_minima(f, theta * (1 - 1e-6), theta * (1 + 1e-6),
+                                                          std::numeric_limits<double>::digits / 2);
+    if (r2.second <= f_theta) theta = r2.first;
+  }
+  return theta;
+}
+
+}  // namespace
+
+Eigen::VectorXd optimise_theta(const Problem& problem) {
+  if (problem.Z.cols() == 1) {
+    Eigen::VectorXd th(1);
+    th(0) = optimise_intercept(problem);
+    return th;
+  }
+  auto f = [&](const Eigen::VectorXd& t) { return problem.profiled_reml(t); };
+  Eigen::VectorXd x(3);
+  x << 1.0, 0.0, 1.0;  // lme4's start
+  for (int restart = 0; restart < 4; ++restart)
+    x = nelder_mead(f, x, restart == 0 ? 0.5 : 0.05, 4000);
+  // Newton polish with Richardson derivatives (the criterion is smooth inside the domain).
+  for (int it = 0; it < 6; ++it) {
+    const Eigen::MatrixXd H = numderiv_hessian(f, x);
+    const Eigen::VectorXd g = numderiv_gradient(f, x);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
+    if (es.eigenvalues().minCoeff() <= 0) break;
+    const Eigen::VectorXd step =
+        -es.eigenvectors() * (es.eigenvectors().transpose() * g).cwiseQuotient(es.eigenvalues());
+    const Eigen::VectorXd xn = x + step;
+    if (f(xn) <= f(x)) {
+      x = xn;
+    } else {
+      break;
+    }
+    if (step.norm() < 1e-12) break;
+  }
+  // Canonical signs: diagonal of the Cholesky factor >= 0 (the criterion is invariant).
+  if (x(0) < 0) {
+    x(0) = -x(0);
+    x(1) = -x(1);
+  }
+  if (x(2) < 0) x(2) = -x(2);
+  return x;
+}
+
+// ---------------------------------------------------------------------------------------------
+// numDeriv's Richardson extrapolation (genD and jacobian defaults)
+
+namespace {
+constexpr double kZeroTol = 1.7817974362806785e-05;  // sqrt(.Machine$double.eps / 7e-7)
+}
+
+Eigen::VectorXd numderiv_gradient(const std::function<double(const Eigen::VectorXd&)>& f,
+                                  const Eigen::VectorXd& x) {
+  const Eigen::Index n = x.size();
+  constexpr int r = 4;
+  Eigen::VectorXd g(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    double h = std::abs(1e-4 * x(i)) + 1e-4 * (std::abs(x(i)) < kZeroTol ? 1.0 : 0.0);
+    double a[r];
+    for (int k = 0; k < r; ++k) {
+      Eigen::VectorXd xp = x, xm = x;
+      xp(i) += h;
+      xm(i) -= h;
+      a[k] = (f(xp) - f(xm)) / (2 * h);
+      h /= 2;
+    }
+    for (int m = 1; m < r; ++m)
+      for (int k = 0; k < r - m; ++k)
+        a[k] = (a[k + 1] * std::pow(4.0, m) - a[k]) / (std::pow(4.0, m) - 1);
+    g(i) = a[0];
+  }
+  return g;
+}
+
+Eigen::MatrixXd numderiv_hessian(const std::function<double(const Eigen::VectorXd&)>& f,
+                                 const Eigen::VectorXd& x) {
+  const Eigen::Index n = x.size();
+  constexpr int r = 4;
+  constexpr double d = 0.1, eps = 1e-4;
+  const double f0 = f(x);
+  Eigen::VectorXd h0(n);
+  for (Eigen::Index i = 0; i < n; ++i)
+    h0(i) = std::abs(d * x(i)) + eps * (std::abs(x(i)) < kZeroTol ? 1.0 : 0.0);
+  Eigen::VectorXd hdiag(n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Eigen::VectorXd h = h0;
+    double ha[r];
+    for (int k = 0; k < r; ++k) {
+      Eigen::VectorXd xp = x, xm = x;
+      xp(i) += h(i);
+      xm(i) -= h(i);
+      ha[k] = (f(xp) - 2 * f0 + f(xm)) / (h(i) * h(i));
+      h /= 2;
+    }
+    for (int m = 1; m < r; ++m)
+      for (int k = 0; k < r - m; ++k)
+        ha[k] = (ha[k + 1] * std::pow(4.0, m) - ha[k]) / (std::pow(4.0, m) - 1);
+    hdiag(i) = ha[0];
+  }
+  Eigen::MatrixXd H(n, n);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    H(i, i) = hdiag(i);
+    for (Eigen::Index j = 0; j < i; ++j) {
+      Eigen::VectorXd h = h0;
+      double da[r];
+      for (int k = 0; k < r; ++k) {
+        Eigen::VectorXd xp = x, xm = x;
+        xp(i) += h(i);
+        xp(j) += h(j);
+        xm(i) -= h(i);
+        xm(j) -= h(j);
+        da[k] = (f(xp) - 2 * f0 + f(xm) - hdiag(i) * h(i) * h(i) - hdiag(j) * h(j) * h(j)) /
+                (2 * h(i) * h(j));
+        h /= 2;
+      }
+      for (int m = 1; m < r; ++m)
+        for (int k = 0; k < r - m; ++k)
+          da[k] = (da[k + 1] * std::pow(4.0, m) - da[k]) / (std::pow(4.0, m) - 1);
+      H(i, j) = H(j, i) = da[0];
+    }
+  }
+  return H;
+}
+
+std::vector<Eigen::MatrixXd> numderiv_jacobian(
+    const std::function<Eigen::MatrixXd(const Eigen::VectorXd&)>& f, const Eigen::VectorXd& x) {
+  const Eigen::Index n = x.size();
+  constexpr int r = 4;
+  std::vector<Eigen::MatrixXd> out;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    double h = std::abs(1e-4 * x(i)) + 1e-4 * (std::abs(x(i)) < kZeroTol ? 1.0 : 0.0);
+    std::vector<Eigen::MatrixXd> a;
+    for (int k = 0; k < r; ++k) {
+      Eigen::VectorXd xp = x, xm = x;
+      xp(i) += h;
+      xm(i) -= h;
+      a.push_back((f(xp) - f(xm)) / (2 * h));
+      h /= 2;
+    }
+    for (int m = 1; m < r; ++m)
+      for (int k = 0; k < r - m; ++k)
+        a[static_cast<std::size_t>(k)] = (a[static_cast<std::size_t>(k + 1)] * std::pow(4.0, m) -
+                                          a[static_cast<std::size_t>(k)]) /
+                                         (std::pow(4.0, m) - 1);
+    out.push_back(a[0]);
+  }
+  return out;
+}
+
+}  // namespace detail
+
+}  // namespace feint::models

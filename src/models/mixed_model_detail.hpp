@@ -1,0 +1,53 @@
+// src/models/mixed_model_detail.hpp - internals of the mixed model shared by its .cpp files.
+#pragma once
+
+#include <Eigen/Dense>
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+namespace feint::models::detail {
+
+/// The criterion at one theta: H = I + Z Lambda Lambda' Z' (the marginal covariance / sigma^2).
+struct Evaluation {
+  bool ok = true;
+  double logdet_m = 0;  ///< log |I + Lambda' Z' Z Lambda| summed over participants
+  double logdet_x = 0;  ///< log |X' H^-1 X|
+  double r2 = 0;        ///< (y - X beta)' H^-1 (y - X beta) at the GLS beta
+  Eigen::MatrixXd XtHX;
+  Eigen::LLT<Eigen::MatrixXd> xthx_chol;
+  Eigen::VectorXd beta;
+};
+
+/// Data of a fit, rows sorted by participant (participant i owns rows start[i] .. start[i+1]-1).
+struct Problem {
+  Eigen::MatrixXd X, Z;
+  Eigen::VectorXd y;
+  std::vector<std::size_t> start;
+  std::vector<Eigen::MatrixXd> ZtZ, ZtX;
+  std::vector<Eigen::VectorXd> Zty;
+  Eigen::MatrixXd XtX;
+  Eigen::VectorXd Xty;
+
+  Problem(Eigen::MatrixXd X, Eigen::MatrixXd Z, Eigen::VectorXd y, std::vector<std::size_t> start);
+  Eigen::MatrixXd lambda(const Eigen::VectorXd& theta) const;
+  Evaluation evaluate(const Eigen::VectorXd& theta) const;
+  /// lme4's REML criterion with sigma and beta profiled out:
+  /// log|M| + log|X'H^-1X| + (n-p)(1 + log(2 pi r2 / (n-p))).
+  double profiled_reml(const Eigen::VectorXd& theta) const;
+  /// lmerTest's devfun_vp: the REML deviance at varpar = (theta, sigma).
+  double reml_deviance(const Eigen::VectorXd& varpar) const;
+  /// sigma^2 (X' H^-1 X)^-1 at varpar = (theta, sigma).
+  Eigen::MatrixXd vcov_beta(const Eigen::VectorXd& varpar) const;
+};
+
+Eigen::VectorXd optimise_theta(const Problem& problem);
+
+Eigen::VectorXd numderiv_gradient(const std::function<double(const Eigen::VectorXd&)>& f,
+                                  const Eigen::VectorXd& x);
+Eigen::MatrixXd numderiv_hessian(const std::function<double(const Eigen::VectorXd&)>& f,
+                                 const Eigen::VectorXd& x);
+std::vector<Eigen::MatrixXd> numderiv_jacobian(
+    const std::function<Eigen::MatrixXd(const Eigen::VectorXd&)>& f, const Eigen::VectorXd& x);
+
+}  // namespace feint::models::detail

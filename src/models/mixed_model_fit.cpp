@@ -1,0 +1,496 @@
+// fit_mixed_model(): design (treatment coding as R), REML fit, lmerTest's Satterthwaite machinery
+// and type-III hypotheses; contrast() and contrast_md().
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <boost/math/distributions/fisher_f.hpp>
+#include <boost/math/distributions/students_t.hpp>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+#include "feint/error.hpp"
+#include "feint/models/mixed_model.hpp"
+#include "mixed_model_detail.hpp"
+
+namespace feint::models {
+
+namespace {
+
+// A model term: its variables (0 = group, 1 = time), and its columns in X.
+struct Term {
+  std::string name;
+  std::set<int> vars;
+  bool numeric = false;  ///< involves the numeric time covariate
+  std::vector<Eigen::Index> cols;
+};
+
+std::string level_text(double v) { return fmt::format("{}", v); }
+
+struct Layout {
+  std::vector<Term> terms;
+  std::vector<std::string> coef_names;
+  std::size_t n_group = 1, n_time = 1;  // levels (n_time = 1 column for a linear time)
+  bool has_group = false;
+  bool linear = false;
+};
+
+Layout make_layout(const MixedModelFit& fit) {
+  Layout lay;
+  lay.linear = fit.spec.time_scale == TimeScale::linear;
+  lay.n_group = fit.group_levels.size();
+  lay.has_group = lay.n_group > 1;
+  lay.coef_names.push_back("(Intercept)");
+  Eigen::Index col = 1;
+  Term g{fit.spec.group, {0}, false, {}};
+  if (lay.has_group) {
+    for (std::size_t k = 1; k < lay.n_group; ++k) {
+      lay.coef_names.push_back(fit.spec.group + fit.group_levels[k]);
+      g.cols.push_back(col++);
+    }
+    lay.terms.push_back(g);
+  }
+  Term t{fit.spec.time, {1}, lay.linear, {}};
+  if (lay.linear) {
+    lay.coef_names.push_back(fit.spec.time);
+    t.cols.push_back(col++);
+  } else {
+    for (std::size_t j = 1; j < fit.time_levels.size(); ++j) {
+      lay.coef_names.push_back(fit.spec.time + level_text(fit.time_levels[j]));
+      t.cols.push_back(col++);
+    }
+  }
+  lay.terms.push_back(t);
+  if (lay.has_group) {
+    Term gt{fit.spec.group + ":" + fit.spec.time, {0, 1}, lay.linear, {}};
+    const std::size_t nt = lay.linear ? 2 : fit.time_levels.size();
+    for (std::size_t j = 1; j < nt; ++j) {
+      for (std::size_t k = 1; k < lay.n_group; ++k) {
+        lay.coef_names.push_back(lay.coef_names[g.cols[k - 1]] + ":" +
+                                 lay.coef_names[t.cols[j - 1]]);
+        gt.cols.push_back(col++);
+      }
+    }
+    lay.terms.push_back(gt);
+  }
+  return lay;
+}
+
+double two_sided_t_p(double t, double df) {
+  boost::math::students_t dist(df);
+  return 2.0 * boost::math::cdf(boost::math::complement(dist, std::abs(t)));
+}
+
+// The rank-deficient "complete" design of lmerTest's get_rdX (treatment coding, every level),
+// and for each column of X the index of the same-named column of it.
+struct CompleteDesign {
+  Eigen::MatrixXd rdX;
+  std::vector<Eigen::Index> x_to_rd;
+};
+
+CompleteDesign complete_design(const MixedModelFit& fit, const Layout& lay,
+                               const std::vector<std::size_t>& gi,
+                               const std::vector<std::size_t>& ti, const Eigen::VectorXd& time) {
+  const std::size_t C = lay.n_group, K = fit.time_levels.size();
+  const Eigen::Index n = static_cast<Eigen::Index>(gi.size());
+  std::vector<Eigen::VectorXd> cols;
+  std::map<std::string, Eigen::Index> name_of;
+  auto add = [&](const std::string& name, Eigen::VectorXd v) {
+    name_of[name] = static_cast<Eigen::Index>(cols.size());
+    cols.push_back(std::move(v));
+  };
+  add("(Intercept)", Eigen::VectorXd::Ones(n));
+  auto indicator = [&](const std::vector<std::size_t>& idx, std::size_t level) {
+    Eigen::VectorXd v(n);
+    for (Eigen::Index r = 0; r < n; ++r) v(r) = idx[static_cast<std::size_t>(r)] == level ? 1 : 0;
+    return v;
+  };
+  std::vector<std::string> gname(C), tname(K);
+  for (std::size_t k = 0; k < C; ++k) gname[k] = fit.spec.group + fit.group_levels[k];
+  if (lay.has_group)
+    for (std::size_t k = 0; k < C; ++k) add(gname[k], indicator(gi, k));
+  if (lay.linear) {
+    add(fit.spec.time, time);
+  } else {
+    for (std::size_t j = 0; j < K; ++j) {
+      tname[j] = fit.spec.time + level_text(fit.time_levels[j]);
+      add(tname[j], indicator(ti, j));
+    }
+  }
+  if (lay.has_group) {
+    if (lay.linear) {
+      for (std::size_t k = 0; k < C; ++k)
+        add(gname[k] + ":" + fit.spec.time, indicator(gi, k).cwiseProduct(time));
+    } else {
+      for (std::size_t j = 0; j < K; ++j)
+        for (std::size_t k = 0; k < C; ++k)
+          add(gname[k] + ":" + tname[j], indicator(gi, k).cwiseProduct(indicator(ti, j)));
+    }
+  }
+  CompleteDesign cd;
+  cd.rdX.resize(n, static_cast<Eigen::Index>(cols.size()));
+  for (std::size_t c = 0; c < cols.size(); ++c) cd.rdX.col(static_cast<Eigen::Index>(c)) = cols[c];
+  for (const auto& name : lay.coef_names) cd.x_to_rd.push_back(name_of.at(name));
+  return cd;
+}
+
+// Residuals of the least-squares fit of the columns of Y on the columns of A (lm.fit's resid).
+Eigen::MatrixXd lsq_residuals(const Eigen::MatrixXd& A, const Eigen::MatrixXd& Y) {
+  Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(A);
+  cod.setThreshold(1e-7);
+  return Y - A * cod.solve(Y);
+}
+
+// lmerTest's get_contrasts_type3 (all factors in treatment coding) or, with one term,
+// get_contrasts_type1.
+std::vector<Eigen::MatrixXd> type3_hypotheses(const Layout& lay, const Eigen::MatrixXd& X,
+                                              const CompleteDesign& cd) {
+  const Eigen::Index p = X.cols();
+  std::vector<Eigen::MatrixXd> out;
+  if (p <= 1 || lay.terms.size() <= 1) {
+    const Eigen::MatrixXd Lt = detail::doolittle_lower(X.transpose() * X).transpose();
+    for (const auto& t : lay.terms) {
+      Eigen::MatrixXd L(static_cast<Eigen::Index>(t.cols.size()), p);
+      for (std::size_t r = 0; r < t.cols.size(); ++r)
+        L.row(static_cast<Eigen::Index>(r)) = Lt.row(t.cols[r]);
+      out.push_back(L);
+    }
+    return out;
+  }
+  Eigen::MatrixXd L =
+      detail::zapsmall(X.colPivHouseholderQr().solve(cd.rdX).transpose());  // rd params x p
+  // Containment (SAS): F1 in F2 when F2 has every variable of F1 and more, same covariates.
+  auto contained_in = [&](const Term& a, const Term& b) {
+    const bool subset = std::includes(b.vars.begin(), b.vars.end(), a.vars.begin(), a.vars.end());
+    return subset && b.vars.size() > a.vars.size() && a.numeric == b.numeric;
+  };
+  std::vector<std::size_t> order(lay.terms.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return lay.terms[a].vars.size() > lay.terms[b].vars.size();
+  });
+  for (const std::size_t ti : order) {
+    const Term& t = lay.terms[ti];
+    std::vector<Eigen::Index> ccols;
+    for (const auto& o : lay.terms)
+      if (contained_in(t, o)) ccols.insert(ccols.end(), o.cols.begin(), o.cols.end());
+    if (ccols.empty()) continue;
+    Eigen::MatrixXd A(L.rows(), static_cast<Eigen::Index>(ccols.size()));
+    for (std::size_t c = 0; c < ccols.size(); ++c)
+      A.col(static_cast<Eigen::Index>(c)) = L.col(ccols[c]);
+    Eigen::MatrixXd Y(L.rows(), static_cast<Eigen::Index>(t.cols.size()));
+    for (std::size_t c = 0; c < t.cols.size(); ++c)
+      Y.col(static_cast<Eigen::Index>(c)) = L.col(t.cols[c]);
+    const Eigen::MatrixXd R = detail::zapsmall(lsq_residuals(A, Y));
+    for (std::size_t c = 0; c < t.cols.size(); ++c)
+      L.col(t.cols[c]) = R.col(static_cast<Eigen::Index>(c));
+  }
+  Eigen::MatrixXd Lsel(p, p);
+  for (Eigen::Index r = 0; r < p; ++r) Lsel.row(r) = L.row(cd.x_to_rd[static_cast<std::size_t>(r)]);
+  for (const auto& t : lay.terms) {
+    std::vector<Eigen::VectorXd> rows;
+    for (const auto c : t.cols) {
+      const Eigen::VectorXd row = Lsel.col(c);
+      if (row.cwiseAbs().sum() > 1e-8) rows.push_back(row);
+    }
+    Eigen::MatrixXd Lt(static_cast<Eigen::Index>(rows.size()), p);
+    for (std::size_t r = 0; r < rows.size(); ++r) Lt.row(static_cast<Eigen::Index>(r)) = rows[r];
+    out.push_back(Lt);
+  }
+  return out;
+}
+
+}  // namespace
+
+Eigen::VectorXd MixedModelFit::cell_row(std::size_t group_level, double time) const {
+  const Layout lay = make_layout(*this);
+  Eigen::VectorXd row = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(lay.coef_names.size()));
+  row(0) = 1;
+  const Term* g = lay.has_group ? &lay.terms[0] : nullptr;
+  const Term& t = lay.terms[lay.has_group ? 1 : 0];
+  if (g != nullptr && group_level > 0) row(g->cols[group_level - 1]) = 1;
+  if (lay.linear) {
+    row(t.cols[0]) = time;
+    if (g != nullptr && group_level > 0) row(lay.terms[2].cols[group_level - 1]) = time;
+  } else {
+    const auto it = std::find(time_levels.begin(), time_levels.end(), time);
+    if (it == time_levels.end()) throw std::invalid_argument("cell_row: unknown time level");
+    const auto j = static_cast<std::size_t>(it - time_levels.begin());
+    if (j > 0) row(t.cols[j - 1]) = 1;
+    if (g != nullptr && group_level > 0 && j > 0)
+      row(lay.terms[2].cols[(j - 1) * (lay.n_group - 1) + (group_level - 1)]) = 1;
+  }
+  return row;
+}
+
+Contrast contrast(const MixedModelFit& fit, const Eigen::VectorXd& L, double conf_level) {
+  Contrast out;
+  stats::TestResult& r = out.test;
+  r.test = "lmm_contrast";
+  r.method = "Linear mixed model contrast (REML, Satterthwaite df)";
+  r.conf_level = conf_level;
+  r.mu = 0.0;
+  r.statistic_name = "t";
+  const double est = L.dot(fit.beta);
+  const double var = L.dot(fit.vcov_beta * L);
+  Eigen::VectorXd g(static_cast<Eigen::Index>(fit.jac_vcov_beta.size()));
+  for (std::size_t k = 0; k < fit.jac_vcov_beta.size(); ++k)
+    g(static_cast<Eigen::Index>(k)) = L.dot(fit.jac_vcov_beta[k] * L);
+  const double df = 2.0 * var * var / g.dot(fit.vcov_varpar * g);
+  r.estimate = est;
+  if (!(var > 0) || !std::isfinite(df) || !(df > 0)) {
+    r.computed = false;
+    r.note = "contrast variance or Satterthwaite df not positive";
+    r.estimate.reset();
+    return out;
+  }
+  const double se = std::sqrt(var);
+  r.statistic = est / se;
+  r.df = df;
+  r.p_value = two_sided_t_p(est / se, df);
+  boost::math::students_t dist(df);
+  const double q = boost::math::quantile(boost::math::complement(dist, (1 - conf_level) / 2));
+  r.conf_low = est - q * se;
+  r.conf_high = est + q * se;
+  out.std_error = se;
+  return out;
+}
+
+AnovaTerm contrast_md(const MixedModelFit& fit, const Eigen::MatrixXd& L) {
+  AnovaTerm out;
+  const double s2 = fit.sigma * fit.sigma;
+  auto table = [&](double F, double ndf, double ddf) {
+    if (!(std::isfinite(F) && std::isfinite(ddf) && ddf > 0)) {
+      out.computed = false;
+      out.note = "Satterthwaite's df not positive and finite";
+      out.num_df = ndf;
+      return out;
+    }
+    out.f = F;
+    out.num_df = ndf;
+    out.den_df = ddf;
+    out.mean_sq = F * s2;
+    out.sum_sq = F * s2 * ndf;
+    boost::math::fisher_f dist(ndf, ddf);
+    out.p = boost::math::cdf(boost::math::complement(dist, F));
+    return out;
+  };
+  if (L.rows() == 1) {
+    const stats::TestResult c = contrast(fit, L.row(0).transpose()).test;
+    if (!c.computed) return table(std::nan(""), 1, std::nan(""));
+    return table(*c.statistic * *c.statistic, 1, *c.df);
+  }
+  const Eigen::MatrixXd VL = L * fit.vcov_beta * L.transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(VL);
+  // R's eigen(): decreasing eigenvalues.
+  const Eigen::Index m = VL.rows();
+  Eigen::VectorXd d = es.eigenvalues().reverse();
+  Eigen::MatrixXd P = es.eigenvectors().rowwise().reverse();
+  const double tol = std::max(std::sqrt(std::numeric_limits<double>::epsilon()) * d(0), 0.0);
+  Eigen::Index q = 0;
+  for (Eigen::Index i = 0; i < m; ++i)
+    if (d(i) > tol) ++q;
+  const Eigen::MatrixXd PtL = (P.transpose() * L).topRows(q);
+  if (q == 1) {
+    const stats::TestResult c = contrast(fit, PtL.row(0).transpose()).test;
+    if (!c.computed) return table(std::nan(""), 1, std::nan(""));
+    return table(*c.statistic * *c.statistic, 1, *c.df);
+  }
+  double F = 0;
+  std::vector<double> nu(static_cast<std::size_t>(q));
+  for (Eigen::Index i = 0; i < q; ++i) {
+    const Eigen::VectorXd l = PtL.row(i).transpose();
+    const double lb = l.dot(fit.beta);
+    F += lb * lb / d(i);
+    Eigen::VectorXd g(static_cast<Eigen::Index>(fit.jac_vcov_beta.size()));
+    for (std::size_t k = 0; k < fit.jac_vcov_beta.size(); ++k)
+      g(static_cast<Eigen::Index>(k)) = l.dot(fit.jac_vcov_beta[k] * l);
+    nu[static_cast<std::size_t>(i)] = 2 * d(i) * d(i) / g.dot(fit.vcov_varpar * g);
+  }
+  F /= static_cast<double>(q);
+  // lmerTest's get_Fstat_ddf.
+  double ddf;
+  bool all_equal = true;
+  for (std::size_t i = 1; i < nu.size(); ++i)
+    if (std::abs(nu[i] - nu[i - 1]) >= 1e-8) all_equal = false;
+  if (all_equal) {
+    ddf = 0;
+    for (double v : nu) ddf += v;
+    ddf /= static_cast<double>(nu.size());
+  } else if (std::any_of(nu.begin(), nu.end(), [](double v) { return v <= 2; })) {
+    ddf = 2;
+  } else {
+    double E = 0;
+    for (double v : nu) E += v / (v - 2);
+    ddf = 2 * E / (E - static_cast<double>(q));
+  }
+  return table(F, static_cast<double>(q), ddf);
+}
+
+MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool group_between) {
+  const std::size_t n = data.y.size();
+  if (data.participant.size() != n || data.group.size() != n || data.time.size() != n)
+    throw std::invalid_argument("fit_mixed_model: columns of different lengths");
+  if (spec.random_slope && spec.time_scale != TimeScale::linear)
+    throw UsageError("a random slope needs a linear trend in " + spec.time + " (--trend)");
+  MixedModelFit fit;
+  fit.spec = spec;
+  fit.n_obs = n;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!std::isfinite(data.y[i]) || !std::isfinite(data.time[i]))
+      throw InvalidData(fmt::format("{}: a value is not finite (participant {})", spec.response,
+                                    data.participant[i]));
+
+  // Levels.
+  std::map<std::string, std::size_t> pidx;
+  std::map<std::string, std::string> group_of;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (pidx.emplace(data.participant[i], fit.participants.size()).second)
+      fit.participants.push_back(data.participant[i]);
+    if (group_between) {
+      auto [it, fresh] = group_of.emplace(data.participant[i], data.group[i]);
+      if (!fresh && it->second != data.group[i])
+        throw InvalidData(fmt::format(
+            "participant {} is in two {}s ('{}' and '{}'): {} must be between participants",
+            data.participant[i], spec.group, it->second, data.group[i], spec.group));
+    }
+  }
+  if (fit.participants.size() < 2)
+    throw InvalidData(fmt::format("{}: the mixed model needs at least 2 participants, got {}",
+                                  spec.response, fit.participants.size()));
+  if (!spec.group_levels.empty()) {
+    fit.group_levels = spec.group_levels;
+  } else {
+    std::set<std::string> s(data.group.begin(), data.group.end());
+    fit.group_levels.assign(s.begin(), s.end());
+  }
+  {
+    std::set<double> s(data.time.begin(), data.time.end());
+    fit.time_levels.assign(s.begin(), s.end());
+  }
+  std::vector<std::size_t> gi(n), ti(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto it = std::find(fit.group_levels.begin(), fit.group_levels.end(), data.group[i]);
+    if (it == fit.group_levels.end())
+      throw InvalidData(
+          fmt::format("{} '{}' is not one of the levels given", spec.group, data.group[i]));
+    gi[i] = static_cast<std::size_t>(it - fit.group_levels.begin());
+    ti[i] = static_cast<std::size_t>(
+        std::lower_bound(fit.time_levels.begin(), fit.time_levels.end(), data.time[i]) -
+        fit.time_levels.begin());
+  }
+  {
+    const double y0 = data.y[0];
+    if (std::all_of(data.y.begin(), data.y.end(), [&](double v) { return v == y0; }))
+      throw InvalidData(
+          fmt::format("metric '{}' has no variance (every value is {}): the mixed "
+                      "model cannot be fitted",
+                      spec.response, y0));
+  }
+  const Layout lay = make_layout(fit);
+  if (spec.time_scale == TimeScale::factor && lay.has_group) {
+    std::vector<std::size_t> count(lay.n_group * fit.time_levels.size(), 0);
+    for (std::size_t i = 0; i < n; ++i) ++count[ti[i] * lay.n_group + gi[i]];
+    for (std::size_t j = 0; j < fit.time_levels.size(); ++j)
+      for (std::size_t k = 0; k < lay.n_group; ++k)
+        if (count[j * lay.n_group + k] == 0)
+          throw InvalidData(
+              fmt::format("{}: no observation of {} '{}' at {} {}: every {} x {} cell needs data",
+                          spec.response, spec.group, fit.group_levels[k], spec.time,
+                          level_text(fit.time_levels[j]), spec.group, spec.time));
+  }
+  if (spec.time_scale == TimeScale::linear && fit.time_levels.size() < 2)
+    throw InvalidData(fmt::format("{}: a trend in {} needs at least two distinct values",
+                                  spec.response, spec.time));
+
+  // Design, rows grouped by participant (stable: file order within a participant).
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return pidx[data.participant[a]] < pidx[data.participant[b]];
+  });
+  const auto p = static_cast<Eigen::Index>(lay.coef_names.size());
+  const Eigen::Index q = spec.random_slope ? 2 : 1;
+  Eigen::MatrixXd X = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), p);
+  Eigen::MatrixXd Z(static_cast<Eigen::Index>(n), q);
+  Eigen::VectorXd y(static_cast<Eigen::Index>(n)), time(static_cast<Eigen::Index>(n));
+  std::vector<std::size_t> sgi(n), sti(n);
+  std::vector<std::size_t> start{0};
+  fit.trials_per_participant.assign(fit.participants.size(), 0);
+  for (std::size_t r = 0; r < n; ++r) {
+    const std::size_t i = order[r];
+    const auto row = static_cast<Eigen::Index>(r);
+    X.row(row) = fit.cell_row(gi[i], data.time[i]).transpose();
+    Z(row, 0) = 1;
+    if (q == 2) Z(row, 1) = data.time[i];
+    y(row) = data.y[i];
+    time(row) = data.time[i];
+    sgi[r] = gi[i];
+    sti[r] = ti[i];
+    const std::size_t pi = pidx[data.participant[i]];
+    ++fit.trials_per_participant[pi];
+    if (r + 1 == n || pidx[data.participant[order[r + 1]]] != pi) start.push_back(r + 1);
+  }
+  if (static_cast<Eigen::Index>(n) <= p)
+    throw InvalidData(
+        fmt::format("{}: {} observations cannot estimate {} fixed effects", spec.response, n, p));
+  {
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(X);
+    qr.setThreshold(1e-9);
+    if (qr.rank() < p)
+      throw InvalidData(
+          fmt::format("{}: the fixed-effects design is rank deficient", spec.response));
+  }
+  fit.coef_names = lay.coef_names;
+
+  detail::Problem problem(X, Z, y, start);
+  fit.theta = detail::optimise_theta(problem);
+  const detail::Evaluation ev = problem.evaluate(fit.theta);
+  const double nn = static_cast<double>(n), pp = static_cast<double>(p);
+  fit.sigma = std::sqrt(ev.r2 / (nn - pp));
+  fit.beta = ev.beta;
+  fit.reml_criterion = problem.profiled_reml(fit.theta);
+  fit.vcov_beta = fit.sigma * fit.sigma * ev.xthx_chol.solve(Eigen::MatrixXd::Identity(p, p));
+  const Eigen::MatrixXd Lam = problem.lambda(fit.theta);
+  const Eigen::MatrixXd Sb = fit.sigma * fit.sigma * Lam * Lam.transpose();
+  fit.variance.residual = fit.sigma * fit.sigma;
+  fit.variance.participant = Sb(0, 0);
+  fit.singular = Lam.diagonal().minCoeff() < 1e-4;  // lme4's isSingular(tol = 1e-4)
+  if (q == 2) {
+    fit.variance.slope = Sb(1, 1);
+    if (Sb(0, 0) > 0 && Sb(1, 1) > 0)
+      fit.variance.correlation = Sb(0, 1) / std::sqrt(Sb(0, 0) * Sb(1, 1));
+  } else {
+    fit.variance.icc = Sb(0, 0) / (Sb(0, 0) + fit.variance.residual);
+  }
+
+  // Satterthwaite (lmerTest's as_lmerModLT).
+  fit.varpar.resize(fit.theta.size() + 1);
+  fit.varpar << fit.theta, fit.sigma;
+  const Eigen::MatrixXd H = detail::numderiv_hessian(
+      [&](const Eigen::VectorXd& v) { return problem.reml_deviance(v); }, fit.varpar);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
+  fit.vcov_varpar = Eigen::MatrixXd::Zero(H.rows(), H.cols());
+  for (Eigen::Index i = 0; i < H.rows(); ++i) {
+    const double ev_i = es.eigenvalues()(i);
+    if (ev_i > 1e-8)
+      fit.vcov_varpar += es.eigenvectors().col(i) * es.eigenvectors().col(i).transpose() / ev_i;
+  }
+  fit.vcov_varpar *= 2.0;
+  fit.jac_vcov_beta = detail::numderiv_jacobian(
+      [&](const Eigen::VectorXd& v) { return problem.vcov_beta(v); }, fit.varpar);
+
+  // Type-III ANOVA.
+  const CompleteDesign cd = complete_design(fit, lay, sgi, sti, time);
+  const std::vector<Eigen::MatrixXd> hyp = type3_hypotheses(lay, X, cd);
+  for (std::size_t t = 0; t < lay.terms.size(); ++t) {
+    AnovaTerm row = contrast_md(fit, hyp[t]);
+    row.term = lay.terms[t].name;
+    fit.anova.push_back(row);
+  }
+  return fit;
+}
+
+}  // namespace feint::models

@@ -1,0 +1,265 @@
+// `feint model` end to end: R's values through the tidy CSV, the renderings, and the errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_helpers.hpp"
+
+namespace {
+
+using feint::test::run_feint;
+using feint::test::shell_quote;
+using feint::test::TempDir;
+using feint::test::write_text;
+
+const std::string kGolden = std::string(FEINT_SOURCE_DIR) + "/tests/golden/models/";
+
+std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::stringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::string cell;
+    bool quoted = false;
+    for (char c : line) {
+      if (c == '"') {
+        quoted = !quoted;
+      } else if (c == ',' && !quoted) {
+        f.push_back(cell);
+        cell.clear();
+      } else {
+        cell += c;
+      }
+    }
+    f.push_back(cell);
+    rows.push_back(f);
+  }
+  return rows;
+}
+
+// golden[case][quantity][name]
+std::map<std::string, std::map<std::string, double>> golden(const std::string& c) {
+  std::map<std::string, std::map<std::string, double>> g;
+  for (const auto& r : parse_csv(feint::test::read_text(kGolden + "lmm_golden.csv")))
+    if (r.size() == 4 && r[0] == c) g[r[1]][r[2]] = std::stod(r[3]);
+  return g;
+}
+
+struct Tidy {
+  std::map<std::string, std::size_t> col;
+  std::vector<std::vector<std::string>> rows;
+  double num(const std::vector<std::string>& r, const std::string& c) const {
+    return std::stod(r.at(col.at(c)));
+  }
+  std::string str(const std::vector<std::string>& r, const std::string& c) const {
+    return r.at(col.at(c));
+  }
+};
+
+Tidy tidy(const std::string& csv) {
+  Tidy t;
+  auto rows = parse_csv(csv);
+  for (std::size_t i = 0; i < rows.at(0).size(); ++i) t.col[rows[0][i]] = i;
+  t.rows.assign(rows.begin() + 1, rows.end());
+  return t;
+}
+
+void expect_rel(double got, double want, const std::string& what, double tol = 2e-7) {
+  EXPECT_LE(std::abs(got - want) / std::max(std::abs(want), 1e-12), tol)
+      << what << ": got " << got << ", R " << want;
+}
+
+TEST(ModelCli, TidyCsvOfThePaperDesignMatchesLmerTestAndEmmeans) {
+  const auto r = run_feint("model " + shell_quote(kGolden + "lmm_paper20_missing.csv") +
+                           " --metric error --format csv --p-adjust holm --apa");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Tidy t = tidy(r.out);
+  auto g = golden("paper20_missing");
+  int anova = 0, contrasts = 0;
+  for (const auto& row : t.rows) {
+    EXPECT_EQ(t.str(row, "metric"), "error");
+    if (t.str(row, "table") == "anova") {
+      ++anova;
+      const std::string term = t.str(row, "term");
+      expect_rel(t.num(row, "statistic"), g["F"][term], "F " + term);
+      expect_rel(t.num(row, "DenDF"), g["DenDF"][term], "DenDF " + term);
+      expect_rel(t.num(row, "p.value"), g["p"][term], "p " + term);
+      expect_rel(t.num(row, "sumsq"), g["SumSq"][term], "SumSq " + term);
+      EXPECT_EQ(t.str(row, "apa").rfind("F(", 0), 0u) << t.str(row, "apa");
+    } else if (t.str(row, "table") == "contrast") {
+      ++contrasts;
+      const std::string it = t.str(row, "iteration");
+      EXPECT_EQ(t.str(row, "contrast"), "adaptive - random");
+      EXPECT_NEAR(t.num(row, "estimate"), g["c.estimate"][it], 1e-7) << it;
+      expect_rel(t.num(row, "std.error"), g["c.SE"][it], "SE " + it);
+      expect_rel(t.num(row, "df"), g["c.df"][it], "df " + it);
+      expect_rel(t.num(row, "p.value"), g["c.p"][it], "p " + it);
+      expect_rel(t.num(row, "p.adjusted"), g["c.p_holm"][it], "holm " + it);
+      const double p = t.num(row, "p.adjusted"), est = t.num(row, "estimate");
+      EXPECT_EQ(t.str(row, "label"), p < 0.05 ? (est > 0 ? "A>B" : "A<B") : "A\u2248B");
+    } else if (t.str(row, "table") == "ran_pars" && t.str(row, "term") == "var__Observation") {
+      expect_rel(t.num(row, "estimate"), g["vcov"]["Residual NA NA"], "residual variance");
+    }
+  }
+  EXPECT_EQ(anova, 3);
+  EXPECT_EQ(contrasts, 20);
+}
+
+TEST(ModelCli, ExposureSlopesMatchLmerTest) {
+  const auto r = run_feint("model " + shell_quote(kGolden + "lmm_exposure.csv") +
+                           " --metric error --exposure --format csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Tidy t = tidy(r.out);
+  auto g = golden("exposure");
+  int slopes = 0;
+  for (const auto& row : t.rows) {
+    if (t.str(row, "table") != "slope") continue;
+    ++slopes;
+    const std::string lv = t.str(row, "level");
+    EXPECT_NEAR(t.num(row, "estimate"), g["s.estimate"][lv], 1e-8) << lv;
+    expect_rel(t.num(row, "df"), g["s.df"][lv], "df " + lv);
+    EXPECT_NEAR(t.num(row, "conf.low"), g["s.lower"][lv], 1e-8) << lv;
+    EXPECT_NEAR(t.num(row, "conf.high"), g["s.upper"][lv], 1e-8) << lv;
+  }
+  EXPECT_EQ(slopes, 3);
+}
+
+TEST(ModelCli, TextReportShowsAnovaRandomEffectsContrastsAndNote) {
+  const auto r = run_feint("model " + shell_quote(kGolden + "lmm_unbalanced4_missing.csv") +
+                           " --metric error --apa");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* want :
+       {"type III ANOVA (Satterthwaite's df)", "condition:iteration", "Random effects of error",
+        "adaptive - random per iteration", "fitted by REML",
+        "24 participants (10 in adaptive, 14 "
+        "in random), 86 trials.",
+        "10 participant x iteration trials without a value of error",
+        "ICC = ", "condition: F(1, 22.0) = 0.65, p = .430"})
+    EXPECT_NE(r.out.find(want), std::string::npos) << want << "\n" << r.out;
+}
+
+TEST(ModelCli, MarkdownLatexAndJsonRender) {
+  const std::string in = shell_quote(kGolden + "lmm_trend_slope.csv");
+  const auto md = run_feint("model " + in + " --metric error --trend --random-slope --format md");
+  ASSERT_EQ(md.exit_code, 0) << md.err;
+  EXPECT_NE(md.out.find("| Term | Sum Sq | Mean Sq | NumDF | DenDF | F | p |"), std::string::npos);
+  EXPECT_NE(md.out.find("no single ICC"), std::string::npos);
+  const auto tex = run_feint("model " + in + " --metric error --trend --format latex");
+  ASSERT_EQ(tex.exit_code, 0) << tex.err;
+  EXPECT_NE(tex.out.find("\\toprule"), std::string::npos);
+  EXPECT_NE(tex.out.find("\\label{tab:lmm-anova-error}"), std::string::npos);
+  const auto json = run_feint("model " + in + " --metric error --trend --format json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_EQ(json.out.front(), '[');
+  EXPECT_NE(json.out.find("\"table\": \"anova\""), std::string::npos) << json.out.substr(0, 400);
+  EXPECT_NE(json.out.find("\"NumDF\": 1"), std::string::npos);
+}
+
+std::string scores(const std::string& body) {
+  return "participant,condition,iteration,error\n" + body;
+}
+
+TEST(ModelCli, ParticipantInTwoConditionsExits65NamingBothLines) {
+  TempDir dir;
+  const auto p = dir.path() / "s.csv";
+  write_text(p, scores("P1,a,1,0.1\nP1,a,2,0.3\nP2,b,1,0.2\nP2,b,2,0.5\nP1,b,3,0.4\n"));
+  const auto r = run_feint("model " + shell_quote(p.string()) + " --metric error");
+  EXPECT_EQ(r.exit_code, 65);
+  EXPECT_NE(r.err.find("s.csv:6: participant P1 is in condition 'b' but in 'a' on line 2"),
+            std::string::npos)
+      << r.err;
+}
+
+TEST(ModelCli, IterationMissingForEverybodyExits65) {
+  TempDir dir;
+  const auto p = dir.path() / "s.csv";
+  write_text(p, scores("P1,a,1,0.1\nP1,a,2,\nP1,a,3,0.2\nP2,b,1,0.2\nP2,b,2,\nP2,b,3,0.6\n"
+                       "P3,a,1,0.3\nP3,a,2,\nP3,a,3,0.1\n"));
+  const auto r = run_feint("model " + shell_quote(p.string()) + " --metric error");
+  EXPECT_EQ(r.exit_code, 65);
+  EXPECT_NE(r.err.find("metric 'error': iteration 2 has no value for any participant"),
+            std::string::npos)
+      << r.err;
+}
+
+TEST(ModelCli, MetricWithoutVarianceExits65) {
+  TempDir dir;
+  const auto p = dir.path() / "s.csv";
+  write_text(p, scores("P1,a,1,0.5\nP1,a,2,0.5\nP2,b,1,0.5\nP2,b,2,0.5\nP3,a,1,0.5\nP3,a,2,0.5\n"));
+  const auto r = run_feint("model " + shell_quote(p.string()) + " --metric error");
+  EXPECT_EQ(r.exit_code, 65);
+  EXPECT_NE(r.err.find("metric 'error' has no variance (every value is 0.5)"), std::string::npos)
+      << r.err;
+}
+
+TEST(ModelCli, ImpossibleOptionsExit64) {
+  const std::string in = shell_quote(kGolden + "lmm_balanced5.csv");
+  EXPECT_EQ(run_feint("model " + in + " --metric error --random-slope").exit_code, 64);
+  EXPECT_EQ(run_feint("model " + in + " --metric error --exposure --trend").exit_code, 64);
+  EXPECT_EQ(run_feint("model " + in + " --metric error --alternative greater").exit_code, 64);
+  EXPECT_EQ(run_feint("model " + in + " --metric error=0.5").exit_code, 64);
+}
+
+TEST(ModelCli, ExposureWithoutStrategyColumnExits65) {
+  const auto r = run_feint("model " + shell_quote(kGolden + "lmm_balanced5.csv") +
+                           " --metric error --exposure");
+  EXPECT_EQ(r.exit_code, 65);
+  EXPECT_NE(r.err.find("no column 'strategy'"), std::string::npos) << r.err;
+}
+
+TEST(ModelCli, CompareChoosesTheDirectionOfTheContrasts) {
+  const std::string in = shell_quote(kGolden + "lmm_balanced5.csv");
+  const Tidy ab = tidy(run_feint("model " + in + " --metric error --format csv").out);
+  const Tidy ba =
+      tidy(run_feint("model " + in + " --metric error --format csv --compare random,adaptive").out);
+  ASSERT_EQ(ab.rows.size(), ba.rows.size());
+  int n = 0;
+  for (std::size_t i = 0; i < ab.rows.size(); ++i) {
+    if (ab.str(ab.rows[i], "table") != "contrast") continue;
+    ++n;
+    EXPECT_EQ(ba.str(ba.rows[i], "contrast"), "random - adaptive");
+    EXPECT_DOUBLE_EQ(ab.num(ab.rows[i], "estimate"), -ba.num(ba.rows[i], "estimate"));
+    EXPECT_DOUBLE_EQ(ab.num(ab.rows[i], "p.value"), ba.num(ba.rows[i], "p.value"));
+  }
+  EXPECT_EQ(n, 5);
+  EXPECT_EQ(run_feint("model " + in + " --metric error --compare adaptive,nope").exit_code, 65);
+}
+
+}  // namespace
+
+namespace {
+
+bool have_latex() {
+  return std::system(
+             "command -v pdflatex >/dev/null 2>&1 && kpsewhich booktabs.sty >/dev/null 2>&1") == 0;
+}
+
+}  // namespace
+
+TEST(ModelCli, LatexCompilesAsAFragmentOfAPaperWithoutOverfullLines) {
+  if (!have_latex())
+    GTEST_SKIP() << "pdflatex with booktabs not installed: LaTeX compile check skipped";
+  TempDir dir;
+  const auto tex = dir.path() / "model.tex";
+  const auto r = run_feint("model " + shell_quote(kGolden + "lmm_paper20_missing.csv") +
+                           " --metric error --p-adjust holm --apa --format latex -o " +
+                           shell_quote(tex.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  write_text(dir.path() / "paper.tex",
+             "\\documentclass{article}\n\\usepackage[T1]{fontenc}\n\\usepackage{booktabs}\n"
+             "\\usepackage{graphicx}\n\\usepackage{amsmath}\n\\begin{document}\nText.\n"
+             "\\input{model.tex}\n\\end{document}\n");
+  const std::string cmd =
+      "cd " + shell_quote(dir.path().string()) +
+      " && pdflatex -interaction=nonstopmode -halt-on-error paper.tex > out.txt 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << feint::test::read_text(dir.path() / "out.txt");
+  EXPECT_EQ(feint::test::read_text(dir.path() / "paper.log").find("Overfull \\hbox"),
+            std::string::npos);
+}
