@@ -73,6 +73,9 @@ struct TraceOptions {
   bool require_pad_speed = false;
   /// Buffer every row and group by key (rows of a trial need not be contiguous or in one file).
   bool unsorted = false;
+  /// The unit of the `t` column: times are divided by this to give seconds (1 = seconds, 1000 =
+  /// milliseconds; `--time-unit`). Messages quote the times as written.
+  double time_divisor = 1;
   /// Lenient mode: called for each invalid trial instead of throwing.
   std::function<void(const Rejection&)> on_reject;
 };
