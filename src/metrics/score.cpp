@@ -220,7 +220,7 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
       }
       if (files.size() > 3) names.push_back(fmt::format("and {} more", files.size() - 3));
       throw InvalidData(fmt::format("{}: no data rows (a header only; expected one row per pad "
-                                    "sample after it), so no trial to score",
+                                    "sample after it), so no valid trial to score",
                                     fmt::join(names, ", ")));
     }
     throw InvalidData(fmt::format("no valid trial: {} rows read, all {} trial(s) rejected",

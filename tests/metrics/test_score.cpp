@@ -250,7 +250,7 @@ TEST_F(ScoreLib, HeaderOnlyInputNamesTheFile) {
     FAIL();
   } catch (const feint::InvalidData& e) {
     EXPECT_EQ(std::string(e.what()), p + ": no data rows (a header only; expected one row per pad "
-                                         "sample after it), so no trial to score");
+                                         "sample after it), so no valid trial to score");
   }
 }
 
