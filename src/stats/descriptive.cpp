@@ -219,6 +219,14 @@ Description describe_from(std::vector<double> sorted, const Summary& s,
   }
   d.sd = s.sd();
   d.se = s.se();
+  if (!std::isfinite(*d.sd)) {
+    // Squared deviations beyond the largest double (values near 1e300): not computable, never Inf.
+    d.sd.reset();
+    d.se.reset();
+    d.note = std::string("the sum of squared deviations exceeds the largest double: sd, standard "
+                         "error and confidence interval not computable");
+    return d;
+  }
   if (!(*d.sd > 0)) {
     d.note = std::string("constant data: confidence interval and lag-1 autocorrelation undefined");
     return d;

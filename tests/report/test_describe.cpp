@@ -36,6 +36,12 @@ TEST(Describe, FarApartScalesAndLongMantissasAreDescribedNotRejected) {
   EXPECT_EQ(d.max, 1e300);
   EXPECT_EQ(d.median, 0.12345678901234567890123456789012345678901234567890);
   EXPECT_DOUBLE_EQ(*d.mean, 1e300 / 5);
+  // Its squared deviations overflow a double: not computable, with the reason, never Inf.
+  EXPECT_FALSE(d.sd.has_value());
+  EXPECT_FALSE(d.conf_low.has_value());
+  EXPECT_NE(d.note.find("exceeds the largest double"), std::string::npos) << d.note;
+  EXPECT_EQ(feint::report::render_describe(t, feint::report::OutputFormat::csv).find("Inf"),
+            std::string::npos);
 }
 
 TEST(Describe, MinMaxAndMeanAreExactInEveryFormat) {
