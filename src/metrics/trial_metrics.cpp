@@ -97,7 +97,11 @@ TrialScore score_trace(std::span<const double> times, std::span<const double> pa
   }
   if (!(duration > 0)) throw InvalidData(fmt::format("duration {} must be > 0", duration));
   const int k = std::ilogb(duration);
-  auto w = [&](std::size_t i) { return std::ldexp(times[i] - t0, -k); };
+  // 2^-k as one or two factors (2^1074 for the smallest subnormal duration is not a double); a
+  // multiplication, not std::ldexp, which is a library call in the hot loop.
+  const int k1 = std::clamp(-k, -1000, 1000);
+  const double s1 = std::ldexp(1.0, k1), s2 = std::ldexp(1.0, -k - k1);
+  auto w = [&](std::size_t i) { return (times[i] - t0) * s1 * s2; };
   const double tau = w(n - 1);
   const double a = settings.trim_start * tau;
   const double b = (1 - settings.trim_end) * tau;
