@@ -50,7 +50,8 @@ struct ScoresTable {
 };
 
 /// Loads a scores CSV (gzip, `-`, delimiters as io::CsvReader). Throws IoError when unreadable and
-/// InvalidData for: a missing required or metric column, an empty participant or condition, an
+/// InvalidData for: a missing required or metric column, an empty participant, a condition empty
+/// on some rows only (a condition column empty on every row means no conditions), an
 /// iteration that is not a whole number in [0, 1e9], a non-numeric metric value, a duplicate
 /// (participant, condition, iteration), or no data rows at all.
 ScoresTable load_scores(const std::string& path, const ScoresOptions& options = {});
