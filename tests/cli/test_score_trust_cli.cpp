@@ -1,6 +1,7 @@
 // Issue 8 end to end: `feint score` on real-lab quirks (docs/scoring.md "Reading real lab files").
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <string>
 
 #include "cli/cli_helpers.hpp"
@@ -87,4 +88,25 @@ TEST(ScoreTrustCli, HeaderOnlyInputNamesTheFile) {
   const auto r = run_feint("score " + shell_quote(log) + " -o -");
   EXPECT_EQ(r.exit_code, 65);
   EXPECT_NE(r.err.find(log + ": no data rows"), std::string::npos) << r.err;
+}
+
+// Two `feint score` processes writing the same output at once: the scores and the sidecar left
+// behind are always from the same run (they are committed as one unit under a folder lock).
+TEST(ScoreTrustCli, ConcurrentProcessesLeaveAMatchingPair) {
+  TempDir d;
+  const auto a = (d.path() / "a.csv").string(), b = (d.path() / "b.csv").string();
+  write_text(a, kHeader + example_e("PA,A,1", 1));
+  write_text(b, kHeader + example_e("PB,A,1", 1) + example_e("PB,A,2", 1));
+  const auto out = (d.path() / "s.csv").string();
+  const std::string exe = shell_quote(FEINT_EXE);
+  const std::string both = exe + " score " + shell_quote(a) + " -o " + shell_quote(out) +
+                           " 2>/dev/null & " + exe + " score " + shell_quote(b) + " -o " +
+                           shell_quote(out) + " 2>/dev/null & wait";
+  for (int round = 0; round < 15; ++round) {
+    ASSERT_EQ(std::system(both.c_str()), 0);
+    const std::string scores = read_text(out), sidecar = read_text(out + ".meta.json");
+    const bool is_a = scores.find("\nPA,") != std::string::npos;
+    ASSERT_NE(sidecar.find(is_a ? "a.csv" : "b.csv"), std::string::npos) << "round " << round;
+    ASSERT_EQ(sidecar.find(is_a ? "b.csv" : "a.csv"), std::string::npos) << "round " << round;
+  }
 }
