@@ -61,6 +61,10 @@ void add_score_options(CLI::App& cmd, ScoreOptions& o, const std::string& group)
                                  "strict = stop at the first invalid trial (default); skip = leave "
                                  "invalid trials out and list them in the rejects file")
                       ->check(CLI::IsMember({"strict", "skip"})));
+  added.push_back(cmd.add_option("--time-unit", o.time_unit,
+                                 "Unit of the logs' t column: s (default) or ms (converted to "
+                                 "seconds; jsPsych and many loggers write ms)")
+                      ->check(CLI::IsMember({"s", "ms"}, CLI::ignore_case)));
   if (!group.empty()) {
     for (auto* opt : added) opt->group(group);
   }
@@ -92,6 +96,9 @@ metrics::ScoreSettings score_settings(const ScoreOptions& o) {
     throw UsageError(fmt::format("--on-error '{}': expected strict or skip", o.on_error));
   }
   s.on_error = o.on_error == "skip" ? metrics::OnError::skip : metrics::OnError::strict;
+  const auto unit = metrics::parse_time_unit(o.time_unit);
+  if (!unit) throw UsageError(fmt::format("--time-unit '{}': expected s or ms", o.time_unit));
+  s.time_unit = *unit;
   return s;
 }
 

@@ -19,10 +19,11 @@ struct ScoreOptions {
   std::vector<std::string> maps;
   std::string delimiter;
   std::string on_error = "strict";
+  std::string time_unit = "s";
 };
 
 /// Registers --trim, --trim-start, --trim-end, --deadband, --confusion-norm, --pad-speed, --map,
-/// --delimiter and --on-error on `cmd` (in help group `group`, if not empty), bound to `options`.
+/// --delimiter, --on-error and --time-unit on `cmd` (in help group `group`, if not empty), bound to `options`.
 void add_score_options(CLI::App& cmd, ScoreOptions& options, const std::string& group = "");
 
 /// The settings they stand for (trims, dead band, normalisation, pad speed, column map,

@@ -23,7 +23,15 @@ namespace feint::io {
 
 namespace {
 
-constexpr std::size_t kChunk = std::size_t{1} << 20;  // bytes asked of zlib per read
+// Bytes asked of zlib per read. The fuzz build (tests/fuzz/run.sh) makes it tiny, so that records
+// cross block boundaries in small inputs and each input does not allocate megabytes.
+#ifndef FEINT_CSV_CHUNK
+#define FEINT_CSV_CHUNK (std::size_t{1} << 20)
+#endif
+constexpr std::size_t kChunk = FEINT_CSV_CHUNK;
+#ifndef FEINT_GZ_BUFFER
+#define FEINT_GZ_BUFFER (1U << 18)
+#endif
 
 std::string display_name(const std::string& path) { return path == "-" ? "<stdin>" : path; }
 
@@ -159,6 +167,7 @@ struct CsvReader::Impl {
   char delimiter = ',';
   std::uint64_t line = 0;
   std::uint64_t next_line = 1;
+  bool header_seen = false;  // the first non-blank record (the header) has been read
   std::uint64_t records = 0;
   std::unique_ptr<Prefetcher> prefetch;  // regular files only
 
@@ -181,7 +190,7 @@ struct CsvReader::Impl {
     if (file == nullptr) {
       throw IoError(fmt::format("cannot open '{}': {}", display_name(path), std::strerror(errno)));
     }
-    gzbuffer(file, 1U << 18);
+    gzbuffer(file, FEINT_GZ_BUFFER);
     buf.resize(2 * kChunk);
     struct stat st {};
     if (path != "-" && ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode)) {
@@ -352,7 +361,15 @@ struct CsvReader::Impl {
         rec += 3;
         len -= 3;
       }
-      if (line == 1 && options.delimiter == 0) delimiter = detect(rec, len);
+      if (!header_seen) {
+        // Blank lines (or only blanks) before the header carry nothing: skip them, so that the
+        // delimiter is detected from the header itself, wherever it starts.
+        std::size_t k = 0;
+        while (k < len && (rec[k] == ' ' || rec[k] == '\t')) ++k;
+        if (k == len) continue;
+        if (options.delimiter == 0) delimiter = detect(rec, len);
+        header_seen = true;
+      }
       split(rec, len, quoted);
       return true;
     }

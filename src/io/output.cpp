@@ -1,8 +1,11 @@
 #include "feint/io/output.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cerrno>
@@ -162,8 +165,46 @@ void AtomicOutput::commit() {
 }
 
 const std::string& AtomicOutput::path() const noexcept { return impl_->path; }
+const std::string& AtomicOutput::target() const noexcept {
+  return impl_->target.empty() ? impl_->path : impl_->target;
+}
 bool AtomicOutput::is_stdout() const noexcept { return impl_->to_stdout; }
 bool AtomicOutput::in_place() const noexcept { return impl_->direct; }
+
+void commit_together(const std::vector<AtomicOutput*>& outputs) {
+  // The folders of the targets, each locked once, in sorted order (no deadlock between runs).
+  std::vector<std::string> dirs;
+  for (const AtomicOutput* o : outputs) {
+    if (o == nullptr || o->is_stdout() || o->in_place()) continue;
+    const std::filesystem::path p(o->target());
+    std::error_code ec;
+    auto dir = std::filesystem::weakly_canonical(p, ec).parent_path();
+    if (ec || dir.empty()) dir = p.parent_path().empty() ? std::filesystem::path(".") : p.parent_path();
+    dirs.push_back(dir.string());
+  }
+  std::sort(dirs.begin(), dirs.end());
+  dirs.erase(std::unique(dirs.begin(), dirs.end()), dirs.end());
+  std::vector<int> fds;
+  struct Unlock {
+    std::vector<int>& fds;
+    ~Unlock() {
+      for (const int fd : fds) {
+        ::flock(fd, LOCK_UN);
+        ::close(fd);
+      }
+    }
+  } unlock{fds};
+  for (const auto& d : dirs) {
+    const int fd = ::open(d.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) continue;  // cannot lock (e.g. no read permission): the renames are still atomic
+    fds.push_back(fd);
+    while (::flock(fd, LOCK_EX) != 0 && errno == EINTR) {
+    }
+  }
+  for (AtomicOutput* o : outputs) {
+    if (o != nullptr) o->commit();
+  }
+}
 
 void write_file_atomically(const std::string& path, const std::string& content) {
   AtomicOutput out(path);

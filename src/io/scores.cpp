@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include <fmt/format.h>
+#include <zlib.h>
 
 #include "feint/error.hpp"
 #include "feint/io/csv.hpp"
@@ -88,6 +89,8 @@ ScoresTable load_scores(const std::string& path, const ScoresOptions& options) {
 
   // (participant, condition, iteration) -> line, to name both places of a duplicate.
   std::map<std::tuple<std::string, std::string, long long>, std::uint64_t> seen;
+  std::uint64_t first_empty_condition = 0, first_condition_line = 0;
+  std::string first_empty_participant;
   while (reader.next()) {
     ScoreRecord rec;
     rec.line = reader.line();
@@ -100,10 +103,18 @@ ScoresTable load_scores(const std::string& path, const ScoresOptions& options) {
       throw InvalidData(fmt::format("{}:{}: column '{}': empty participant (expected an id)", path,
                                     rec.line, reader.header()[static_cast<std::size_t>(ip)]));
     }
-    if (table.has_condition && rec.condition.empty()) {
-      throw InvalidData(fmt::format("{}:{}: column '{}': empty condition (participant {})", path,
-                                    rec.line, reader.header()[static_cast<std::size_t>(ic)],
-                                    rec.participant));
+    if (table.has_condition) {
+      // A condition column that is empty on EVERY row means no conditions (`feint score` writes
+      // one for logs without a condition column); empty on some rows only is an error, reported
+      // once the whole file has been seen.
+      if (rec.condition.empty()) {
+        if (first_empty_condition == 0) {
+          first_empty_condition = rec.line;
+          first_empty_participant = rec.participant;
+        }
+      } else if (first_condition_line == 0) {
+        first_condition_line = rec.line;
+      }
     }
     auto iteration = parse_integer(it_text);
     if (iteration && (*iteration < 0 || *iteration > 1000000000)) iteration.reset();
@@ -146,6 +157,16 @@ ScoresTable load_scores(const std::string& path, const ScoresOptions& options) {
     throw InvalidData(fmt::format("{}: no data rows (expected one row per participant and "
                                   "iteration after the header)",
                                   path));
+  }
+  if (table.has_condition && first_empty_condition != 0) {
+    if (first_condition_line != 0) {
+      throw InvalidData(fmt::format("{}:{}: column '{}': empty condition (participant {}; line {} "
+                                    "has one: every row needs its condition, or none does)",
+                                    path, first_empty_condition,
+                                    reader.header()[static_cast<std::size_t>(ic)],
+                                    first_empty_participant, first_condition_line));
+    }
+    table.has_condition = false;  // an empty column: one condition for everybody
   }
   return table;
 }
@@ -300,6 +321,26 @@ ScoresProvenance read_scores_provenance(const std::string& scores_path) {
     }
     prov.sidecar_path = c.string();
     break;
+  }
+  // A sidecar that records the table it belongs to must match this file byte for byte.
+  std::string want_bytes, want_crc;
+  for (const auto& [k, v] : prov.settings) {
+    if (k == "output_check.bytes") want_bytes = v;
+    if (k == "output_check.crc32") want_crc = to_lower(v);
+  }
+  if (!want_bytes.empty() || !want_crc.empty()) {
+    const std::string table = read_small_file(p);
+    const uLong crc = ::crc32_z(::crc32(0L, Z_NULL, 0),
+                                reinterpret_cast<const Bytef*>(table.data()), table.size());
+    const std::string got_crc = fmt::format("{:08x}", static_cast<unsigned long>(crc));
+    if (want_bytes != std::to_string(table.size()) || want_crc != got_crc) {
+      ScoresProvenance none;
+      none.ignored = fmt::format(
+          "{} ignored: it describes a table of {} bytes (CRC-32 {}), but {} has {} bytes (CRC-32 "
+          "{}); it belongs to another run or the table was changed since",
+          prov.sidecar_path, want_bytes, want_crc, scores_path, table.size(), got_crc);
+      return none;
+    }
   }
   // The confusion normalisation: `feint score` writes settings.confusion_norm ("speed"/"raw") and
   // describes the unit in units.confusion; other tools may write any key naming a normalisation.

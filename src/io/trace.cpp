@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
 #include <set>
 #include <string_view>
@@ -46,6 +47,8 @@ const std::array<const char*, kFieldCount> kFieldNames = {
 constexpr std::array<bool, kFieldCount> kRequired = {true, false, true, false, false,
                                                      true, true,  true, false};
 
+constexpr long long kMaxIteration = 1000000000;  // as io::load_scores
+
 std::string display_name(const std::string& path) { return path == "-" ? "<stdin>" : path; }
 
 // Where a trial's rows begin, for "appeared before" messages.
@@ -65,6 +68,7 @@ struct Columns {
 struct Builder {
   Trial trial;
   std::string participant, condition, iteration;  // key as written (trimmed)
+  std::string iteration_key;  // the iteration's value (`01` -> `1`), or its text when not a number
   std::string target_text, strategy_text, variant_text, pad_speed_text;
   std::uint32_t file = 0;
   std::uint64_t last_line = 0;
@@ -78,36 +82,9 @@ struct Builder {
   }
 };
 
-// Fast path for plain decimals such as `0.527` or `-12.25` (at most 15 digits, no exponent): the
-// digits form an exact integer m < 2^53 and 10^k is exact, so m / 10^k is the correctly rounded
-// value (Clinger's fast path), identical to what parse_double returns. Anything else (blanks, a
-// sign '+', exponents, long mantissas, garbage) goes to the strict parse_double.
+// Plain decimals (the bulk of a log) take the exact fast path; the rest parse_double.
 [[gnu::always_inline]] inline std::optional<double> parse_number(std::string_view s) noexcept {
-  static constexpr double kPow10[] = {1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
-                                      1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15};
-  const char* p = s.data();
-  const char* const e = p + s.size();
-  const bool negative = p < e && *p == '-';
-  if (negative) ++p;
-  std::uint64_t mantissa = 0;
-  int digits = 0, fraction = 0;
-  while (p < e && static_cast<unsigned>(*p - '0') < 10U) {
-    mantissa = mantissa * 10 + static_cast<unsigned>(*p - '0');
-    ++digits;
-    ++p;
-  }
-  if (p < e && *p == '.') {
-    ++p;
-    while (p < e && static_cast<unsigned>(*p - '0') < 10U) {
-      mantissa = mantissa * 10 + static_cast<unsigned>(*p - '0');
-      ++digits;
-      ++fraction;
-      ++p;
-    }
-  }
-  if (p != e || digits == 0 || digits > 15) return parse_double(s);
-  const double v = static_cast<double>(mantissa) / kPow10[fraction];
-  return negative ? -v : v;
+  return detail::parse_decimal_fast(s);
 }
 
 // Trims blanks only when there are any (the common case has none).
@@ -298,6 +275,7 @@ struct TraceReader::Impl {
     b.participant.assign(p);
     b.condition.assign(c);
     b.iteration.assign(it);
+    b.iteration_key.assign(iteration_key(it));
     b.file = file_index;
     b.error.clear();
     b.error_line = 0;
@@ -328,8 +306,12 @@ struct TraceReader::Impl {
       invalid(b, line, fmt::format("column '{}': empty (expected the condition's name)",
                                    cols.name[kCondition]));
     }
-    if (const auto i = parse_integer(it)) {
+    if (const auto i = parse_integer(it); i && *i >= 0 && *i <= kMaxIteration) {
       t.iteration = *i;
+    } else if (i) {
+      // The scores tables take iterations 0..1e9 (io/scores.hpp): what score accepts, table reads.
+      invalid(b, line, fmt::format("column '{}': {} is outside 0 to 1e9 (expected an iteration "
+                                   "number)", cols.name[kIteration], it));
     } else {
       invalid(b, line, it.empty() ? fmt::format("column '{}': empty (expected a whole number)",
                                                 cols.name[kIteration])
@@ -429,13 +411,15 @@ struct TraceReader::Impl {
       invalid(b, line, fmt::format("column '{}': {} is outside [0, 1]", cols.name[kPad], ps));
       return;
     }
-    if (!t.times.empty() && !(*tv > t.times.back())) {
+    const double seconds = options.time_divisor == 1 ? *tv : *tv / options.time_divisor;
+    if (!t.times.empty() && !(seconds > t.times.back())) {
       invalid(b, line, fmt::format("column '{}': {} is not after the previous sample's {} (line "
                                    "{}; times must strictly increase)", cols.name[kT], ts,
-                                   format_double(t.times.back()), b.last_line));
+                                   format_double(t.times.back() * options.time_divisor),
+                                   b.last_line));
       return;
     }
-    t.times.push_back(*tv);
+    t.times.push_back(seconds);
     t.pads.push_back(*pv);
     b.last_line = line;
   }
@@ -468,11 +452,29 @@ struct TraceReader::Impl {
     return false;
   }
 
+  // The iteration is a number: `1`, `01` and `+1` are one iteration. A text that is not a whole
+  // number keys by itself (the trial is rejected for it anyway).
+  std::string iteration_scratch;
+  std::string_view iteration_key(std::string_view it) {
+    if (const auto v = parse_integer(it)) {
+      iteration_scratch = std::to_string(*v);
+      return iteration_scratch;
+    }
+    return it;
+  }
+
+  // Same trial as `b`? Text equality first: a log writes a trial's key the same way on every row.
+  bool same_trial(const Builder& b, std::string_view p, std::string_view c, std::string_view it) {
+    if (p != b.participant || c != b.condition) return false;
+    return it == b.iteration || iteration_key(it) == b.iteration_key;
+  }
+
   void make_key(std::string_view p, std::string_view c, std::string_view it) {
+    const std::string_view ik = iteration_key(it);
     key_scratch.clear();
     key_scratch.append(p).push_back('\x1f');
     key_scratch.append(c).push_back('\x1f');
-    key_scratch.append(it);
+    key_scratch.append(ik);
   }
 
   // Streaming: the next valid trial into `out`.
@@ -504,7 +506,7 @@ struct TraceReader::Impl {
       }
       ++rows_read;
       const std::string_view p = get(kParticipant), c = get(kCondition), it = get(kIteration);
-      if (have_cur && p == cur.participant && c == cur.condition && it == cur.iteration) {
+      if (have_cur && same_trial(cur, p, c, it)) {
         add_row(cur);
         continue;
       }
@@ -577,6 +579,9 @@ TraceReader::TraceReader(std::vector<std::string> files, TraceOptions options)
   if (options.pad_speed && !(*options.pad_speed > 0 && *options.pad_speed < 1e300)) {
     throw UsageError(fmt::format("--pad-speed: {} must be a number > 0 (pad units per second)",
                                  *options.pad_speed));
+  }
+  if (!(options.time_divisor > 0 && std::isfinite(options.time_divisor))) {
+    throw UsageError(fmt::format("time divisor {} must be a number > 0", options.time_divisor));
   }
   if (files.empty()) throw UsageError("no input files given");
   impl_->files = std::move(files);

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <zlib.h>
 
 #include "feint/error.hpp"
 #include "feint/io/csv.hpp"
@@ -79,6 +80,15 @@ void append_row(std::string& buf, const io::Trial& t, const TrialScore& s) {
 
 }  // namespace
 
+std::string to_string(TimeUnit unit) { return unit == TimeUnit::ms ? "ms" : "s"; }
+
+std::optional<TimeUnit> parse_time_unit(std::string_view text) {
+  const std::string t = io::to_lower(io::trim(text));
+  if (t == "s") return TimeUnit::s;
+  if (t == "ms") return TimeUnit::ms;
+  return std::nullopt;
+}
+
 const std::vector<std::string>& score_columns() {
   static const std::vector<std::string> cols = {
       "participant", "condition", "iteration",     "strategy", "variant",
@@ -116,7 +126,9 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
   opt.require_pad_speed =
       settings.metrics.norm == ConfusionNorm::speed && !settings.metrics.pad_speed;
   opt.unsorted = settings.unsorted;
+  opt.time_divisor = settings.time_unit == TimeUnit::ms ? 1000 : 1;
   ScoreSummary summary;
+  std::vector<double> durations;  // 8 bytes per trial: the median for the time-unit check
   ScoreProgress progress;
   if (settings.on_error == OnError::skip) {
     opt.on_reject = [&](const io::Rejection& r) {
@@ -127,9 +139,29 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
   }
   io::TraceReader reader(files, opt);
   io::Trial trial;
+  // Trials the reader accepted whose score cannot be represented (not finite): rejected here.
+  std::uint64_t unscorable_trials = 0, unscorable_rows = 0;
   while (reader.next(trial)) {
-    const TrialScore s = score_trial(trial, settings.metrics);
+    TrialScore s;
+    try {
+      s = score_trial(trial, settings.metrics);
+    } catch (const InvalidData& e) {
+      if (settings.on_error != OnError::skip) throw;
+      io::Rejection r;
+      r.file = trial.file;
+      r.line = trial.line;
+      r.participant = trial.participant;
+      r.condition = trial.condition;
+      r.iteration = std::to_string(trial.iteration);
+      r.rows = trial.rows;
+      r.reason = e.what();
+      ++unscorable_trials;
+      unscorable_rows += trial.rows;
+      opt.on_reject(r);
+      continue;
+    }
     if (s.overspeed_segments > 0) ++summary.overspeed_trials;
+    durations.push_back(s.duration);
     on_trial(trial, s);
     ++progress.trials_scored;
     if (settings.on_progress) {
@@ -140,20 +172,56 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
   }
   summary.files = reader.files_read();
   summary.rows_read = reader.rows_read();
-  summary.rows_scored = reader.rows_in_trials();
-  summary.rows_rejected = reader.rows_rejected();
+  summary.rows_scored = reader.rows_in_trials() - unscorable_rows;
+  summary.rows_rejected = reader.rows_rejected() + unscorable_rows;
   summary.trials_scored = progress.trials_scored;
-  summary.trials_rejected = reader.trials_rejected();
+  summary.trials_rejected = reader.trials_rejected() + unscorable_trials;
   summary.bytes_read = reader.bytes_consumed();
   if (summary.rows_read != summary.rows_scored + summary.rows_rejected) {
     throw std::logic_error(fmt::format("row accounting does not add up: {} read, {} scored, {} "
                                        "rejected", summary.rows_read, summary.rows_scored,
                                        summary.rows_rejected));
   }
+  if (!durations.empty()) {
+    const auto mid = durations.begin() + static_cast<std::ptrdiff_t>(durations.size() / 2);
+    std::nth_element(durations.begin(), mid, durations.end());
+    double median = *mid;
+    if (durations.size() % 2 == 0) median = 0.5 * (median + *std::max_element(durations.begin(), mid));
+    summary.median_duration = median;
+    summary.max_duration = *std::max_element(durations.begin(), durations.end());
+    std::string warning;
+    if (settings.time_unit == TimeUnit::s && median > kMedianDurationHighS) {
+      warning = fmt::format(
+          "the median trial lasts {:.4g} s ({} trials, longest {:.4g} s): implausible for seconds; "
+          "if the logs' times are in milliseconds, give --time-unit ms (every confusion and "
+          "duration would otherwise be off by a factor of 1000)",
+          median, durations.size(), summary.max_duration);
+    } else if (settings.time_unit == TimeUnit::ms && median < kMedianDurationLowMs) {
+      warning = fmt::format(
+          "with --time-unit ms the median trial lasts {:.4g} s ({} trials, longest {:.4g} s): "
+          "implausibly short; are the logs' times in seconds already?",
+          median, durations.size(), summary.max_duration);
+    }
+    if (!warning.empty()) {
+      summary.warnings.push_back(warning);
+      if (settings.on_warning) {
+        settings.on_warning(warning);
+      } else {
+        fmt::print(stderr, "feint: warning: {}\n", warning);
+      }
+    }
+  }
   if (summary.trials_scored == 0) {
     if (summary.rows_read == 0) {
-      throw InvalidData(fmt::format("no valid trial: the input ({} file(s)) holds no data rows",
-                                    summary.files));
+      // Name the file(s): "the input holds no data rows" does not say which file was meant.
+      std::vector<std::string> names;
+      for (std::size_t i = 0; i < files.size() && i < 3; ++i) {
+        names.push_back(files[i] == "-" ? "<stdin>" : files[i]);
+      }
+      if (files.size() > 3) names.push_back(fmt::format("and {} more", files.size() - 3));
+      throw InvalidData(fmt::format("{}: no data rows (a header only; expected one row per pad "
+                                    "sample after it), so no valid trial to score",
+                                    fmt::join(names, ", ")));
     }
     throw InvalidData(fmt::format("no valid trial: {} rows read, all {} trial(s) rejected",
                                   summary.rows_read, summary.trials_rejected));
@@ -188,6 +256,15 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
     }
   }
   std::ostream& os = out.stream();
+  // The table's size and CRC-32, recorded in the sidecar: a reader can tell whether a sidecar
+  // describes the table beside it (io::read_scores_provenance ignores one that does not).
+  std::uint64_t table_bytes = 0;
+  uLong table_crc = ::crc32(0L, Z_NULL, 0);
+  auto emit = [&](const std::string& b) {
+    table_crc = ::crc32_z(table_crc, reinterpret_cast<const Bytef*>(b.data()), b.size());
+    table_bytes += b.size();
+    os.write(b.data(), static_cast<std::streamsize>(b.size()));
+  };
   double v_min = std::numeric_limits<double>::infinity(), v_max = -v_min;
   std::string rejects_csv;
   if (!rejects.empty()) rejects_csv = "file,line,participant,condition,iteration,rows,reason\n";
@@ -204,7 +281,7 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
     }
     // Standard output cannot be rolled back: keep the (small) table until the run has succeeded.
     if (!out.is_stdout() && !out.in_place() && buf.size() >= (1 << 16) - 512) {
-      os.write(buf.data(), static_cast<std::streamsize>(buf.size()));
+      emit(buf);
       buf.clear();
     }
   };
@@ -219,17 +296,20 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
     }
     throw;
   }
-  os.write(buf.data(), static_cast<std::streamsize>(buf.size()));
+  emit(buf);
   summary.output_path = output_path;
   summary.rejects_path = rejects;
   summary.sidecar_path = sidecar;
 
+  std::unique_ptr<io::AtomicOutput> sidecar_out;
   if (!sidecar.empty()) {
     const auto& m = settings.metrics;
     std::string j = "{\n";
     j += fmt::format("  \"tool\": \"feint score\",\n  \"feint_version\": {},\n",
                      io::json_quote(settings.tool_version));
     j += fmt::format("  \"output\": {},\n", io::json_quote(output_path));
+    j += fmt::format("  \"output_check\": {{\"bytes\": {}, \"crc32\": \"{:08x}\"}},\n", table_bytes,
+                     static_cast<unsigned long>(table_crc));
     j += "  \"settings\": {\n";
     j += fmt::format("    \"trim_start\": {},\n    \"trim_end\": {},\n", io::json_number(m.trim_start),
                      io::json_number(m.trim_end));
@@ -248,6 +328,7 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
     j += fmt::format("    \"on_error\": \"{}\",\n",
                      settings.on_error == OnError::strict ? "strict" : "skip");
     j += fmt::format("    \"unsorted\": {},\n", settings.unsorted ? "true" : "false");
+    j += fmt::format("    \"time_unit\": \"{}\",\n", to_string(settings.time_unit));
     j += fmt::format("    \"delimiter\": {},\n",
                      settings.delimiter == 0 ? std::string("\"auto\"")
                                              : io::json_quote(std::string(1, settings.delimiter)));
@@ -269,6 +350,13 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
         "\"overspeed_trials\": {}}},\n",
         summary.files, summary.rows_read, summary.rows_scored, summary.rows_rejected,
         summary.trials_scored, summary.trials_rejected, summary.overspeed_trials);
+    j += fmt::format("  \"durations\": {{\"median\": {}, \"max\": {}}},\n",
+                     io::json_number(summary.median_duration), io::json_number(summary.max_duration));
+    j += "  \"warnings\": [";
+    for (std::size_t i = 0; i < summary.warnings.size(); ++i) {
+      j += fmt::format("{}{}", i ? ", " : "", io::json_quote(summary.warnings[i]));
+    }
+    j += "],\n";
     j += fmt::format("  \"rejects\": {},\n",
                      rejects.empty() ? std::string("null") : io::json_quote(rejects));
     j += "  \"units\": {\"duration\": \"s\", \"reversal_time\": \"s since the trial's first sample\", "
@@ -276,11 +364,18 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
     j += m.norm == ConfusionNorm::speed ? "\"fraction of full-speed movement, [0, 1]\""
                                         : "\"pad units (paper's eq. 4, unnormalised)\"";
     j += ", \"target\": \"pad coordinate (0 = left, 1 = right)\"}\n}\n";
-    // The scores are committed last: a scores file never exists without its sidecar.
-    io::write_file_atomically(sidecar, j);
+    sidecar_out = std::make_unique<io::AtomicOutput>(sidecar);
+    sidecar_out->stream() << j;
   }
-  if (!rejects.empty()) io::write_file_atomically(rejects, rejects_csv);
-  out.commit();
+  std::unique_ptr<io::AtomicOutput> rejects_out;
+  if (!rejects.empty()) {
+    rejects_out = std::make_unique<io::AtomicOutput>(rejects);
+    rejects_out->stream() << rejects_csv;
+  }
+  // All three are written in full before any is renamed; then they replace the old ones as one
+  // unit (under a lock on their folder), the scores last: a scores file never exists without its
+  // sidecar, and two runs writing the same output never pair one's scores with the other's sidecar.
+  io::commit_together({sidecar_out.get(), rejects_out.get(), &out});
   return summary;
 }
 

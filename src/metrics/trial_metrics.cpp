@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -86,19 +87,28 @@ TrialScore score_trace(std::span<const double> times, std::span<const double> pa
   }
 
   // Work in w = t - t0 (the time weight of metrics.md) so that the result does not depend on where
-  // the clock started.
+  // the clock started, and in units of 2^-k s with 2^k <= tau < 2^(k+1): multiplying by a power of
+  // two is exact, so ordinary durations give bit for bit the seconds' result, while 1e-300 s or
+  // 1e263 s no longer underflow or overflow in the squared time weights (w^2 / 2).
   const double t0 = times[0];
-  auto w = [&](std::size_t i) { return times[i] - t0; };
-  const double tau = w(n - 1);
-  if (!(tau > 0) || !std::isfinite(tau)) {
-    throw InvalidData(fmt::format("duration {} must be > 0", tau));
+  const double duration = times[n - 1] - t0;
+  if (!std::isfinite(duration)) {
+    throw InvalidData(fmt::format("duration ({} - {} s) is not a finite number", times[n - 1], t0));
   }
+  if (!(duration > 0)) throw InvalidData(fmt::format("duration {} must be > 0", duration));
+  const int k = std::ilogb(duration);
+  // 2^-k as one or two factors (2^1074 for the smallest subnormal duration is not a double); a
+  // multiplication, not std::ldexp, which is a library call in the hot loop.
+  const int k1 = std::clamp(-k, -1000, 1000);
+  const double s1 = std::ldexp(1.0, k1), s2 = std::ldexp(1.0, -k - k1);
+  auto w = [&](std::size_t i) { return (times[i] - t0) * s1 * s2; };
+  const double tau = w(n - 1);
   const double a = settings.trim_start * tau;
   const double b = (1 - settings.trim_end) * tau;
 
   TrialScore s;
   s.n_samples = n;
-  s.duration = tau;
+  s.duration = duration;
   s.final_pad = pads[n - 1];
 
   // Direction of each segment, first direction, reversal, number of reversals, overspeed.
@@ -121,7 +131,8 @@ TrialScore score_trace(std::span<const double> times, std::span<const double> pa
       if (speed > *v * (1 + kOverspeedTolerance)) ++s.overspeed_segments;
     }
   }
-  s.reversal_time = rev_segment < n ? w(rev_segment) : std::numeric_limits<double>::quiet_NaN();
+  s.reversal_time = rev_segment < n ? times[rev_segment] - t0
+                                    : std::numeric_limits<double>::quiet_NaN();
 
   // Error: exact integral of |T - mu| over [a, b].
   auto mu_at = [&](std::size_t i, double x) {  // mu at w = x inside segment i
@@ -144,6 +155,8 @@ TrialScore score_trace(std::span<const double> times, std::span<const double> pa
     if (rev_segment < n) {
       const double cs = std::max(x0, c), ce = std::min(x1, b);
       if (ce > cs) {
+        // dt > 0, so the speed is never NaN; it may be +inf (dt near the smallest double), which
+        // is full speed for 'speed' and makes the raw confusion infinite (rejected below).
         const double seg_speed = std::fabs(pads[i + 1] - pads[i]) / (times[i + 1] - times[i]);
         const double weight = 0.5 * (ce * ce - cs * cs);  // integral of w over [cs, ce]
         const double rate = settings.norm == ConfusionNorm::speed ? std::min(1.0, seg_speed / *v)
@@ -158,7 +171,17 @@ TrialScore score_trace(std::span<const double> times, std::span<const double> pa
     const double denom = 0.5 * (b * b - a * a);
     s.confusion = std::clamp(moving / denom, 0.0, 1.0);
   } else {
-    s.confusion = moving / tau;
+    // moving / tau in seconds: the 2^-k of the weights (squared) and of tau (once) leave one.
+    s.confusion = std::ldexp(moving / tau, k);
+  }
+  // A score that is not a finite number must never be written: the trial is invalid (e.g. a
+  // segment moving faster than the largest double pad units per second, for the raw confusion).
+  for (const auto& [name, value] : {std::pair<const char*, double>{"error", s.error},
+                                    {"confusion", s.confusion}}) {
+    if (!std::isfinite(value)) {
+      throw InvalidData(fmt::format("{} is not a finite number ({}; the trial's {} samples span "
+                                    "{} s)", name, value, n, duration));
+    }
   }
   return s;
 }

@@ -1,5 +1,9 @@
 #include "feint/report/describe.hpp"
 
+#include <cmath>
+#include <cstdlib>
+#include <optional>
+
 #include <fmt/format.h>
 
 #include "feint/error.hpp"
@@ -21,12 +25,28 @@ DescribeTable build_describe(const io::NumericColumn& column, double conf_level)
   t.missing = column.missing;
   // From the decimal text when the loader kept it: mean, sd and the CI then reach LRE >= 13 on
   // NIST StRD NumAcc4, which values already rounded to double cannot (statistics.md).
+  // Text the exact reading cannot take (values 10^-300 and 10^300 apart in one column, exponents
+  // beyond 400) falls back to the doubles the loader read: describe never rejects what loads.
   for (std::size_t g = 0; g < column.values.size(); ++g) {
-    t.descriptions.push_back(g < column.texts.size()
-                                 ? stats::describe_decimal(column.texts[g], conf_level)
-                                 : stats::describe(column.values[g], conf_level));
+    std::optional<stats::Description> d;
+    if (g < column.texts.size()) {
+      try {
+        d = stats::describe_decimal(column.texts[g], conf_level);
+      } catch (const InvalidData&) {
+        d.reset();
+      }
+    }
+    t.descriptions.push_back(d ? *d : stats::describe(column.values[g], conf_level));
   }
   return t;
+}
+
+std::string format_for_print(double value, int digits) {
+  if (!std::isfinite(value)) return io::format_double(value);
+  // signif(value, digits) as R rounds for print, then the shortest text of that double.
+  const std::string rounded = fmt::format("{:.{}e}", value, digits - 1);
+  const double r = std::strtod(rounded.c_str(), nullptr);
+  return fmt::format("{}", r == 0 ? 0.0 : r);
 }
 
 std::vector<Record> describe_records(const DescribeTable& t) {
@@ -55,16 +75,25 @@ std::string render_describe(const DescribeTable& t, OutputFormat format) {
     tt.header.emplace_back(c);
     tt.right_align.push_back(c != "variable" && c != "group");
   }
+  // For print: statistics rounded to kPrintDigits significant digits (a reader compares them with
+  // a paper's); CSV and JSON above keep every digit (the shortest round-trip text).
   for (const auto& rec : records) {
     TextTable::Row row;
-    for (const auto& cell : rec) row.cells.push_back(cell.text);
+    for (std::size_t c = 0; c < rec.size(); ++c) {
+      const auto& cell = rec[c];
+      const bool statistic = columns[c] != "variable" && columns[c] != "group" && columns[c] != "n";
+      const auto v = statistic && cell.kind == Cell::Kind::number
+                         ? io::parse_double(cell.text) : std::optional<double>();
+      row.cells.push_back(v ? format_for_print(*v, kPrintDigits) : cell.text);
+    }
     tt.rows.push_back(std::move(row));
   }
   tt.notes.push_back(fmt::format(
       "sd with n - 1; se = sd / sqrt(n); quartiles as R's quantile(type = 7); conf_low/conf_high: "
       "{}% t confidence interval of the mean; autocorr_lag1: lag-1 autocorrelation in file order "
-      "(NIST's r1). Numbers in full precision (shortest text that reads back as the same double).",
-      io::format_double(t.conf_level * 100)));
+      "(NIST's r1). Numbers rounded to {} significant digits for print; --format csv or json gives "
+      "them in full precision.",
+      io::format_double(t.conf_level * 100), kPrintDigits));
   for (std::size_t g = 0; g < t.groups.size(); ++g) {
     const std::string who = t.by.empty() ? t.variable : fmt::format("{} = {}", t.by, t.groups[g]);
     if (g < t.missing.size() && t.missing[g] > 0) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
+#include <utility>
 #include <vector>
 
 #include <boost/math/distributions/students_t.hpp>
@@ -68,12 +70,37 @@ std::optional<double> Summary::se() const noexcept {
 
 namespace detail {
 
+long double exact_sum(const std::vector<double>& x) {
+  // Shewchuk (1997), "Adaptive precision floating-point arithmetic": the partials are
+  // non-overlapping doubles whose sum is exactly the sum of x (Python's math.fsum). Their sum in
+  // long double, largest last, is the total to ~1e-19 relative.
+  std::vector<double> partials;
+  for (double v : x) {
+    std::size_t i = 0;
+    for (double p : partials) {
+      if (std::fabs(v) < std::fabs(p)) std::swap(v, p);
+      const double hi = v + p;
+      const double lo = p - (hi - v);
+      if (lo != 0) partials[i++] = lo;
+      v = hi;
+    }
+    partials.resize(i);
+    partials.push_back(v);
+    if (!std::isfinite(v)) return std::numeric_limits<long double>::quiet_NaN();
+  }
+  long double total = 0;
+  for (const double p : partials) total += p;
+  return total;
+}
+
 Shifted shift_doubles(const std::vector<double>& x) {
   Shifted s;
   if (x.empty()) return s;
   s.shift = x[0];
   s.a.reserve(x.size());
   for (double v : x) s.a.push_back(static_cast<long double>(v) - s.shift);
+  const long double total = exact_sum(x);
+  if (std::isfinite(total)) s.total = total;
   return s;
 }
 
@@ -98,7 +125,7 @@ Summary summary_of(const Shifted& sh) {
     corr += d;
   }
   s.n = sh.a.size();
-  const long double mean = sh.shift + dmean / sh.scale;
+  const long double mean = sh.total ? *sh.total / n / sh.scale : sh.shift + dmean / sh.scale;
   s.mean = static_cast<double>(mean);
   s.mean_lo = static_cast<double>(mean - s.mean);
   s.m2 = static_cast<double>(std::max(0.0L, ss - corr * corr / n) / (sh.scale * sh.scale));
@@ -192,6 +219,14 @@ Description describe_from(std::vector<double> sorted, const Summary& s,
   }
   d.sd = s.sd();
   d.se = s.se();
+  if (!std::isfinite(*d.sd)) {
+    // Squared deviations beyond the largest double (values near 1e300): not computable, never Inf.
+    d.sd.reset();
+    d.se.reset();
+    d.note = std::string("the sum of squared deviations exceeds the largest double: sd, standard "
+                         "error and confidence interval not computable");
+    return d;
+  }
   if (!(*d.sd > 0)) {
     d.note = std::string("constant data: confidence interval and lag-1 autocorrelation undefined");
     return d;

@@ -1,8 +1,12 @@
 #include "feint/stats/exact_decimal.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <cstdlib>
 #include <cstdint>
 #include <limits>
+#include <optional>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -42,7 +46,12 @@ Decimal parse_decimal(std::string_view text) {
     if (c >= '0' && c <= '9') {
       any = true;
       if (d.mantissa != 0 || c != '0') ++digits;
-      if (digits > kMaxDigits) bad(text, "more than 36 significant digits");
+      if (digits > kMaxDigits) {
+        // Digits beyond the 36th change the value by less than 1e-35 relative, far below what
+        // a double holds: dropped (the number stays in range, only its tail is cut).
+        if (!point) --after_point;  // an integer digit dropped: one power of ten fewer
+        continue;
+      }
       d.mantissa = d.mantissa * 10 + (c - '0');
       if (point) ++after_point;
     } else if (c == '.' && !point) {
@@ -70,6 +79,23 @@ Decimal parse_decimal(std::string_view text) {
   return d;
 }
 
+// The correctly rounded double of a decimal text that parse_decimal accepted.
+double read_double(std::string_view text) {
+  std::size_t i = 0, end = text.size();
+  while (i < end && (text[i] == ' ' || text[i] == '\t')) ++i;
+  while (end > i && (text[end - 1] == ' ' || text[end - 1] == '\t' || text[end - 1] == '\r')) --end;
+  if (i < end && text[i] == '+') ++i;
+  double v = 0;
+  const auto [p, ec] = std::from_chars(text.data() + i, text.data() + end, v);
+  if (ec == std::errc::result_out_of_range) {
+    // Only an underflow can get here (parse_decimal bounds the exponent): strtod's value.
+    v = std::strtod(std::string(text.substr(i, end - i)).c_str(), nullptr);
+  } else if (ec != std::errc() || p != text.data() + end) {
+    bad(text, "unexpected character");
+  }
+  return v;
+}
+
 i128 pow10(int k, std::string_view context) {
   if (k < 0 || k > 38) throw InvalidData(fmt::format("{}: decimal scales too far apart", context));
   i128 p = 1;
@@ -88,6 +114,7 @@ struct ExactGroups {
   std::vector<std::vector<long double>> a;
   long double shift = 0;
   long double scale = 1;
+  std::optional<long double> total;  // exact sum of every value * scale, when it fits
 };
 
 ExactGroups read_exact(std::span<const std::vector<std::string>> groups) {
@@ -112,8 +139,8 @@ ExactGroups read_exact(std::span<const std::vector<std::string>> groups) {
       throw InvalidData(fmt::format("{}: too many digits to read exactly", what));
     return d.mantissa * f;
   };
-  i128 shift = 0;
-  bool first = true;
+  i128 shift = 0, total = 0;
+  bool first = true, total_ok = true;
   for (std::size_t g = 0; g < dec.size(); ++g) {
     for (std::size_t i = 0; i < dec[g].size(); ++i) {
       const i128 v = to_int(dec[g][i], groups[g][i]);
@@ -123,11 +150,13 @@ ExactGroups read_exact(std::span<const std::vector<std::string>> groups) {
       }
       // |v|, |shift| < max / 4: the difference cannot overflow; beyond 2^64 long double rounds it.
       out.a[g].push_back(static_cast<long double>(v - shift));
+      if (total_ok) total_ok = !__builtin_add_overflow(total, v, &total);
     }
   }
   // The final results need shift / 10^scale; with scale < 0 the shift is an integer times 10^-scale.
   out.scale = pow10l(scale);
   out.shift = static_cast<long double>(shift) / out.scale;
+  if (total_ok) out.total = static_cast<long double>(total);
   return out;
 }
 
@@ -138,6 +167,7 @@ detail::Shifted single(std::span<const std::string> text) {
   s.a = std::move(e.a[0]);
   s.shift = e.shift;
   s.scale = e.scale;
+  s.total = e.total;
   return s;
 }
 
@@ -153,9 +183,11 @@ std::optional<double> autocorr_lag1_decimal(std::span<const std::string> text) {
 
 Description describe_decimal(std::span<const std::string> text, double conf_level) {
   const detail::Shifted sh = single(text);
+  // Order statistics are values of the file: each text read once, correctly rounded (as the
+  // loaders read it), never rebuilt from the shifted integers (0.3, not 0.2999999999999998).
   std::vector<double> values;
-  values.reserve(sh.a.size());
-  for (long double a : sh.a) values.push_back(static_cast<double>(sh.shift + a / sh.scale));
+  values.reserve(text.size());
+  for (const auto& t : text) values.push_back(read_double(t));
   return detail::describe_from(std::move(values), detail::summary_of(sh),
                                [&] { return detail::autocorr_of(sh); }, conf_level);
 }

@@ -18,6 +18,10 @@ struct Shifted {
   std::vector<long double> a;
   long double shift = 0;
   long double scale = 1;
+  /// The sum of the x_i * scale, exact or nearly (exact integers for decimal text, Shewchuk's
+  /// exact sum for doubles), when known: the mean is then total / n / scale, with no cancellation
+  /// error when values of opposite sign cancel ({1e9, -1e9, 1} has mean 1/3 to the last bit).
+  std::optional<long double> total;
 };
 
 Summary summary_of(const Shifted& s);

@@ -251,3 +251,18 @@ TEST(Json, QuotesStringsAndWritesNumbersOrNull) {
   EXPECT_EQ(feint::io::json_number(std::nan("")), "null");
   EXPECT_EQ(feint::io::json_number(HUGE_VAL), "null");
 }
+
+// Issue 8: a blank first line (or several, or a BOM then blank lines) must not turn off
+// delimiter detection: blank lines before the header are skipped like blank lines anywhere.
+TEST(CsvReader, BlankLinesBeforeTheHeaderKeepDelimiterDetection) {
+  CsvReader semi(temp_file("blank_semi.csv", "\na;b\n1,5;2\n").string());
+  EXPECT_EQ(semi.delimiter(), ';');
+  EXPECT_EQ(semi.header().size(), 2u);
+  ASSERT_TRUE(semi.next());
+  EXPECT_EQ(semi.field(0), "1,5");
+  EXPECT_EQ(semi.line(), 3u);
+  CsvReader tab(temp_file("blank_tab.tsv", "\xEF\xBB\xBF\r\n \n\ta\tb\n1\t2\t3\n").string());
+  EXPECT_EQ(tab.delimiter(), '\t');
+  ASSERT_EQ(tab.header().size(), 3u);
+  EXPECT_EQ(tab.header()[1], "a");
+}

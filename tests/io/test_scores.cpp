@@ -125,9 +125,23 @@ TEST_F(ScoresFile, EmptyParticipantOrCondition) {
   const auto p = write("s.csv", "participant,condition,iteration,error,confusion\n,a,1,0.5,0.5\n");
   EXPECT_EQ(invalid_message([&] { load_scores(p); }),
             p + ":2: column 'participant': empty participant (expected an id)");
-  const auto q = write("q.csv", "participant,condition,iteration,error,confusion\nP1,,1,0.5,0.5\n");
+  const auto q = write("q.csv", "participant,condition,iteration,error,confusion\nP1,a,1,0.5,0.5\n"
+                                "P1,,2,0.5,0.5\n");
   EXPECT_EQ(invalid_message([&] { load_scores(q); }),
-            q + ":2: column 'condition': empty condition (participant P1)");
+            q + ":3: column 'condition': empty condition (participant P1; line 2 has one: every row "
+                "needs its condition, or none does)");
+}
+
+// Issue 8: `feint score` on logs without a condition column writes an empty condition column;
+// the tables read it as one condition for everybody (the score -> table round trip).
+TEST_F(ScoresFile, AConditionColumnEmptyOnEveryRowMeansNoConditions) {
+  const auto p = write("s.csv", "participant,condition,iteration,error,confusion\nP1,,1,0.5,0.5\n"
+                                "P2,,1,0.25,0.5\nP1,,2,0.5,\n");
+  const auto t = load_scores(p);
+  EXPECT_FALSE(t.has_condition);
+  ASSERT_EQ(t.records.size(), 3u);
+  EXPECT_EQ(t.conditions(), std::vector<std::string>{""});
+  EXPECT_EQ(t.records[1].values[0], 0.25);
 }
 
 TEST_F(ScoresFile, DuplicateParticipantIterationNamesBothLines) {

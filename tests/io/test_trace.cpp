@@ -372,3 +372,50 @@ TEST(TraceReader, NumbersAreReadExactlyAsParseDouble) {
     ASSERT_EQ(trials[0].times[i], *feint::io::parse_double(texts[i])) << texts[i];
   }
 }
+
+// Issue 8: the iteration is a number, so `1` and `01` (and `+1`) are the same trial.
+TEST(TraceReader, IterationKeysAreNumbersSoOneAndZeroOneAreOneTrial) {
+  const auto p = write("iter.csv", kHeader + row("P1,a,1", "right", "0", "0.5") +
+                                       row("P1,a,01", "right", "1", "0.6") +
+                                       row("P1,a,+1", "right", "2", "0.7"));
+  const auto trials = read_all({p});
+  ASSERT_EQ(trials.size(), 1U);
+  EXPECT_EQ(trials[0].iteration, 1);
+  EXPECT_EQ(trials[0].times.size(), 3U);
+  TraceOptions unsorted;
+  unsorted.unsorted = true;
+  const auto q = write("iter2.csv", kHeader + row("P1,a,1", "right", "0", "0.5") +
+                                        row("P1,a,2", "right", "0", "0.5") +
+                                        row("P1,a,2", "right", "1", "0.5") +
+                                        row("P1,a,01", "right", "1", "0.6"));
+  const auto grouped = read_all({q}, unsorted);
+  ASSERT_EQ(grouped.size(), 2U);
+  EXPECT_EQ(grouped[0].iteration, 1);
+  EXPECT_EQ(grouped[0].times.size(), 2U);
+}
+
+TEST(TraceRejects, AnIterationWrittenDifferentlyThatReappearsIsTheSameTrialReappearing) {
+  const auto msg = strict_error(kHeader + row("P1,a,1", "right", "0", "0.5") +
+                                row("P1,a,1", "right", "1", "0.5") + row("P1,a,2", "right", "0", "0.5") +
+                                row("P1,a,2", "right", "1", "0.5") + row("P1,a,01", "right", "2", "0.5") +
+                                row("P1,a,01", "right", "3", "0.5"));
+  EXPECT_NE(msg.find("strict.csv:6: rows of this trial already appeared at "), std::string::npos) << msg;
+}
+
+// Issue 8: blank lines before the header are skipped; the delimiter is still detected.
+TEST(TraceReader, BlankLinesBeforeTheHeaderAreSkipped) {
+  const auto p = write("blank.csv", "\n\r\n\nparticipant;iteration;target;t;pad\nP1;1;left;0;0.5\n"
+                                    "P1;1;left;1;0.25\n");
+  const auto trials = read_all({p});
+  ASSERT_EQ(trials.size(), 1U);
+  EXPECT_EQ(trials[0].line, 5U);
+  EXPECT_EQ(trials[0].pads[1], 0.25);
+}
+
+TEST(TraceRejects, IterationsOutsideWhatTheTablesReadAreInvalid) {
+  auto msg = strict_error(kHeader + row("P1,a,-1", "right", "0", "0.5"));
+  EXPECT_NE(msg.find("strict.csv:2: column 'iteration': -1 is outside 0 to 1e9"), std::string::npos)
+      << msg;
+  msg = strict_error(kHeader + row("P1,a,1000000001", "right", "0", "0.5"));
+  EXPECT_NE(msg.find("is outside 0 to 1e9"), std::string::npos) << msg;
+}

@@ -14,6 +14,7 @@
 #include "feint/error.hpp"
 #include "feint/io/csv.hpp"
 #include "feint/io/number.hpp"
+#include "feint/io/scores.hpp"
 #include "feint/metrics/score.hpp"
 
 namespace fs = std::filesystem;
@@ -173,4 +174,178 @@ TEST_F(ScoreLib, ASpecialFileIsWrittenInPlaceNeverReplaced) {
   EXPECT_EQ(captured.substr(0, 24), "participant,condition,it");
   EXPECT_NE(captured.find("\nP1,adaptive,1,"), std::string::npos) << captured;
   EXPECT_TRUE((listing() == std::vector<std::string>{"log.csv", "pipe"}));
+}
+
+// Issue 8: extreme trial durations. Scores do not depend on the unit of time (metrics.md), so a
+// trace stretched to 1e263 s or squeezed to 1e-300 s scores as the original; a score that cannot
+// be represented (a speed beyond the largest double) rejects the trial with the reason.
+TEST_F(ScoreLib, ExtremeDurationsScoreAsTheUnscaledTrace) {
+  for (const double scale : {1e-300, 1e-250, 1e263, 1e300}) {
+    const double t[] = {0, 0.3, 1, 2, 4};
+    const double mu[] = {0.5, 0.6, 0.4, 0.4, 0.9};
+    std::string s = kHeader;
+    for (int i = 0; i < 5; ++i) {
+      s += "P1,A,1,right," + feint::io::format_double(t[i] * scale) + "," +
+           feint::io::format_double(mu[i]) + "," + feint::io::format_double(1 / scale) + "\n";
+    }
+    const auto in = write("extreme.csv", s);
+    for (const auto norm : {feint::metrics::ConfusionNorm::speed, feint::metrics::ConfusionNorm::raw}) {
+      ScoreSettings st;
+      st.metrics.norm = norm;
+      std::vector<feint::metrics::TrialScore> got;
+      feint::metrics::score_each({in}, st, [&](const feint::io::Trial&,
+                                               const feint::metrics::TrialScore& sc) {
+        got.push_back(sc);
+      });
+      ASSERT_EQ(got.size(), 1u);
+      SCOPED_TRACE(scale);
+      EXPECT_NEAR(got[0].error, 25.0 / 54, 1e-12);
+      // Speed: metrics.md's 287/1440. Raw confusion is in pad units, the same for every unit of
+      // time too: metrics.md gives 287/800 for example E.
+      EXPECT_NEAR(got[0].confusion,
+                  norm == feint::metrics::ConfusionNorm::speed ? 287.0 / 1440 : 287.0 / 800, 1e-12);
+      EXPECT_NEAR(got[0].reversal_time / scale, 0.3, 1e-12);
+      EXPECT_TRUE(std::isfinite(got[0].duration));
+    }
+  }
+}
+
+TEST_F(ScoreLib, AScoreThatIsNotFiniteRejectsTheTrialNeverWritesIt) {
+  // A pad moving 0.5 in 1e-310 s: its speed (5e309 pad units/s) is beyond the largest double, so
+  // the raw confusion cannot be represented.
+  const std::string log = kHeader + "P1,A,1,right,0,0.5,1\nP1,A,1,right,1e-310,1,1\n"
+                          "P1,A,1,right,2e-310,0.5,1\nP1,A,1,right,3e-310,0.6,1\n" + example_e("P2,A,1");
+  const auto in = write("tiny.csv", log);
+  ScoreSettings st;
+  st.metrics.norm = feint::metrics::ConfusionNorm::raw;
+  try {
+    feint::metrics::score_to_file({in}, st, (dir_ / "s.csv").string());
+    FAIL() << "a non-finite score was written";
+  } catch (const feint::InvalidData& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(in + ":2:"), std::string::npos) << what;
+    EXPECT_NE(what.find("(trial P1/A/1)"), std::string::npos) << what;
+    EXPECT_NE(what.find("not a finite number"), std::string::npos) << what;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "s.csv"));
+  st.on_error = OnError::skip;
+  const auto summary = feint::metrics::score_to_file({in}, st, (dir_ / "s.csv").string());
+  EXPECT_EQ(summary.trials_scored, 1u);
+  EXPECT_EQ(summary.trials_rejected, 1u);
+  EXPECT_EQ(summary.rows_rejected, 4u);
+  EXPECT_EQ(summary.rows_scored, 5u);
+  const std::string scores = read(dir_ / "s.csv");
+  EXPECT_EQ(scores.find("P1,"), std::string::npos) << scores;
+  EXPECT_EQ(scores.find("nan"), std::string::npos);
+  EXPECT_EQ(scores.find("inf"), std::string::npos);
+  const std::string rejects = read(dir_ / "s.csv.rejects.csv");
+  EXPECT_NE(rejects.find("not a finite number"), std::string::npos) << rejects;
+  EXPECT_NE(rejects.find(",P1,A,1,4,"), std::string::npos) << rejects;
+}
+
+TEST_F(ScoreLib, HeaderOnlyInputNamesTheFile) {
+  const auto p = write("only_header.csv", kHeader);
+  try {
+    feint::metrics::score_to_file({p}, ScoreSettings{}, (dir_ / "s.csv").string());
+    FAIL();
+  } catch (const feint::InvalidData& e) {
+    EXPECT_EQ(std::string(e.what()), p + ": no data rows (a header only; expected one row per pad "
+                                         "sample after it), so no valid trial to score");
+  }
+}
+
+// Issue 8: times in milliseconds. --time-unit ms converts them to seconds (the scores equal the
+// seconds log's), is recorded in the sidecar, and a seconds reading of a ms log warns once.
+TEST_F(ScoreLib, TimeUnitMsConvertsToSecondsAndIsRecorded) {
+  const double t[] = {0, 300, 1000, 2000, 4000};  // example E in ms
+  const double mu[] = {0.5, 0.6, 0.4, 0.4, 0.9};
+  std::string log = kHeader;
+  for (int i = 0; i < 5; ++i) {
+    log += "P1,A,1,right," + feint::io::format_double(t[i]) + "," + feint::io::format_double(mu[i]) +
+           ",1\n";
+  }
+  const auto in = write("ms.csv", log);
+  ScoreSettings st;
+  st.time_unit = feint::metrics::TimeUnit::ms;
+  std::vector<std::string> warnings;
+  st.on_warning = [&](const std::string& w) { warnings.push_back(w); };
+  std::vector<feint::metrics::TrialScore> got;
+  auto collect = [&](const feint::io::Trial&, const feint::metrics::TrialScore& s) { got.push_back(s); };
+  feint::metrics::score_each({in}, st, collect);
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_NEAR(got[0].error, 25.0 / 54, 1e-12);
+  EXPECT_NEAR(got[0].confusion, 287.0 / 1440, 1e-12);
+  EXPECT_EQ(got[0].duration, 4.0);
+  EXPECT_NEAR(got[0].reversal_time, 0.3, 1e-15);
+  EXPECT_TRUE(warnings.empty());
+
+  const auto out = (dir_ / "s.csv").string();
+  const auto summary = feint::metrics::score_to_file({in}, st, out);
+  EXPECT_EQ(summary.median_duration, 4.0);
+  EXPECT_NE(read(out + ".meta.json").find("\"time_unit\": \"ms\""), std::string::npos);
+
+  // The same log read as seconds: a 4000 s trial. One warning, with the figures and the fix.
+  got.clear();
+  ScoreSettings secs;
+  secs.on_warning = st.on_warning;
+  feint::metrics::score_each({in}, secs, collect);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("the median trial lasts 4000 s (1 trials, longest 4000 s)"),
+            std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("--time-unit ms"), std::string::npos) << warnings[0];
+  // The pad speed is in pad units per second: read as seconds, every movement looks 1000 times
+  // slower than it was, and the confusion is 1000 times too small (what the warning prevents).
+  EXPECT_NEAR(got[0].confusion, 287.0 / 1440 / 1000, 1e-15);
+}
+
+TEST_F(ScoreLib, TimeUnitMsOnALogInSecondsWarns) {
+  const auto in = write("s.csv", kHeader + example_e("P1,A,1") + example_e("P2,A,1"));
+  ScoreSettings st;
+  st.time_unit = feint::metrics::TimeUnit::ms;
+  std::vector<std::string> warnings;
+  st.on_warning = [&](const std::string& w) { warnings.push_back(w); };
+  const auto summary = feint::metrics::score_each({in}, st, [](const auto&, const auto&) {});
+  EXPECT_EQ(summary.median_duration, 0.004);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("median trial lasts 0.004 s (2 trials"), std::string::npos) << warnings[0];
+}
+
+// Issue 8: the output and its sidecar are replaced as one unit. Two runs writing the same output
+// at once (threads here; the lock is flock(2) on the folder, so processes behave the same) must
+// always leave one run's scores beside the same run's sidecar.
+TEST_F(ScoreLib, ConcurrentRunsNeverPairOneRunsScoresWithTheOthersSidecar) {
+  const auto a = write("a.csv", kHeader + example_e("PA,A,1"));
+  const auto b = write("b.csv", kHeader + example_e("PB,A,1") + example_e("PB,A,2"));
+  const auto out = (dir_ / "s.csv").string();
+  for (int round = 0; round < 25; ++round) {
+    std::thread ta([&] { feint::metrics::score_to_file({a}, ScoreSettings{}, out); });
+    std::thread tb([&] { feint::metrics::score_to_file({b}, ScoreSettings{}, out); });
+    ta.join();
+    tb.join();
+    const std::string scores = read(out), sidecar = read(out + ".meta.json");
+    const bool is_a = scores.find("\nPA,") != std::string::npos;
+    ASSERT_NE(sidecar.find(is_a ? "a.csv" : "b.csv"), std::string::npos)
+        << "round " << round << ": scores of run " << (is_a ? "a" : "b") << " beside\n" << sidecar;
+    ASSERT_EQ(sidecar.find(is_a ? "b.csv" : "a.csv"), std::string::npos);
+    ASSERT_TRUE(feint::io::read_scores_provenance(out).ignored.empty());
+  }
+  std::vector<std::string> left = listing();
+  EXPECT_EQ(left, (std::vector<std::string>{"a.csv", "b.csv", "s.csv", "s.csv.meta.json"}))
+      << "temporary files left behind";
+}
+
+TEST_F(ScoreLib, ASidecarThatDoesNotDescribeTheTableIsIgnored) {
+  const auto in = write("log.csv", kHeader + example_e("P1,A,1"));
+  const auto out = (dir_ / "s.csv").string();
+  feint::metrics::score_to_file({in}, ScoreSettings{}, out);
+  const auto good = feint::io::read_scores_provenance(out);
+  EXPECT_EQ(good.sidecar_path, out + ".meta.json");
+  EXPECT_TRUE(good.ignored.empty());
+  EXPECT_NE(read(out + ".meta.json").find("\"output_check\": {\"bytes\": "), std::string::npos);
+  std::ofstream(out, std::ios::app) << "P9,A,1,,,1,5,4,0.5,0.5,,0,0.9,0\n";  // edited since
+  const auto bad = feint::io::read_scores_provenance(out);
+  EXPECT_TRUE(bad.sidecar_path.empty());
+  EXPECT_TRUE(bad.confusion_normalisation.empty());
+  EXPECT_NE(bad.ignored.find("s.csv.meta.json ignored: it describes a table of "), std::string::npos)
+      << bad.ignored;
 }

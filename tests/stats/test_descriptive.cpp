@@ -144,3 +144,39 @@ TEST(ExactDecimal, DescribeDecimalAgreesWithDescribeOnOrdinaryData) {
     EXPECT_TRUE(close("autocorr_lag1", d.autocorr_lag1, row.num("autocorr_lag1"), 1e-10));
   }
 }
+
+// Issue 8: the mean of values that cancel keeps every digit, from text and from doubles.
+TEST(ExactDecimal, TheMeanOfCancellingValuesIsExact) {
+  const std::vector<std::string> t = {"1e9", "-1e9", "1"};
+  EXPECT_EQ(fs::describe_decimal(t).mean, 1.0 / 3);
+  EXPECT_EQ(fs::summarize_decimal(t).mean, 1.0 / 3);
+  const std::vector<std::string> u = {"1000000000.1", "-1000000000.1", "0.1", "0.2"};
+  EXPECT_EQ(fs::describe_decimal(u).mean, 0.075);
+  EXPECT_EQ(fs::describe(std::vector<double>{1e9, -1e9, 1}).mean, 1.0 / 3);
+  EXPECT_EQ(fs::describe(std::vector<double>{1e300, 1, -1e300, 2}).mean, 0.75);
+  EXPECT_EQ(fs::summarize(std::vector<double>{1e16, 1, -1e16}).mean, 1.0 / 3);
+}
+
+// Issue 8: min, quartiles at data points and max are values of the file, never rebuilt ones.
+TEST(ExactDecimal, OrderStatisticsAreTheFilesValues) {
+  const std::vector<std::string> t = {"10000000.3", "0.1", "0.3", "0.7", "0.5"};
+  const auto d = fs::describe_decimal(t);
+  EXPECT_EQ(d.min, 0.1);
+  EXPECT_EQ(d.q1, 0.3);
+  EXPECT_EQ(d.median, 0.5);
+  EXPECT_EQ(d.q3, 0.7);
+  EXPECT_EQ(d.max, 10000000.3);
+}
+
+// Issue 8: mantissas longer than 36 digits are read (their tail is below double precision).
+TEST(ExactDecimal, LongMantissasAreRead) {
+  const std::vector<std::string> t = {"0.12345678901234567890123456789012345678901234567890",
+                                      "1.5", "2.25"};
+  const auto d = fs::describe_decimal(t);
+  EXPECT_EQ(d.min, 0.12345678901234567890123456789012345678901234567890);
+  EXPECT_EQ(d.max, 2.25);
+  EXPECT_EQ(*d.mean, (0.12345678901234567890123456789012345678901234567890 + 3.75) / 3);
+  // Values whose scales are too far apart for one exact scale are an error here; feint describe
+  // then falls back to the doubles (tests/report/test_describe.cpp).
+  EXPECT_THROW(fs::describe_decimal(std::vector<std::string>{"1e-300", "1e300"}), feint::InvalidData);
+}

@@ -9,6 +9,7 @@
 #include <memory>
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace feint::io {
 
@@ -30,11 +31,20 @@ class AtomicOutput {
   /// True when the target is an existing device or FIFO (e.g. /dev/null), written in place: such
   /// output cannot be rolled back, so callers that must not emit half a table buffer it first.
   bool in_place() const noexcept;
+  /// The file that commit() replaces (the path, or the file a symbolic link names).
+  const std::string& target() const noexcept;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// Commits several outputs as one unit: each is fully written first, then, holding an exclusive
+/// flock(2) on the folder of each target (taken in a fixed order), all are renamed into place in
+/// the order given. Two processes committing to the same targets at once therefore never leave
+/// one's file beside the other's (e.g. a scores table with another run's sidecar). Readers that
+/// must be sure also check the sidecar's record of the table (io::read_scores_provenance does).
+void commit_together(const std::vector<AtomicOutput*>& outputs);
 
 /// Writes `content` to `path` atomically (convenience for small files such as sidecars).
 void write_file_atomically(const std::string& path, const std::string& content);

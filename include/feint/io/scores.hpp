@@ -50,7 +50,8 @@ struct ScoresTable {
 };
 
 /// Loads a scores CSV (gzip, `-`, delimiters as io::CsvReader). Throws IoError when unreadable and
-/// InvalidData for: a missing required or metric column, an empty participant or condition, an
+/// InvalidData for: a missing required or metric column, an empty participant, a condition empty
+/// on some rows only (a condition column empty on every row means no conditions), an
 /// iteration that is not a whole number in [0, 1e9], a non-numeric metric value, a duplicate
 /// (participant, condition, iteration), or no data rows at all.
 ScoresTable load_scores(const std::string& path, const ScoresOptions& options = {});
@@ -61,10 +62,16 @@ struct ScoresProvenance {
   std::string sidecar_path;            ///< the file read, "" when none was found
   std::string confusion_normalisation; ///< e.g. "speed (confusion in fraction of ...)"
   std::vector<std::pair<std::string, std::string>> settings;  ///< every key/value found
+  /// Non-empty when a sidecar was found but ignored because it does not describe this table (its
+  /// recorded size/CRC-32, `output_check`, differ from the file's: another run's sidecar, or a
+  /// table edited since); says which sidecar and why.
+  std::string ignored;
 };
 
 /// Looks for the sidecar of `scores_path` and reads it; an absent or unreadable sidecar gives an
-/// empty provenance (never an error: tables of metrics computed elsewhere have none).
+/// empty provenance (never an error: tables of metrics computed elsewhere have none), and so does
+/// a sidecar whose `output_check` (size and CRC-32 of the table `feint score` wrote) does not match
+/// the file (then `ignored` says so).
 ScoresProvenance read_scores_provenance(const std::string& scores_path);
 
 /// One numeric column of any CSV, optionally split by a grouping column (`feint describe`).

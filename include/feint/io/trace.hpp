@@ -3,8 +3,10 @@
 //
 // The input is the long format of formats.md: one row per pad sample,
 //   participant,condition,iteration,strategy,variant,target,t,pad,pad_speed
-// A trial is keyed by (participant, condition, iteration); its rows are contiguous and its
-// trial-level fields (target, strategy, variant, pad_speed) are constant. TraceReader reads any
+// A trial is keyed by (participant, condition, iteration), the iteration by its value (`1`, `01`
+// and `+1` are one iteration; a whole number from 0 to 1e9, the range the scores tables read); its
+// rows are contiguous and its trial-level fields (target, strategy, variant, pad_speed) are
+// constant. TraceReader reads any
 // number of files (plain or .gz, `-` = stdin) as one data set and hands out one validated Trial at a
 // time, as soon as its last row has been read, so memory does not grow with the input (except in
 // `unsorted` mode, which buffers every row and groups them by key).
@@ -73,6 +75,9 @@ struct TraceOptions {
   bool require_pad_speed = false;
   /// Buffer every row and group by key (rows of a trial need not be contiguous or in one file).
   bool unsorted = false;
+  /// The unit of the `t` column: times are divided by this to give seconds (1 = seconds, 1000 =
+  /// milliseconds; `--time-unit`). Messages quote the times as written.
+  double time_divisor = 1;
   /// Lenient mode: called for each invalid trial instead of throwing.
   std::function<void(const Rejection&)> on_reject;
 };

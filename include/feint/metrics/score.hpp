@@ -9,7 +9,9 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "feint/io/trace.hpp"
@@ -19,6 +21,18 @@ namespace feint::metrics {
 
 /// What to do with an invalid trial: stop with an error (strict) or skip it and list it (skip).
 enum class OnError { strict, skip };
+
+/// The unit of the logs' `t` column (`--time-unit`); scores are always in seconds.
+enum class TimeUnit { s, ms };
+std::string to_string(TimeUnit unit);
+/// "s" or "ms" (case-insensitive); nullopt otherwise.
+std::optional<TimeUnit> parse_time_unit(std::string_view text);
+
+/// The plausibility rule for the time unit (docs/scoring.md "Time unit"): with seconds, a median
+/// trial duration above this many seconds suggests milliseconds; with milliseconds, a median below
+/// kMedianDurationLowMs (converted to seconds) suggests the times were seconds already.
+inline constexpr double kMedianDurationHighS = 300;
+inline constexpr double kMedianDurationLowMs = 0.05;
 
 /// Progress, reported after every trial (scored or rejected).
 struct ScoreProgress {
@@ -34,6 +48,10 @@ struct ScoreSettings {
   /// variant, target, t, pad, pad_speed).
   std::map<std::string, std::string> column_map;
   char delimiter = 0;  // 0 = detect per file
+  TimeUnit time_unit = TimeUnit::s;  // of the `t` column; converted to seconds when read
+  /// Called with each warning (e.g. trial durations implausible for the time unit); when empty,
+  /// warnings go to standard error as `feint: warning: ...`.
+  std::function<void(const std::string&)> on_warning;
   OnError on_error = OnError::strict;
   /// Where skip mode lists rejected trials (CSV). Empty: `<output>.rejects.csv`; required when
   /// the output is `-`. Must be empty in strict mode.
@@ -57,6 +75,9 @@ struct ScoreSummary {
   std::uint64_t trials_rejected = 0;
   std::uint64_t overspeed_trials = 0;  // trials with at least one overspeed segment
   std::uint64_t bytes_read = 0;
+  double median_duration = 0;  // of the scored trials, in seconds (after --time-unit)
+  double max_duration = 0;
+  std::vector<std::string> warnings;  // as passed to on_warning (recorded in the sidecar)
   std::string output_path;
   std::string sidecar_path;  // empty when none was written
   std::string rejects_path;  // empty in strict mode

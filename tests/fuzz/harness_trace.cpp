@@ -1,0 +1,86 @@
+// The pad-trace loader in its three modes, and the metrics of every trial it accepts: a trial
+// handed out satisfies metrics.md, and its scores are finite or the trial is rejected.
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include "feint/error.hpp"
+#include "feint/io/trace.hpp"
+#include "feint/metrics/trial_metrics.hpp"
+#include "harness.hpp"
+
+namespace feint::fuzz {
+
+namespace {
+
+void check_trial(const io::Trial& t) {
+  using detail::check;
+  check(t.times.size() >= 2, "trial with fewer than 2 samples");
+  check(t.times.size() == t.pads.size(), "times and pads differ in length");
+  check(t.rows == t.times.size(), "rows != samples in a valid trial");
+  check(!t.participant.empty(), "empty participant");
+  check(t.target >= 0 && t.target <= 1, "target outside [0, 1]");
+  for (std::size_t i = 0; i < t.times.size(); ++i) {
+    check(std::isfinite(t.times[i]), "time not finite");
+    check(t.pads[i] >= 0 && t.pads[i] <= 1, "pad outside [0, 1]");
+    if (i > 0) check(t.times[i] > t.times[i - 1], "times not strictly increasing");
+  }
+  if (t.pad_speed) check(std::isfinite(*t.pad_speed) && *t.pad_speed > 0, "bad pad speed");
+  for (const auto norm : {metrics::ConfusionNorm::speed, metrics::ConfusionNorm::raw}) {
+    metrics::MetricSettings s;
+    s.norm = norm;
+    if (norm == metrics::ConfusionNorm::speed && !t.pad_speed) s.pad_speed = 0.8;
+    try {
+      const auto sc = metrics::score_trial(t, s);
+      check(std::isfinite(sc.duration) && sc.duration > 0, "duration not finite and > 0");
+      check(std::isfinite(sc.error) && sc.error >= 0 && sc.error <= 1, "error not in [0, 1]");
+      check(std::isfinite(sc.confusion) && sc.confusion >= 0, "confusion not finite and >= 0");
+      if (norm == metrics::ConfusionNorm::speed) check(sc.confusion <= 1, "confusion > 1");
+      check(std::isnan(sc.reversal_time) || std::isfinite(sc.reversal_time),
+            "reversal time infinite");
+    } catch (const InvalidData&) {
+      // A score that cannot be represented: the trial is rejected with the reason.
+    }
+  }
+}
+
+void run(const std::string& path, bool lenient, bool unsorted) {
+  io::TraceOptions opt;
+  opt.unsorted = unsorted;
+  std::uint64_t rejected_rows = 0, rejected_trials = 0;
+  if (lenient) {
+    opt.on_reject = [&](const io::Rejection& r) {
+      detail::check(!r.reason.empty(), "rejection without a reason");
+      rejected_rows += r.rows;
+      ++rejected_trials;
+    };
+  }
+  try {
+    io::TraceReader reader({path}, opt);
+    io::Trial t;
+    std::uint64_t rows = 0;
+    while (reader.next(t)) {
+      check_trial(t);
+      rows += t.rows;
+    }
+    detail::check(reader.rows_in_trials() == rows, "rows_in_trials miscounted");
+    detail::check(reader.rows_rejected() == rejected_rows, "rows_rejected miscounted");
+    detail::check(reader.trials_rejected() == rejected_trials, "trials_rejected miscounted");
+    detail::check(reader.rows_read() == rows + rejected_rows, "row accounting does not add up");
+  } catch (const Error&) {
+    // Invalid data, an unreadable file or a bad setting: a clean, typed error.
+  }
+}
+
+}  // namespace
+
+int trace(const std::uint8_t* data, std::size_t size) {
+  if (size > 1 << 16) return 0;
+  const std::string path = detail::as_file(data, size);
+  run(path, false, false);
+  run(path, true, false);
+  run(path, true, true);
+  return 0;
+}
+
+}  // namespace feint::fuzz
