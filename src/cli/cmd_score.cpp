@@ -70,7 +70,7 @@ void add_score_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "score",
       "Score pad-trace logs: one row per trial with error and confusion (seed paper sec. VI, "
-      "shared/spec/metrics.md).");
+      "docs/metrics.md).");
   cmd->footer(
       "Input: long CSV, one row per pad sample, columns participant, [condition], iteration, "
       "[strategy], [variant], target (left/right/0/1/number in [0,1]), t (seconds), pad ([0,1]), "

@@ -12,6 +12,7 @@
 #include <zlib.h>
 
 #include "feint/error.hpp"
+#include "feint/io/file_identity.hpp"
 #include "feint/io/csv.hpp"
 #include "feint/io/number.hpp"
 #include "feint/io/output.hpp"
@@ -39,13 +40,6 @@ std::string rejects_for(const ScoreSettings& s, const std::string& output) {
   if (s.on_error != OnError::skip) return {};
   if (!s.rejects_path.empty()) return s.rejects_path;
   return output + ".rejects.csv";
-}
-
-bool same_file(const std::string& a, const std::string& b) {
-  if (a == "-" || b == "-") return false;
-  std::error_code ec1, ec2;
-  const auto ca = fs::weakly_canonical(a, ec1), cb = fs::weakly_canonical(b, ec2);
-  return !ec1 && !ec2 && ca == cb;
 }
 
 void append_row(std::string& buf, const io::Trial& t, const TrialScore& s) {
@@ -109,7 +103,7 @@ void validate(const ScoreSettings& settings, const std::string& output_path) {
                      "trials)");
   }
   const std::string rejects = rejects_for(settings, output_path);
-  if (!rejects.empty() && (rejects == output_path || same_file(rejects, output_path))) {
+  if (!rejects.empty() && (rejects == output_path || io::same_file(rejects, output_path))) {
     throw UsageError(fmt::format("--rejects '{}' is the scores file itself", rejects));
   }
 }
@@ -238,7 +232,7 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
   const auto files = io::expand_inputs(inputs);
   for (const auto& f : files) {
     for (const auto& out : {output_path, sidecar, rejects}) {
-      if (!out.empty() && same_file(f, out)) {
+      if (!out.empty() && io::same_file(f, out)) {
         throw UsageError(fmt::format("the output '{}' is also an input: feint never overwrites "
                                      "its inputs", out));
       }

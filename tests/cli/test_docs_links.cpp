@@ -62,11 +62,10 @@ TEST(UserDocs, PagesNameOnlyFilesTheCloneHas) {
 }
 
 TEST(UserDocs, HelpNamesOnlyFilesTheCloneHas) {
-  // The description of `feint score` (shown by `feint --help` and `feint score --help`) still names
-  // shared/spec/metrics.md: cmd_score.cpp belongs to another change of issue #8 (part A), which
-  // points it to docs/metrics.md; add "" and "score" here when it has.
-  for (const std::string cmd : {"table", "describe", "likert", "analyze", "simulate",
-                                "simulate selection", "simulate study"}) {
+  // Every command's --help (and the top-level one, "").
+  for (const std::string cmd : {"", "score", "table", "describe", "likert", "analyze", "simulate",
+                                "simulate selection", "simulate study", "plot", "anova", "power",
+                                "power t-test", "power simulate", "model", "collect"}) {
     SCOPED_TRACE("feint " + cmd + " --help");
     const auto r = run_feint(cmd + " --help");
     ASSERT_EQ(r.exit_code, 0) << r.err;

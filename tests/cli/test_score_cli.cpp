@@ -208,6 +208,12 @@ TEST(ScoreCli, ExitCodesForUsageAndIoErrors) {
   EXPECT_NE(self.err.find("also an input"), std::string::npos) << self.err;
   EXPECT_EQ(read_text(d / "log.csv"), good_log());
   EXPECT_FALSE(fs::exists(d / "s.csv"));
+  // By any other name: a hard link (a different path, the same file) is refused too.
+  fs::create_hard_link(d / "log.csv", d / "hard.csv");
+  const auto hard = run_feint("score " + in + " -o " + q(d / "hard.csv"));
+  EXPECT_EQ(hard.exit_code, 64) << hard.err;
+  EXPECT_NE(hard.err.find("also an input"), std::string::npos) << hard.err;
+  EXPECT_EQ(read_text(d / "log.csv"), good_log());
 }
 
 TEST(ScoreCli, SpeedNormalisationWithoutPadSpeedSaysHowToGiveIt) {

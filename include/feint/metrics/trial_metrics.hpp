@@ -1,5 +1,5 @@
 // feint/metrics/trial_metrics.hpp - the two per-trial metrics of the seed paper (section VI):
-// trimmed error (eq. 3) and time-weighted confusion (eq. 4), as fixed by shared/spec/metrics.md.
+// trimmed error (eq. 3) and time-weighted confusion (eq. 4), as fixed by docs/metrics.md (from the project spec).
 //
 // Trace: samples (t_i, mu_i), mu(t) piecewise linear between them, t0 = t_0, tau = t_{n-1} - t0.
 // Window: a = t0 + f_s tau, b = t0 + (1 - f_e) tau.
