@@ -335,6 +335,12 @@ std::vector<std::string> write_figures_and_report(const AnalyzeContext& c, const
                           plot::markdown_to_html(report::render_table1(
                               *c.comparison, report::OutputFormat::markdown))});
   }
+  if (c.anova != nullptr) {  // the tables of anova.* (same APA choice as Table 1)
+    r.sections.push_back(
+        {"anova", "Mixed ANOVA",
+         plot::markdown_to_html(report::render_anova(*c.anova, report::OutputFormat::markdown,
+                                                     c.one_sample->options.apa))});
+  }
   if (c.likert != nullptr) {
     std::string html =
         plot::markdown_to_html(report::render_likert(*c.likert, report::OutputFormat::markdown));

@@ -9,6 +9,7 @@
 
 #include "feint/io/scores.hpp"
 #include "feint/metrics/score.hpp"
+#include "feint/report/anova_render.hpp"
 #include "feint/report/likert.hpp"
 #include "feint/report/table1.hpp"
 
@@ -35,6 +36,7 @@ struct AnalyzeContext {
   const io::ScoresTable* scores = nullptr;
   const report::Table1* one_sample = nullptr;
   const report::Table1* comparison = nullptr;
+  const report::AnovaReport* anova = nullptr;  ///< null when the design allows no mixed ANOVA
   std::string questionnaire_path;
   const report::LikertAnalysis* likert = nullptr;
   const report::LikertAnalysis* likert_compare = nullptr;

@@ -253,8 +253,10 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
                 return report::render_table1(*two_sample, f, report_opts.presentation);
               });
   }
-  if (const auto anova = analyze_anova(scores)) {  // the mixed ANOVA (docs/anova-power.md)
-    write_all("anova", [&](report::OutputFormat f) { return report::render_anova(*anova, f, t.apa); });
+  const std::optional<report::AnovaReport> anova = analyze_anova(scores);  // docs/anova-power.md
+  if (anova) {
+    write_all("anova",
+              [&](report::OutputFormat f) { return report::render_anova(*anova, f, t.apa); });
   }
 
   // 3. The questionnaire, when the study has one.
@@ -299,8 +301,9 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
   // 4. Figures and report.html, drawn into the staging folder like every other output.
   write_figures_and_report(
       {&cmd, a.study, out.staging().string(), config, inputs.logs, &s, &scored, scores_path,
-       &scores, &one_sample, two_sample ? &*two_sample : nullptr, inputs.questionnaire,
-       likert ? &*likert : nullptr, between ? &*between : nullptr, FEINT_VERSION},
+       &scores, &one_sample, two_sample ? &*two_sample : nullptr, anova ? &*anova : nullptr,
+       inputs.questionnaire, likert ? &*likert : nullptr, between ? &*between : nullptr,
+       FEINT_VERSION},
       a.figures);
 
   const std::vector<std::string> written = out.commit(FEINT_VERSION);

@@ -2,14 +2,17 @@
 // renders to PDF and SVG at both widths, the SVG parses as XML, a paper that \includegraphics
 // every PDF compiles without warnings (where pdflatex is installed), bad options are usage errors
 // and the inputs are never written.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "cli/cli_helpers.hpp"
+#include "feint/io/csv.hpp"
 
 namespace fs = std::filesystem;
 using feint::test::read_text;
@@ -102,6 +105,49 @@ TEST(AnalyzeFigures, ReportIsOneSelfContainedPageWithEveryFigureAndTable) {
     EXPECT_TRUE(ids.insert(html.substr(p + 5, end - p - 5)).second)
         << html.substr(p + 5, end - p - 5);
   }
+}
+
+TEST(AnalyzeFigures, ReportShowsTheMixedAnovaOfAnovaCsv) {
+  const std::string html = read_text(demo_output() / "report.html");
+  const std::size_t begin = html.find("<section id=\"anova\">");
+  ASSERT_NE(begin, std::string::npos) << "no ANOVA section in report.html";
+  const std::string section = html.substr(begin, html.find("</section>", begin) - begin);
+  EXPECT_NE(section.find("<h2>Mixed ANOVA</h2>"), std::string::npos);
+  EXPECT_NE(section.find("<table"), std::string::npos);
+  EXPECT_NE(section.find("Type-III sums of squares"), std::string::npos) << "the note";
+  // Every effect of anova.csv, with its F as the table shows it (two decimals).
+  std::istringstream csv(read_text(demo_output() / "anova.csv"));
+  std::string line;
+  ASSERT_TRUE(std::getline(csv, line));
+  const auto header = feint::io::split_csv_line(line);
+  std::size_t metric = header.size(), effect = header.size(), f = header.size();
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (header[i] == "metric") metric = i;
+    if (header[i] == "effect") effect = i;
+    if (header[i] == "F") f = i;
+  }
+  ASSERT_LT(f, header.size());
+  ASSERT_LT(effect, header.size());
+  std::size_t rows = 0;
+  std::set<std::string> metrics;
+  while (std::getline(csv, line)) {
+    if (line.empty()) continue;
+    const auto cells = feint::io::split_csv_line(line);
+    ASSERT_GT(cells.size(), f) << line;
+    metrics.insert(cells[metric]);
+    const std::string shown = fmt::format("{:.2f}", std::stod(cells[f]));
+    EXPECT_NE(section.find("<td>" + cells[effect] + "</td>"), std::string::npos) << cells[effect];
+    EXPECT_NE(section.find(">" + shown + "</td>"), std::string::npos)
+        << cells[metric] << " " << cells[effect] << " F = " << shown;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 6u);  // condition, iteration and their interaction, for error and confusion
+  for (const auto& m : metrics) {
+    EXPECT_NE(section.find("Metric: " + m), std::string::npos) << m;
+  }
+  // Placed after Table 1 and the comparison, before the questionnaire.
+  EXPECT_LT(html.find("<section id=\"table1\">"), begin);
+  EXPECT_LT(begin, html.find("<section id=\"questionnaire\">"));
 }
 
 TEST(AnalyzeFigures, PdfFiguresCompileInAPaperWithoutWarnings) {
