@@ -18,48 +18,14 @@ import base64
 import json
 import os
 import shutil
-import socket
 import subprocess
 import sys
 import tempfile
 import time
-import urllib.error
-import urllib.request
+
+from webdriver import WebDriver, find, free_port
 
 SKIP = 77
-
-
-def find(names):
-    for n in names:
-        p = shutil.which(n)
-        if p:
-            return p
-    return None
-
-
-def free_port():
-    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-class Driver:
-    def __init__(self, port):
-        self.base = f"http://127.0.0.1:{port}"
-        self.session = None
-
-    def call(self, method, path, body=None, timeout=60):
-        data = None if body is None else json.dumps(body).encode()
-        req = urllib.request.Request(self.base + path, data=data, method=method,
-                                     headers={"Content-Type": "application/json"})
-        try:
-            with urllib.request.urlopen(req, timeout=timeout) as r:
-                return json.loads(r.read().decode() or "{}").get("value")
-        except urllib.error.HTTPError as e:
-            raise RuntimeError(f"WebDriver {method} {path}: {e.code} {e.read().decode()[:500]}")
-
-    def s(self, method, path, body=None):
-        return self.call(method, f"/session/{self.session}{path}", body)
 
 
 def main():
@@ -104,16 +70,10 @@ def main():
     log = open(os.path.join(work, "chromedriver.log"), "w")
     proc = subprocess.Popen([driver_bin, f"--port={port}", "--allowed-ips=127.0.0.1"],
                             stdout=log, stderr=subprocess.STDOUT)
-    d = Driver(port)
+    d = WebDriver(port)
     failures = []
     try:
-        for _ in range(100):
-            try:
-                if d.call("GET", "/status", timeout=2).get("ready"):
-                    break
-            except Exception:
-                pass
-            time.sleep(0.1)
+        d.wait_ready()
         caps = {
             "browserName": "chrome",
             "goog:chromeOptions": {
@@ -132,8 +92,7 @@ def main():
             },
             "goog:loggingPrefs": {"browser": "ALL", "performance": "ALL"},
         }
-        created = d.call("POST", "/session", {"capabilities": {"alwaysMatch": caps}})
-        d.session = created["sessionId"]
+        d.new_session(caps)
         d.s("POST", "/window/rect", {"width": 1280, "height": 1000})
         # Reading a log empties it: what the browser's own start page loaded is not counted.
         d.s("POST", "/url", {"url": "about:blank"})
@@ -141,9 +100,7 @@ def main():
             d.s("POST", "/se/log", {"type": kind})
         d.s("POST", "/url", {"url": page_url})
 
-        def js(script):
-            return d.s("POST", "/execute/sync", {"script": script, "args": []})
-
+        js = d.js
         for _ in range(50):
             if js("return document.readyState") == "complete":
                 break
@@ -171,9 +128,7 @@ def main():
             d.s("POST", "/window/rect", {"width": 1280, "height": shot_h})
             if args.scroll:
                 js(f"window.scrollTo(0, {args.scroll}); return 0")
-            png = base64.b64decode(d.s("GET", "/screenshot"))
-            with open(args.screenshot, "wb") as f:
-                f.write(png)
+            d.screenshot(args.screenshot)
         pdf = base64.b64decode(d.s("POST", "/print", {
             "page": {"width": 21.0, "height": 29.7}, "background": True,
             "margin": {"top": 1, "bottom": 1, "left": 1, "right": 1}}))
@@ -203,11 +158,7 @@ def main():
               f"{inner}, {len(requests)} request(s) ({', '.join(requests)}), "
               f"{len(console)} console message(s), A4 print {len(pdf)} bytes")
     finally:
-        if d.session:
-            try:
-                d.call("DELETE", f"/session/{d.session}")
-            except Exception:
-                pass
+        d.quit()
         proc.terminate()
         try:
             proc.wait(timeout=10)

@@ -10,20 +10,18 @@ Usage: collect_browser.py FEINT_EXE [--screenshots DIR] [--json FILE]
 Exit 77 (skipped) when chromium, chromedriver or a free loopback port are missing.
 Only python3's standard library is used (urllib + json talk to chromedriver).
 """
-import base64
 import csv
 import json
 import os
 import shutil
 import signal
-import socket
 import statistics
 import subprocess
 import sys
 import tempfile
-import time
-import urllib.error
 import urllib.request
+
+from webdriver import WebDriver, free_port
 
 SKIP = 77
 ARROW = {"right": "\ue014", "left": "\ue012"}
@@ -35,76 +33,12 @@ def skip(why):
     sys.exit(SKIP)
 
 
-def free_port():
-    s = socket.socket()
-    s.bind(("127.0.0.1", 0))
-    port = s.getsockname()[1]
-    s.close()
-    return port
-
-
-class WebDriver:
-    def __init__(self, port):
-        self.base = f"http://127.0.0.1:{port}"
-        self.sid = None
-
-    def call(self, method, path, body=None, timeout=60):
-        data = None if body is None else json.dumps(body).encode()
-        req = urllib.request.Request(self.base + path, data=data, method=method,
-                                     headers={"Content-Type": "application/json"})
-        try:
-            with urllib.request.urlopen(req, timeout=timeout) as r:
-                return json.loads(r.read() or b"{}").get("value")
-        except urllib.error.HTTPError as e:
-            raise RuntimeError(f"WebDriver {method} {path}: {e.code} {e.read()[:400]!r}")
-
-    def s(self, method, path, body=None, timeout=60):
-        return self.call(method, f"/session/{self.sid}{path}", body, timeout)
-
-    def start(self, binary, profile, size):
-        caps = {"capabilities": {"alwaysMatch": {"browserName": "chrome", "goog:chromeOptions": {
-            "binary": binary,
-            "args": ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-                     "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                     "--disable-dev-shm-usage", f"--user-data-dir={profile}", f"--window-size={size}"]}}}}
-        v = self.call("POST", "/session", caps)
-        self.sid = v["sessionId"]
-
-    def js(self, script, *args):
-        return self.s("POST", "/execute/sync", {"script": script, "args": list(args)})
-
-    def el(self, css):
-        v = self.s("POST", "/element", {"using": "css selector", "value": css})
-        return list(v.values())[0]
-
-    def click(self, css):
-        self.s("POST", f"/element/{self.el(css)}/click", {})
-
-    def keys(self, actions):
-        self.s("POST", "/actions", {"actions": [{"type": "key", "id": "keyboard", "actions": actions}]})
-
-    def release(self):
-        self.s("DELETE", "/actions")
-
-    def wait(self, script, timeout=20.0, what=""):
-        end = time.time() + timeout
-        while time.time() < end:
-            v = self.js(script)
-            if v:
-                return v
-            time.sleep(0.02)
-        raise RuntimeError(f"timed out waiting for {what or script}")
-
-    def screenshot(self, path):
-        with open(path, "wb") as f:
-            f.write(base64.b64decode(self.s("GET", "/screenshot")))
-
-    def quit(self):
-        if self.sid:
-            try:
-                self.call("DELETE", f"/session/{self.sid}")
-            except Exception:
-                pass
+def start_browser(wd, binary, profile, size):
+    wd.new_session({"browserName": "chrome", "goog:chromeOptions": {
+        "binary": binary,
+        "args": ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                 "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                 "--disable-dev-shm-usage", f"--user-data-dir={profile}", f"--window-size={size}"]}})
 
 
 def read_rows(path):
@@ -149,13 +83,8 @@ def main():
                                stderr=subprocess.DEVNULL)
         procs.append(drv)
         wd = WebDriver(dport)
-        for _ in range(100):
-            try:
-                wd.call("GET", "/status", timeout=2)
-                break
-            except Exception:
-                time.sleep(0.1)
-        wd.start(chromium, os.path.join(work, "profile"), "1000,1000")
+        wd.wait_ready()
+        start_browser(wd, chromium, os.path.join(work, "profile"), "1000,1000")
         base = f"http://127.0.0.1:{port}"
         wd.s("POST", "/url", {"url": base + "/?participant=BT1"})
         wd.wait("return document.body.dataset.state === 'consent'", what="consent")
