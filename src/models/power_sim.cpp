@@ -11,41 +11,20 @@
 #include <thread>
 
 #include "feint/error.hpp"
+#include "feint/sim/rng.hpp"
 
 namespace feint::models {
 
 namespace detail {
 namespace {
 
-constexpr std::uint64_t splitmix64(std::uint64_t& state) noexcept {
-  std::uint64_t z = (state += 0x9E3779B97F4A7C15ULL);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
-
-/// xoshiro256** 1.0 (Blackman & Vigna 2018) with the per-stream seeding of feint/sim/rng.hpp.
-class Xoshiro {
+/// Standard normal deviates from the simulator's generator, stream `index` of `seed`
+/// (feint/sim/rng.hpp), by Marsaglia's polar method keeping the second deviate of each pair
+/// (sim::Rng::normal drops it; keeping it halves the uniforms drawn per study).
+class Normals {
  public:
-  Xoshiro(std::uint64_t seed, std::uint64_t index) noexcept {
-    std::uint64_t a = seed, b = ~index;
-    std::uint64_t sm = splitmix64(a) ^ (splitmix64(b) * 0xD1B54A32D192ED03ULL);
-    for (auto& w : s_) w = splitmix64(sm);
-  }
-  std::uint64_t next() noexcept {
-    const std::uint64_t result = rotl(s_[1] * 5, 7) * 9;
-    const std::uint64_t t = s_[1] << 17;
-    s_[2] ^= s_[0];
-    s_[3] ^= s_[1];
-    s_[1] ^= s_[2];
-    s_[0] ^= s_[3];
-    s_[2] ^= t;
-    s_[3] = rotl(s_[3], 45);
-    return result;
-  }
-  double uniform() noexcept { return static_cast<double>(next() >> 11) * 0x1.0p-53; }
-  /// Marsaglia's polar method; the second deviate of each pair is kept.
-  double normal() noexcept {
+  Normals(std::uint64_t seed, std::uint64_t index) noexcept : rng_(sim::Rng::stream(seed, index)) {}
+  double next() noexcept {
     if (spare_) {
       const double z = *spare_;
       spare_.reset();
@@ -53,8 +32,8 @@ class Xoshiro {
     }
     double u, v, s;
     do {
-      u = 2 * uniform() - 1;
-      v = 2 * uniform() - 1;
+      u = 2 * rng_.uniform() - 1;
+      v = 2 * rng_.uniform() - 1;
       s = u * u + v * v;
     } while (s >= 1 || s == 0);
     const double f = std::sqrt(-2 * std::log(s) / s);
@@ -63,8 +42,7 @@ class Xoshiro {
   }
 
  private:
-  static std::uint64_t rotl(std::uint64_t x, int k) noexcept { return (x << k) | (x >> (64 - k)); }
-  std::uint64_t s_[4];
+  sim::Rng rng_;
   std::optional<double> spare_;
 };
 
@@ -110,12 +88,12 @@ struct Study {
         p(k) {}
 
   void run(std::uint64_t index, Tally& t) {
-    Xoshiro rng(o.seed, index);
+    Normals normal(o.seed, index);
     for (std::size_t i = 0; i < n; ++i) {
       const auto& mu = i < d.n_a ? d.means_a : d.means_b;
-      const double u = d.sd_participant * rng.normal();
+      const double u = d.sd_participant * normal.next();
       double* row = &y[i * k];
-      for (std::size_t j = 0; j < k; ++j) row[j] = mu[j] + u + d.sd_residual * rng.normal();
+      for (std::size_t j = 0; j < k; ++j) row[j] = mu[j] + u + d.sd_residual * normal.next();
     }
     // Condition profiles (two-pass: means, then residual SSP and variances).
     const double na = static_cast<double>(d.n_a), nb = static_cast<double>(d.n_b);

@@ -1,8 +1,9 @@
 // feint/models/design.hpp - a metric of a scores table as a repeated-measures design: one row per
 // participant, one column per iteration (the "wide" layout of afex::aov_ez and car::Anova).
 //
-// The models module sits below io (it links only feint_stats), so it takes the long-format
-// observations as plain values; report/ and cli/ turn an io::ScoresTable into them.
+// The models module reads no file (it links feint_stats, and feint_sim for the power simulation's
+// generator), so it takes the long-format observations as plain values; report/ and cli/ turn an
+// io::ScoresTable into them.
 #pragma once
 
 #include <cstddef>
