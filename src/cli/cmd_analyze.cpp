@@ -32,6 +32,7 @@
 #include "output_folder.hpp"
 #include "report_options.hpp"
 #include "score_options.hpp"
+#include "study_config.hpp"
 
 #ifndef FEINT_VERSION
 #define FEINT_VERSION "dev"
@@ -92,39 +93,6 @@ std::string extension(report::OutputFormat format) {
       return "json";
   }
   return "txt";
-}
-
-// Applies the study's settings file to every option the command line left unset.
-void apply_config(CLI::App& cmd, const std::string& path) {
-  std::vector<CLI::ConfigItem> items;
-  try {
-    items = CLI::ConfigTOML().from_file(path);
-  } catch (const CLI::Error& e) {
-    throw IoError(fmt::format("cannot read settings '{}': {}", path, e.what()));
-  }
-  for (const auto& item : items) {
-    if (!item.parents.empty() && item.parents[0] == "collect") continue;  // feint collect's own
-    // Top-level keys, or keys under an [analyze] section.
-    if (!item.parents.empty() && !(item.parents.size() == 1 && item.parents[0] == "analyze")) {
-      throw InvalidData(fmt::format("{}: section [{}] is not a feint analyze section", path,
-                                    fmt::join(item.parents, ".")));
-    }
-    if (item.name == "++" || item.name == "--") continue;  // section markers of CLI11's parser
-    CLI::Option* opt = cmd.get_option_no_throw("--" + item.name);
-    if (opt == nullptr || item.name == "config" || item.name == "help") {
-      throw InvalidData(
-          fmt::format("{}: unknown setting '{}' (settings are the options of "
-                      "'feint analyze --help', without the dashes)",
-                      path, item.name));
-    }
-    if (opt->count() > 0) continue;  // the command line wins
-    try {
-      opt->add_result(item.inputs);
-      opt->run_callback();
-    } catch (const CLI::Error& e) {
-      throw InvalidData(fmt::format("{}: setting '{}': {}", path, item.name, e.what()));
-    }
-  }
 }
 
 std::vector<report::OutputFormat> resolve_formats(const std::vector<std::string>& names) {
@@ -200,9 +168,8 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
   if (!fs::is_directory(study)) {
     throw IoError(fmt::format("study folder '{}' does not exist or is not a folder", a.study));
   }
-  std::string config = a.config;
-  if (config.empty() && fs::exists(study / "feint.toml")) config = (study / "feint.toml").string();
-  if (!config.empty()) apply_config(cmd, config);
+  const std::string config = settings_file(a.config, study);
+  if (!config.empty()) apply_settings_file(cmd, config, SettingsSection::analyze);
 
   const ResolvedReportOptions report_opts = resolve_report_options(a.report);
   const std::vector<report::OutputFormat> formats = resolve_formats(a.formats);

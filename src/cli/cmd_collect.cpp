@@ -13,6 +13,7 @@
 #include "feint/collect/study.hpp"
 #include "feint/error.hpp"
 #include "feint/io/number.hpp"
+#include "study_config.hpp"
 
 namespace feint::cli {
 
@@ -44,34 +45,6 @@ struct CollectArgs {
   unsigned threads = 4;
 };
 
-// The [collect] section of the settings file; top-level keys and [analyze] belong to feint analyze.
-void apply_config(CLI::App& cmd, const std::string& path) {
-  std::vector<CLI::ConfigItem> items;
-  try {
-    items = CLI::ConfigTOML().from_file(path);
-  } catch (const CLI::Error& e) {
-    throw IoError(fmt::format("cannot read settings '{}': {}", path, e.what()));
-  }
-  for (const auto& item : items) {
-    if (!(item.parents.size() == 1 && item.parents[0] == "collect")) continue;
-    if (item.name == "++" || item.name == "--") continue;
-    CLI::Option* opt = cmd.get_option_no_throw("--" + item.name);
-    if (opt == nullptr || item.name == "config" || item.name == "help") {
-      throw InvalidData(
-          fmt::format("{}: [collect]: unknown setting '{}' (settings are the options of "
-                      "'feint collect --help', without the dashes)",
-                      path, item.name));
-    }
-    if (opt->count() > 0) continue;
-    try {
-      opt->add_result(item.inputs);
-      opt->run_callback();
-    } catch (const CLI::Error& e) {
-      throw InvalidData(fmt::format("{}: [collect] setting '{}': {}", path, item.name, e.what()));
-    }
-  }
-}
-
 std::pair<std::string, std::string> name_and_question(const std::string& text, const char* what) {
   const auto eq = text.find('=');
   if (eq == std::string::npos || eq == 0) {
@@ -86,9 +59,8 @@ void run(CLI::App& cmd, CollectArgs& a) {
     throw IoError(fmt::format(
         "study folder '{}' does not exist or is not a folder (create it first)", a.study));
   }
-  std::string config = a.config;
-  if (config.empty() && fs::exists(study / "feint.toml")) config = (study / "feint.toml").string();
-  if (!config.empty()) apply_config(cmd, config);
+  const std::string config = settings_file(a.config, study);
+  if (!config.empty()) apply_settings_file(cmd, config, SettingsSection::collect);
 
   collect::Settings s;
   s.conditions.clear();
