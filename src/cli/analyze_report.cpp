@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "feint/error.hpp"
+#include "feint/io/html_escape.hpp"
 #include "feint/io/output.hpp"
 #include "feint/plot/canvas.hpp"
 #include "feint/plot/figures.hpp"
@@ -23,7 +24,7 @@ namespace feint::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using plot::html_escape;
+using io::html_escape;
 
 struct DrawnFigure {
   std::string name;                // file stem

@@ -21,6 +21,7 @@
 #include "assets.hpp"
 #include "durable.hpp"
 #include "feint/error.hpp"
+#include "feint/io/html_escape.hpp"
 #include "feint/io/number.hpp"
 
 namespace feint::collect {
@@ -130,31 +131,7 @@ std::string status_json(const Study& study, const ParticipantStatus& st) {
       io::json_quote(s.consent), io::json_quote(s.completion_url), items, yes_no);
 }
 
-std::string html_escape(std::string_view s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '&':
-        out += "&amp;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      case '\'':
-        out += "&#39;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
+using io::html_escape;
 
 std::string age(std::int64_t last_seen) {
   if (last_seen == 0) return "before restart";

@@ -6,7 +6,11 @@
 #include <cstddef>
 #include <sstream>
 
+#include "feint/io/html_escape.hpp"
+
 namespace feint::plot {
+
+using io::html_escape;
 
 namespace {
 
@@ -178,30 +182,6 @@ footer { margin-top: 40px; border-top: 1px solid #ddd; padding-top: 8px; color: 
 )css";
 
 }  // namespace
-
-std::string html_escape(std::string_view text) {
-  std::string out;
-  out.reserve(text.size());
-  for (char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
-    }
-  }
-  return out;
-}
 
 std::string markdown_to_html(std::string_view markdown) {
   std::ostringstream o;

@@ -22,9 +22,6 @@ struct HtmlReport {
   std::string footer;  ///< plain text
 };
 
-/// Escapes & < > " for HTML text and attributes.
-std::string html_escape(std::string_view text);
-
 /// The Markdown that feint's table writers produce, as HTML: pipe tables (alignment from the
 /// separator row, bold cells), paragraphs, **bold** and *emphasis*. Nothing else is interpreted.
 std::string markdown_to_html(std::string_view markdown);
