@@ -254,7 +254,10 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
               });
   }
   if (const auto anova = analyze_anova(scores)) {  // the mixed ANOVA (docs/anova-power.md)
-    write_all("anova", [&](report::OutputFormat f) { return report::render_anova(*anova, f, t.apa); });
+    report::TablePresentation wide;  // analyze has no --label/--caption; table* applies to all
+    wide.wide = report_opts.presentation.wide;
+    write_all("anova",
+              [&](report::OutputFormat f) { return report::render_anova(*anova, f, t.apa, wide); });
   }
 
   // 3. The questionnaire, when the study has one.

@@ -96,11 +96,8 @@ TEST(LatexTables, AllDemoTablesCompileInOneTwoColumnPaperWithoutWarnings) {
     for (const char* table :
          {"table1", "table1_compare", "likert", "likert_compare", "anova", "model"}) {
       const std::string tex = read_text(out / (std::string(table) + ".tex"));
-      // analyze does not pass --latex-wide on to anova.tex yet (docs/anova-power.md).
-      if (!(wide && std::string(table) == "anova")) {
-        EXPECT_EQ(tex.find(wide ? "\\begin{table*}" : "\\begin{table}"), tex.find("\\begin{table"))
-            << table;
-      }
+      EXPECT_EQ(tex.find(wide ? "\\begin{table*}" : "\\begin{table}"), tex.find("\\begin{table"))
+          << table;
       // Each table's labels are referenced, so an undefined one would warn.
       for (std::size_t k = tex.find("\\label{"); k != std::string::npos;
            k = tex.find("\\label{", k + 1)) {
