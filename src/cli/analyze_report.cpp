@@ -275,9 +275,14 @@ std::string accounting_html(const AnalyzeContext& c) {
       {"Trials scored", std::to_string(s.trials_scored)},
       {"Trials rejected", std::to_string(s.trials_rejected)},
       {"Trials with an overspeed segment", std::to_string(s.overspeed_trials)},
-      {"Scores", c.scores_path},
+      // Named relative to this page: the run writes into a staging folder that is renamed into
+      // place, so an absolute path here would name a folder that no longer exists.
+      {"Scores", fs::path(c.scores_path).filename().string() + " (beside this report)"},
   };
-  if (!s.rejects_path.empty()) rows.emplace_back("Rejected trials listed in", s.rejects_path);
+  if (!s.rejects_path.empty()) {
+    rows.emplace_back("Rejected trials listed in",
+                      fs::path(s.rejects_path).filename().string() + " (beside this report)");
+  }
   std::string o = facts(rows);
   o += fmt::format("<p>rows read = rows scored + rows rejected: {} = {} + {}.</p>\n", s.rows_read,
                    s.rows_scored, s.rows_rejected);

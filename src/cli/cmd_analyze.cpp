@@ -222,8 +222,10 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
   }
   const std::optional<report::AnovaReport> anova = analyze_anova(scores);  // docs/anova-power.md
   if (anova) {
+    report::TablePresentation wide;  // analyze has no --label/--caption; table* applies to all
+    wide.wide = report_opts.presentation.wide;
     write_all("anova",
-              [&](report::OutputFormat f) { return report::render_anova(*anova, f, t.apa); });
+              [&](report::OutputFormat f) { return report::render_anova(*anova, f, t.apa, wide); });
   }
 
   // 3. The questionnaire, when the study has one.

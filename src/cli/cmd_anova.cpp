@@ -47,7 +47,7 @@ void run_anova(const AnovaArgs& a) {
   }
   const io::ScoresTable scores = io::load_scores(a.input, so);
   const report::AnovaReport report = report::build_anova_report(scores, correction);
-  write_report(r.output, report::render_anova(report, r.format, a.apa));
+  write_report(r.output, report::render_anova(report, r.format, a.apa, r.presentation));
 }
 
 }  // namespace
@@ -81,7 +81,7 @@ void add_anova_command(CLI::App& app) {
   cmd->add_option("--condition-column", args->condition_column,
                   "Name of the (optional) condition column")
       ->capture_default_str();
-  add_report_options(*cmd, args->report, ReportOptionSet{false});
+  add_report_options(*cmd, args->report, {.tests = false, .presentation = true});
   cmd->callback([args] { run_anova(*args); });
 }
 

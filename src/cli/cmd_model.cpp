@@ -70,7 +70,7 @@ void run_model(const ModelArgs& a) {
   if (o.exposure) strategies = report::load_strategies(scores, so, a.strategy_column);
   const report::ModelAnalysis analysis =
       report::build_model_analysis(scores, o, o.exposure ? &strategies : nullptr);
-  write_report(r.output, report::render_model(analysis, r.format));
+  write_report(r.output, report::render_model(analysis, r.format, r.presentation));
 }
 
 }  // namespace
@@ -108,7 +108,7 @@ void add_model_command(CLI::App& app) {
   cmd->add_option("--strategy-column", args->strategy_column,
                   "Name of the strategy column (--exposure)")
       ->capture_default_str();
-  add_report_options(*cmd, args->report);
+  add_report_options(*cmd, args->report, {.tests = true, .presentation = true});
   cmd->callback([args] { run_model(*args); });
 }
 

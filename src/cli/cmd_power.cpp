@@ -58,7 +58,7 @@ void run_t_test(const TTestArgs& a) {
   }
   const std::string solved = report::solved_for(s);
   const models::TTestPowerResult result = models::solve_t_test_power(s);
-  write_report(r.output, report::render_t_test_power(result, solved, r.format));
+  write_report(r.output, report::render_t_test_power(result, solved, r.format, r.presentation));
 }
 
 struct SimulateArgs {
@@ -142,7 +142,8 @@ void run_simulate(const SimulateArgs& a) {
                     a.p_adjust));
   }
   const auto result = models::simulate_power(d, o);
-  write_report(r.output, report::render_simulation_power(result, a.pilot, r.format));
+  write_report(r.output,
+               report::render_simulation_power(result, a.pilot, r.format, r.presentation));
 }
 
 }  // namespace
@@ -179,7 +180,7 @@ void add_power_command(CLI::App& app) {
   tt->add_option("--alternative", t->alternative,
                  "two.sided, greater or less (one-sided in the direction of the effect)")
       ->capture_default_str();
-  add_report_options(*tt, t->report, ReportOptionSet{false});
+  add_report_options(*tt, t->report, {.tests = false, .presentation = true});
   tt->callback([t] { run_t_test(*t); });
 
   auto s = std::make_shared<SimulateArgs>();
@@ -215,7 +216,7 @@ void add_power_command(CLI::App& app) {
       ->capture_default_str();
   sim->add_option("--condition-column", s->condition_column, "Pilot: condition column")
       ->capture_default_str();
-  add_report_options(*sim, s->report, ReportOptionSet{false});
+  add_report_options(*sim, s->report, {.tests = false, .presentation = true});
   sim->callback([s] { run_simulate(*s); });
 }
 

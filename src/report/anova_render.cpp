@@ -209,7 +209,6 @@ TextTable people_table(const AnovaReport& r, bool apa) {
   t.right_align.assign(t.header.size(), true);
   t.right_align[0] = false;
   if (apa) t.right_align.back() = false;
-  t.latex_label = "tab:anova";
   const std::size_t p_col = 7, mp_col = 11;
   for (const auto& a : r.analyses) {
     TextTable::Row sec;
@@ -273,13 +272,16 @@ TextTable people_table(const AnovaReport& r, bool apa) {
 
 }  // namespace
 
-std::string render_anova(const AnovaReport& r, OutputFormat format, bool apa) {
+std::string render_anova(const AnovaReport& r, OutputFormat format, bool apa,
+                         const TablePresentation& presentation) {
   if (format == OutputFormat::csv || format == OutputFormat::json) {
     const auto cols = anova_columns(apa);
     const auto recs = tidy(r, apa);
     return format == OutputFormat::csv ? write_csv(cols, recs) : write_json(cols, recs);
   }
-  return render_table(people_table(r, apa), format);
+  TextTable t = people_table(r, apa);
+  apply_presentation(t, presentation, "tab:feint-anova");
+  return render_table(t, format);
 }
 
 }  // namespace feint::report

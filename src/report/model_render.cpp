@@ -336,12 +336,6 @@ struct Builder {
   }
 };
 
-std::string label_id(const std::string& s) {
-  std::string out;
-  for (char c : s) out += std::isalnum(static_cast<unsigned char>(c)) ? c : '-';
-  return out;
-}
-
 TextTable anova_table(const MetricModel& m) {
   Builder b;
   b.table.caption =
@@ -349,7 +343,6 @@ TextTable anova_table(const MetricModel& m) {
   b.table.header = {"Term", "Sum Sq", "Mean Sq", "NumDF", "DenDF", "F", "p"};
   b.table.right_align = {false, true, true, true, true, true, true};
   b.p_columns = {6};
-  b.table.latex_label = "tab:lmm-anova-" + label_id(m.metric);
   for (const auto& t : m.fit.anova) {
     if (!t.computed) {
       b.add({t.term, "", "", df_text(t.num_df), "", std::string(kNotComputable), ""}, {});
@@ -369,7 +362,6 @@ TextTable random_table(const MetricModel& m) {
   t.caption = fmt::format("Random effects of {}", m.metric);
   t.header = {"Group", "Term", "Variance", "SD", "Corr"};
   t.right_align = {false, false, true, true, true};
-  t.latex_label = "tab:lmm-random-" + label_id(m.metric);
   auto row = [&](std::string g, std::string term, double var, std::string corr) {
     t.rows.push_back({{std::move(g), std::move(term), fmt::format("{:.6g}", var),
                        fmt::format("{:.6g}", std::sqrt(var)), std::move(corr)},
@@ -405,8 +397,6 @@ TextTable contrast_table(const ModelAnalysis& a, const MetricModel& m) {
   b.table.right_align.assign(b.table.header.size(), true);
   b.table.right_align[0] = slopes ? false : true;
   if (!slopes) b.table.right_align.back() = false;
-  b.table.latex_label =
-      "tab:lmm-" + std::string(slopes ? "slopes-" : "contrasts-") + label_id(m.metric);
   for (const auto& c : m.contrasts) {
     const auto& t = c.contrast.test;
     std::vector<std::string> cells = {
@@ -512,7 +502,8 @@ std::vector<Record> tidy(const ModelAnalysis& a) {
 
 }  // namespace
 
-std::string render_model(const ModelAnalysis& a, OutputFormat format) {
+std::string render_model(const ModelAnalysis& a, OutputFormat format,
+                         const TablePresentation& presentation) {
   if (format == OutputFormat::csv || format == OutputFormat::json) {
     std::vector<std::string_view> cols(std::begin(kColumns), std::end(kColumns));
     if (!a.options.apa) cols.pop_back();
@@ -521,10 +512,26 @@ std::string render_model(const ModelAnalysis& a, OutputFormat format) {
       for (auto& r : records) r.pop_back();
     return format == OutputFormat::csv ? write_csv(cols, records) : write_json(cols, records);
   }
+  // Labels: <base>-anova-<metric>, -random-, -contrasts- (or -slopes-); with --label the first
+  // ANOVA table gets the label itself and every other table derives from it, so that all stay
+  // unique in one paper.
+  const std::string base = presentation.label.empty() ? "tab:feint-model" : presentation.label;
+  std::vector<std::string> ids;
   std::string out;
   for (const auto& m : a.models) {
+    std::string id = latex_label_part(m.metric);
+    // Two metric names can reduce to the same fragment ("a_b", "a.b"): number the repeats.
+    for (int k = 2; std::find(ids.begin(), ids.end(), id) != ids.end(); ++k)
+      id = latex_label_part(m.metric) + "-" + std::to_string(k);
+    ids.push_back(id);
     std::vector<TextTable> tables = {anova_table(m), random_table(m)};
     if (!m.contrasts.empty()) tables.push_back(contrast_table(a, m));
+    tables[0].latex_label = base + "-anova-" + id;
+    tables[1].latex_label = base + "-random-" + id;
+    if (tables.size() > 2)
+      tables[2].latex_label = base + (a.options.exposure ? "-slopes-" : "-contrasts-") + id;
+    for (auto& t : tables) t.latex_wide = presentation.wide;
+    if (&m == &a.models.front()) apply_presentation(tables[0], presentation, tables[0].latex_label);
     tables.back().notes = model_notes(a, m);
     for (const auto& t : tables) {
       if (!out.empty()) out += "\n";

@@ -25,7 +25,7 @@ std::string solved_for(const models::TTestPowerSpec& given) {
 }
 
 std::string render_t_test_power(const models::TTestPowerResult& r, const std::string& solved,
-                                OutputFormat format) {
+                                OutputFormat format, const TablePresentation& presentation) {
   const auto& s = r.spec;
   const bool two = s.design == models::TTestDesign::two_sample;
   const std::string note = fmt::format(
@@ -75,7 +75,6 @@ std::string render_t_test_power(const models::TTestPowerResult& r, const std::st
   t.caption = r.method + " (solved for " + solved + ")";
   t.header = {"Quantity", "Value"};
   t.right_align = {false, true};
-  t.latex_label = "tab:power";
   auto row = [&](std::string name, std::string value) {
     t.rows.push_back({{std::move(name), std::move(value)}, false});
   };
@@ -105,11 +104,13 @@ std::string render_t_test_power(const models::TTestPowerResult& r, const std::st
   row("df", num(r.df, 2));
   row("noncentrality", num(r.ncp));
   t.notes.push_back("* = solved for. " + note);
+  apply_presentation(t, presentation, "tab:feint-power");
   return render_table(t, format);
 }
 
 std::string render_simulation_power(const models::SimulationPowerResult& r,
-                                    const std::string& source, OutputFormat format) {
+                                    const std::string& source, OutputFormat format,
+                                    const TablePresentation& presentation) {
   const auto& d = r.design;
   const auto& o = r.options;
   const std::string corr(models::to_string(o.correction));
@@ -149,7 +150,6 @@ std::string render_simulation_power(const models::SimulationPowerResult& r,
       d.means_a.size(), d.n_a, d.n_b, o.studies);
   t.header = {"Test", "Iteration", "Power", "MC SE"};
   t.right_align = {false, true, true, true};
-  t.latex_label = "tab:simulated-power";
   for (const auto& l : lines) {
     t.rows.push_back({{l.test, l.iteration ? std::to_string(*l.iteration) : "",
                        format_mean(l.p.power, 3), format_mean(l.p.mc_se, 4)},
@@ -176,6 +176,7 @@ std::string render_simulation_power(const models::SimulationPowerResult& r,
       "under which the GG-corrected test is conservative.",
       io::format_double(o.alpha), corr, format_mean(r.mean_gg_eps, 3), padj, d.means_a.size(),
       o.seed));
+  apply_presentation(t, presentation, "tab:feint-power-simulated");
   return render_table(t, format);
 }
 

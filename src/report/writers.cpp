@@ -609,7 +609,10 @@ std::string render_latex(const TextTable& t) {
   }
   out += "    \\bottomrule\n  \\end{tabular}}}\n";
   if (!t.notes.empty()) {
-    out += "  \\par\\smallskip\n  \\begin{minipage}{\\linewidth}\n    \\footnotesize\n";
+    // Flush left, ragged right (as APA table notes): justified notes in a narrow column stretch
+    // around long words such as afex::aov_ez and LaTeX warns of an underfull box.
+    out +=
+        "  \\par\\smallskip\n  \\begin{minipage}{\\linewidth}\n    \\footnotesize\\raggedright\n";
     for (std::size_t i = 0; i < t.notes.size(); ++i) {
       out += std::string("    ") + (i == 0 ? "\\textit{Note.} " : "\\par ") +
              latex_escape(t.notes[i]) + "\n";

@@ -138,7 +138,7 @@ TEST(AnovaCli, LatexIsABooktabsTable) {
   const RunResult r = run_feint("anova " + shell_quote(scores.string()) + " --format latex");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("\\toprule"), std::string::npos);
-  EXPECT_NE(r.out.find("\\label{tab:anova}"), std::string::npos);
+  EXPECT_NE(r.out.find("\\label{tab:feint-anova}"), std::string::npos);
 }
 
 TEST(AnovaCli, ParticipantInTwoConditionsExits65WithTheLine) {

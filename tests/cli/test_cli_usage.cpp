@@ -157,6 +157,68 @@ TEST(LatexOptions, LabelCaptionAndWideAreTheUsers) {
   EXPECT_NE(r.err.find("--label"), std::string::npos) << r.err;
 }
 
+// anova, model and power (issue #10's commands) take the same options as table and likert.
+TEST(LatexOptions, AnovaModelAndPowerTakeLabelCaptionAndWide) {
+  const fs::path golden = fs::path(FEINT_SOURCE_DIR) / "tests" / "golden" / "models";
+  // Two metrics (error and a made-up confusion), as the commands' defaults ask for.
+  TempDir dir;
+  std::string two_metrics;
+  {
+    const std::string in = read_text(golden / "lmm_balanced5.csv");
+    int row = 0;
+    for (std::size_t b = 0, e; (e = in.find('\n', b)) != std::string::npos; b = e + 1, ++row) {
+      two_metrics +=
+          in.substr(b, e - b) +
+          (row == 0 ? ",confusion\n" : "," + std::to_string((row * 37 % 101) / 101.0) + "\n");
+    }
+  }
+  write_text(dir / "scores.csv", two_metrics);
+  const std::string scores = q(dir / "scores.csv");
+  const std::string opts = " --format latex --label tab:mine --caption 'My caption' --latex-wide";
+  const auto expect_users = [](const RunResult& r, const std::string& what) {
+    ASSERT_EQ(r.exit_code, 0) << what << ": " << r.err;
+    EXPECT_NE(r.out.find("\\label{tab:mine}"), std::string::npos) << what << r.out;
+    EXPECT_NE(r.out.find("\\caption{My caption}"), std::string::npos) << what << r.out;
+    EXPECT_NE(r.out.find("\\begin{table*}[tp]"), std::string::npos) << what << r.out;
+    EXPECT_EQ(r.out.find("\\begin{table}"), std::string::npos) << what << r.out;
+  };
+  expect_users(run_feint("anova " + scores + opts), "anova");
+  expect_users(run_feint("power t-test --d 0.5 --power 0.8" + opts), "power t-test");
+  const std::string sim =
+      "power simulate --means-a 0.5,0.4 --means-b 0.5,0.5 --sd-residual 0.1 --studies 20";
+  expect_users(run_feint(sim + opts), "power simulate");
+  // The model's first ANOVA gets the label and caption; its other tables derive their labels.
+  RunResult r = run_feint("model " + scores + " --metric error" + opts);
+  expect_users(r, "model");
+  EXPECT_NE(r.out.find("\\label{tab:mine-random-error}"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\\label{tab:mine-contrasts-error}"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("\\caption{My caption}"), r.out.rfind("\\caption{My caption}"));
+  // Default labels in the scheme of table and likert.
+  r = run_feint("anova " + scores + " --format latex");
+  EXPECT_NE(r.out.find("\\label{tab:feint-anova}"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\\begin{table}[htbp]"), std::string::npos) << r.out;
+  r = run_feint("power t-test --d 0.5 --power 0.8 --format latex");
+  EXPECT_NE(r.out.find("\\label{tab:feint-power}"), std::string::npos) << r.out;
+  r = run_feint(sim + " --format latex");
+  EXPECT_NE(r.out.find("\\label{tab:feint-power-simulated}"), std::string::npos) << r.out;
+  r = run_feint("model " + scores + " --format latex");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* label : {"tab:feint-model-anova-error", "tab:feint-model-random-error",
+                            "tab:feint-model-contrasts-error", "tab:feint-model-anova-confusion"}) {
+    EXPECT_NE(r.out.find(std::string("\\label{") + label + "}"), std::string::npos) << label;
+  }
+  // A given label replaces tab:feint-model in the second metric's labels too.
+  r = run_feint("model " + scores + " --format latex --label tab:m");
+  EXPECT_NE(r.out.find("\\label{tab:m-anova-confusion}"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("\\label{tab:m-anova-error}"), std::string::npos) << r.out;
+  r = run_feint("model " + q(golden / "lmm_exposure.csv") +
+                " --metric error --exposure --format latex");
+  EXPECT_NE(r.out.find("\\label{tab:feint-model-slopes-error}"), std::string::npos) << r.out;
+  r = run_feint("anova " + scores + " --format latex --label 'tab:a b'");
+  EXPECT_EQ(r.exit_code, 64);
+  EXPECT_NE(r.err.find("--label"), std::string::npos) << r.err;
+}
+
 TEST(LatexOptions, NotesNameFilesNotFolders) {
   const RunResult r = run_feint("table " + q(kSmallScores) + " --format latex");
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -74,6 +74,7 @@ std::string compile_two_column_paper(const fs::path& dir, const std::string& bod
 
 // Every table of the demo study in one two-column paper, referenced by its label: no LaTeX warning
 // (no multiply-defined or undefined label, no overfull box), in the column and across both columns.
+// With analyze's tables: the linear mixed model of its scores (`feint model --format latex`).
 TEST(LatexTables, AllDemoTablesCompileInOneTwoColumnPaperWithoutWarnings) {
   if (!have_latex())
     GTEST_SKIP() << "pdflatex with booktabs not installed: LaTeX compile check skipped";
@@ -86,8 +87,14 @@ TEST(LatexTables, AllDemoTablesCompileInOneTwoColumnPaperWithoutWarnings) {
                              " --formats latex --equivalence 0.1 --compare adaptive,random" +
                              (wide ? " --latex-wide" : ""));
     ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto m =
+        run_feint("model " + shell_quote((out / "scores.csv").string()) + " --format latex -o " +
+                  shell_quote((out / "model.tex").string()) + (wide ? " --latex-wide" : ""));
+    ASSERT_EQ(m.exit_code, 0) << m.err;
     std::string body = "Some text of the paper.\n";
-    for (const char* table : {"table1", "table1_compare", "likert", "likert_compare"}) {
+    std::size_t labels = 0;
+    for (const char* table :
+         {"table1", "table1_compare", "likert", "likert_compare", "anova", "model"}) {
       const std::string tex = read_text(out / (std::string(table) + ".tex"));
       EXPECT_EQ(tex.find(wide ? "\\begin{table*}" : "\\begin{table}"), tex.find("\\begin{table"))
           << table;
@@ -96,12 +103,17 @@ TEST(LatexTables, AllDemoTablesCompileInOneTwoColumnPaperWithoutWarnings) {
            k = tex.find("\\label{", k + 1)) {
         const auto end = tex.find('}', k);
         body += "See Table~\\ref{" + tex.substr(k + 7, end - k - 7) + "}.\n";
+        ++labels;
       }
       body += "\\input{" + (out / (std::string(table) + ".tex")).string() + "}\n";
       // No absolute path leaks into the paper.
       EXPECT_EQ(tex.find(out.string()), std::string::npos) << table;
       EXPECT_EQ(tex.find(demo.string()), std::string::npos) << table;
     }
+    // table1 1 + 1, likert 2 + 2 (main and responses), anova 1, model 3 per metric x 2.
+    EXPECT_EQ(labels, 13u) << body;
+    EXPECT_NE(body.find("\\ref{tab:feint-anova}"), std::string::npos) << body;
+    EXPECT_NE(body.find("\\ref{tab:feint-model-contrasts-confusion}"), std::string::npos) << body;
     int rc = 0;
     const std::string log = compile_two_column_paper(dir.path(), body, &rc);
     ASSERT_EQ(rc, 0) << log;

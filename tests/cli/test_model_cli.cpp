@@ -154,7 +154,7 @@ TEST(ModelCli, MarkdownLatexAndJsonRender) {
   const auto tex = run_feint("model " + in + " --metric error --trend --format latex");
   ASSERT_EQ(tex.exit_code, 0) << tex.err;
   EXPECT_NE(tex.out.find("\\toprule"), std::string::npos);
-  EXPECT_NE(tex.out.find("\\label{tab:lmm-anova-error}"), std::string::npos);
+  EXPECT_NE(tex.out.find("\\label{tab:feint-model-anova-error}"), std::string::npos);
   const auto json = run_feint("model " + in + " --metric error --trend --format json");
   ASSERT_EQ(json.exit_code, 0) << json.err;
   EXPECT_EQ(json.out.front(), '[');

@@ -97,6 +97,9 @@ TEST(AnalyzeFigures, ReportIsOneSelfContainedPageWithEveryFigureAndTable) {
   for (const char* fetch : {"<script", "<link", "@import", "<img", "<iframe"}) {
     EXPECT_EQ(html.find(fetch), std::string::npos) << fetch;
   }
+  // The run writes into a staging folder renamed into place: the page never names it.
+  EXPECT_EQ(html.find("feint-staging"), std::string::npos);
+  EXPECT_NE(html.find("scores.csv (beside this report)"), std::string::npos);
   // Every id is unique: figures inline side by side must not share glyph or clip ids.
   std::set<std::string> ids;
   for (std::size_t p = html.find(" id=\""); p != std::string::npos;

@@ -38,6 +38,9 @@ std::string anova_apa(const models::AnovaEffect& effect);
 std::vector<std::string_view> anova_columns(bool apa = false);
 
 /// The report in `format`; `apa` adds an APA column (text/Markdown/LaTeX) or field (CSV/JSON).
-std::string render_anova(const AnovaReport& report, OutputFormat format, bool apa = false);
+/// `presentation` (--label, --caption, --latex-wide) applies to its one table (every metric is a
+/// section of it); default label "tab:feint-anova".
+std::string render_anova(const AnovaReport& report, OutputFormat format, bool apa = false,
+                         const TablePresentation& presentation = {});
 
 }  // namespace feint::report

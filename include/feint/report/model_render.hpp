@@ -86,6 +86,13 @@ std::vector<std::string> model_notes(const ModelAnalysis& analysis, const Metric
 /// table with the notes. CSV / JSON: one tidy record per ANOVA term, variance parameter, fixed
 /// effect and contrast, with a `table` column ("anova", "ran_pars", "fixef", "contrast", "slope")
 /// and broom.mixed / lmerTest column names.
-std::string render_model(const ModelAnalysis& analysis, OutputFormat format);
+///
+/// `presentation` (--label, --caption, --latex-wide): LaTeX labels are
+/// tab:feint-model-anova-<metric>, -random-<metric> and -contrasts-<metric> (-slopes-<metric> with
+/// exposure). A given label names the first metric's ANOVA table (which also gets the caption) and
+/// replaces "tab:feint-model" in the others' labels (<label>-random-error, <label>-anova-confusion,
+/// ...); --latex-wide makes every table wide.
+std::string render_model(const ModelAnalysis& analysis, OutputFormat format,
+                         const TablePresentation& presentation = {});
 
 }  // namespace feint::report
