@@ -785,6 +785,9 @@ std::string render(const Figure& figure, Width width, FileFormat format) {
       // pdflatex includes PDF up to version 1.5 without a warning.
       cairo_pdf_surface_restrict_to_version(surface.get(), CAIRO_PDF_VERSION_1_5);
       cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATOR, "feint");
+      // No creation date (cairo writes the clock's by default): the same data give the same
+      // bytes, so a report kept in git changes only when its numbers do.
+      cairo_pdf_surface_set_metadata(surface.get(), CAIRO_PDF_METADATA_CREATE_DATE, "");
       break;
     case FileFormat::svg:
       surface.reset(

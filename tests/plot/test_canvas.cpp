@@ -118,6 +118,13 @@ bool have_xmllint() { return std::system("command -v xmllint >/dev/null 2>&1") =
 
 }  // namespace
 
+TEST(Render, PdfIsTheSameBytesForTheSameFigure) {
+  const Figure f = every_element();
+  const std::string first = render(f, Width::one_column, FileFormat::pdf);
+  EXPECT_EQ(first.find("/CreationDate"), std::string::npos);  // no clock in the file
+  EXPECT_EQ(render(f, Width::one_column, FileFormat::pdf), first);
+}
+
 TEST(Render, WritesPdfSvgAndPngAtBothWidths) {
   const Figure f = every_element();
   for (const auto w : {Width::one_column, Width::two_column}) {
