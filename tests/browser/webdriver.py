@@ -56,6 +56,14 @@ class WebDriver:
 
     def new_session(self, always_match):
         """Starts the browser with the capabilities `always_match`."""
+        # chromedriver reaches the browser's DevTools at "localhost": a system where that name does
+        # not resolve (no /etc/hosts, as in a bare debootstrap chroot) fails with "unable to connect
+        # to renderer". Say so instead of leaving the reader with that message.
+        try:
+            socket.getaddrinfo("localhost", None)
+        except OSError:
+            raise RuntimeError("the name 'localhost' does not resolve on this system (is /etc/hosts "
+                               "missing?); chromedriver needs it to reach the browser")
         created = self.call("POST", "/session", {"capabilities": {"alwaysMatch": always_match}})
         self.sid = created["sessionId"]
 
