@@ -20,19 +20,14 @@ struct AnovaArgs {
   std::vector<std::string> metrics;
   std::string correction = "GG";
   bool apa = false;
-  std::string participant_column = "participant";
-  std::string iteration_column = "iteration";
-  std::string condition_column = "condition";
+  io::ScoresOptions columns;  // --participant-column, --iteration-column, --condition-column
   ReportOptions report;
 };
 
 void run_anova(const AnovaArgs& a) {
   const ResolvedReportOptions r = resolve_report_options(a.report);
   const auto correction = models::parse_sphericity_correction(a.correction);
-  io::ScoresOptions so;
-  so.participant_column = a.participant_column;
-  so.iteration_column = a.iteration_column;
-  so.condition_column = a.condition_column;
+  io::ScoresOptions so = a.columns;
   if (!a.metrics.empty()) {
     so.metrics.clear();
     for (const auto& m : a.metrics) {
@@ -73,14 +68,7 @@ void add_anova_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--apa", args->apa,
                 "Add an APA string per effect, e.g. 'F(1.93, 112.1) = 4.31, p = .017, ηG² = .031'");
-  cmd->add_option("--participant-column", args->participant_column,
-                  "Name of the participant column")
-      ->capture_default_str();
-  cmd->add_option("--iteration-column", args->iteration_column, "Name of the iteration column")
-      ->capture_default_str();
-  cmd->add_option("--condition-column", args->condition_column,
-                  "Name of the (optional) condition column")
-      ->capture_default_str();
+  add_scores_column_options(*cmd, args->columns);
   add_report_options(*cmd, args->report, {.tests = false, .presentation = true});
   cmd->callback([args] { run_anova(*args); });
 }

@@ -21,9 +21,7 @@ struct ModelArgs {
   bool trend = false;
   bool random_slope = false;
   bool exposure = false;
-  std::string participant_column = "participant";
-  std::string iteration_column = "iteration";
-  std::string condition_column = "condition";
+  io::ScoresOptions columns;  // --participant-column, --iteration-column, --condition-column
   std::string strategy_column = "strategy";
   ReportOptions report;
 };
@@ -58,10 +56,7 @@ void run_model(const ModelArgs& a) {
     throw UsageError(
         "--exposure fits its own model (strategy * exposure); drop --trend/--random-slope");
 
-  io::ScoresOptions so;
-  so.participant_column = a.participant_column;
-  so.iteration_column = a.iteration_column;
-  so.condition_column = a.condition_column;
+  io::ScoresOptions so = a.columns;
   so.metrics = o.metrics;
   if (o.exposure && a.input == "-")
     throw UsageError("--exposure reads the file twice: give a file, not standard input");
@@ -98,13 +93,7 @@ void add_model_command(CLI::App& app) {
   cmd->add_flag("--exposure", args->exposure,
                 "Fit metric ~ strategy * exposure + (1 | participant), exposure = earlier trials "
                 "of the same strategy; report the slope per strategy");
-  cmd->add_option("--participant-column", args->participant_column,
-                  "Name of the participant column")
-      ->capture_default_str();
-  cmd->add_option("--iteration-column", args->iteration_column, "Name of the iteration column")
-      ->capture_default_str();
-  cmd->add_option("--condition-column", args->condition_column, "Name of the condition column")
-      ->capture_default_str();
+  add_scores_column_options(*cmd, args->columns);
   cmd->add_option("--strategy-column", args->strategy_column,
                   "Name of the strategy column (--exposure)")
       ->capture_default_str();

@@ -74,9 +74,7 @@ struct SimulateArgs {
   std::string correction = "GG";
   std::string p_adjust = "holm";
   bool null = false;
-  std::string participant_column = "participant";
-  std::string iteration_column = "iteration";
-  std::string condition_column = "condition";
+  io::ScoresOptions columns;  // --participant-column, --iteration-column, --condition-column
   ReportOptions report;
 };
 
@@ -99,11 +97,8 @@ void run_simulate(const SimulateArgs& a) {
     if (!a.means_a.empty() || !a.means_b.empty()) {
       throw UsageError("--means-a/--means-b replace a pilot file: give one or the other");
     }
-    io::ScoresOptions so;
+    io::ScoresOptions so = a.columns;
     so.metrics = {a.metric};
-    so.participant_column = a.participant_column;
-    so.iteration_column = a.iteration_column;
-    so.condition_column = a.condition_column;
     const io::ScoresTable scores = io::load_scores(a.pilot, so);
     const auto obs = report::observations(scores, a.metric);
     d = models::design_from_pilot(models::make_wide_design(obs, a.metric, scores.path));
@@ -210,12 +205,7 @@ void add_power_command(CLI::App& app) {
                   "Adjustment of the per-iteration p-values (R's p.adjust)")
       ->capture_default_str();
   sim->add_flag("--null", s->null, "Simulate the null: both conditions get the average profile");
-  sim->add_option("--participant-column", s->participant_column, "Pilot: participant column")
-      ->capture_default_str();
-  sim->add_option("--iteration-column", s->iteration_column, "Pilot: iteration column")
-      ->capture_default_str();
-  sim->add_option("--condition-column", s->condition_column, "Pilot: condition column")
-      ->capture_default_str();
+  add_scores_column_options(*sim, s->columns, "Pilot: ");
   add_report_options(*sim, s->report, {.tests = false, .presentation = true});
   sim->callback([s] { run_simulate(*s); });
 }

@@ -28,9 +28,7 @@ struct TableArgs {
   bool paired = false;
   double equivalence = 0.0;
   CLI::Option* equivalence_option = nullptr;
-  std::string participant_column = "participant";
-  std::string iteration_column = "iteration";
-  std::string condition_column = "condition";
+  io::ScoresOptions columns;  // --participant-column, --iteration-column, --condition-column
   ReportOptions report;
 };
 
@@ -54,10 +52,7 @@ void run_table(const TableArgs& a) {
   o.p_adjust = r.p_adjust;
   o.apa = r.apa;
 
-  io::ScoresOptions so;
-  so.participant_column = a.participant_column;
-  so.iteration_column = a.iteration_column;
-  so.condition_column = a.condition_column;
+  io::ScoresOptions so = a.columns;
   so.metrics.clear();
   for (const auto& m : o.metrics) so.metrics.push_back(m.column);
   const io::ScoresTable scores = io::load_scores(a.input, so);
@@ -93,13 +88,7 @@ void add_table_command(CLI::App& app) {
   args->equivalence_option = cmd->add_option(
       "--equivalence", args->equivalence,
       "Equivalence margin delta (> 0, metric units): '≈' is earned by TOST within +-delta");
-  cmd->add_option("--participant-column", args->participant_column, "Name of the participant column")
-      ->capture_default_str();
-  cmd->add_option("--iteration-column", args->iteration_column, "Name of the iteration column")
-      ->capture_default_str();
-  cmd->add_option("--condition-column", args->condition_column,
-                  "Name of the (optional) condition column")
-      ->capture_default_str();
+  add_scores_column_options(*cmd, args->columns);
   add_report_options(*cmd, args->report, {.tests = true, .presentation = true});
   cmd->callback([args] { run_table(*args); });
 }

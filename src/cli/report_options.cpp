@@ -12,6 +12,18 @@
 
 namespace feint::cli {
 
+void add_scores_column_options(CLI::App& cmd, io::ScoresOptions& columns, std::string_view role) {
+  cmd.add_option("--participant-column", columns.participant_column,
+                 fmt::format("{}Name of the participant column", role))
+      ->capture_default_str();
+  cmd.add_option("--iteration-column", columns.iteration_column,
+                 fmt::format("{}Name of the iteration column", role))
+      ->capture_default_str();
+  cmd.add_option("--condition-column", columns.condition_column,
+                 fmt::format("{}Name of the (optional) condition column", role))
+      ->capture_default_str();
+}
+
 void add_presentation_options(CLI::App& cmd, ReportOptions& options, const std::string& group) {
   auto* label = cmd.add_option("--label", options.label,
                                "LaTeX \\label of the table (default: unique per table, e.g. "

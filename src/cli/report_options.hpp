@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "feint/io/scores.hpp"
 #include "feint/report/table1.hpp"
 #include "feint/report/writers.hpp"
 #include "feint/stats/htest.hpp"
@@ -48,6 +49,12 @@ struct ReportOptionSet {
 /// `--alternative`, `--conf-level`, `--p-adjust` on `cmd`, bound to `options` (which must outlive
 /// the parse).
 void add_report_options(CLI::App& cmd, ReportOptions& options, ReportOptionSet set = {});
+
+/// Registers `--participant-column`, `--iteration-column`, `--condition-column`, bound to the
+/// column names of `columns` (the scores loader's options; must outlive the parse). `role` starts
+/// each description, e.g. "Pilot: " for a pilot file.
+void add_scores_column_options(CLI::App& cmd, io::ScoresOptions& columns,
+                               std::string_view role = "");
 
 /// Registers `--label`, `--caption`, `--latex-wide` (in CLI11 group `group` when not empty).
 void add_presentation_options(CLI::App& cmd, ReportOptions& options, const std::string& group = "");
