@@ -12,7 +12,7 @@
 #include "feint/error.hpp"
 #include "feint/io/csv.hpp"
 #include "feint/io/number.hpp"
-#include "feint/sim/rng.hpp"
+#include "feint/rng.hpp"
 
 namespace feint::collect {
 
@@ -151,7 +151,7 @@ Round Study::plan_round(std::size_t index, std::size_t condition, RoundKind kind
   r.kind = kind;
   r.iteration = iteration;
   if (kind == RoundKind::practice) {
-    sim::Rng rng = sim::Rng::stream(settings_.seed, kPracticeStream + index);
+    Rng rng = Rng::stream(settings_.seed, kPracticeStream + index);
     std::uint32_t side = 0;
     for (int i = 0; i < iteration; ++i) side = rng.bounded(2);
     r.strategy = sim::Strategy::optimal;
@@ -163,7 +163,7 @@ Round Study::plan_round(std::size_t index, std::size_t condition, RoundKind kind
     rs.algorithm = c.algorithm;
     rs.lambda = c.lambda;
     rs.iterations = settings_.iterations;
-    sim::Rng rng = sim::Rng::stream(settings_.seed, kRunStream + index);
+    Rng rng = Rng::stream(settings_.seed, kRunStream + index);
     const auto run = sim::generate_run(rs, rng);
     const auto& it = run.at(static_cast<std::size_t>(iteration - 1));
     r.strategy = it.strategy;
@@ -391,8 +391,8 @@ ParticipantStatus Study::join(const std::string& requested) {
     std::lock_guard lock(mu_);
     if (id.empty()) {
       // A generated ID: random-looking, from the seed and a counter, never an existing one.
-      sim::Rng rng =
-          sim::Rng::stream(settings_.seed ^ static_cast<std::uint64_t>(detail::unix_now()),
+      Rng rng =
+          Rng::stream(settings_.seed ^ static_cast<std::uint64_t>(detail::unix_now()),
                            participants_.size() + generated_);
       do {
         id = fmt::format("G{:010x}", rng() & 0xFFFFFFFFFFULL);
@@ -415,7 +415,7 @@ ParticipantStatus Study::join(const std::string& requested) {
       const std::uint64_t block = p->index / c;
       std::vector<std::size_t> perm(c);
       for (std::size_t i = 0; i < c; ++i) perm[i] = i;
-      sim::Rng rng = sim::Rng::stream(settings_.seed, block);
+      Rng rng = Rng::stream(settings_.seed, block);
       sim::shuffle(perm, rng);
       p->condition = perm[p->index % c];
       append_durably(dir_ / "collect" / "assignment.csv", kAssignmentHeader,

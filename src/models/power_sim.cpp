@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "feint/error.hpp"
-#include "feint/sim/rng.hpp"
+#include "feint/rng.hpp"
 
 namespace feint::models {
 
@@ -19,11 +19,11 @@ namespace detail {
 namespace {
 
 /// Standard normal deviates from the simulator's generator, stream `index` of `seed`
-/// (feint/sim/rng.hpp), by Marsaglia's polar method keeping the second deviate of each pair
-/// (sim::Rng::normal drops it; keeping it halves the uniforms drawn per study).
+/// (feint/rng.hpp), by Marsaglia's polar method keeping the second deviate of each pair
+/// (Rng::normal drops it; keeping it halves the uniforms drawn per study).
 class Normals {
  public:
-  Normals(std::uint64_t seed, std::uint64_t index) noexcept : rng_(sim::Rng::stream(seed, index)) {}
+  Normals(std::uint64_t seed, std::uint64_t index) noexcept : rng_(Rng::stream(seed, index)) {}
   double next() noexcept {
     if (spare_) {
       const double z = *spare_;
@@ -42,7 +42,7 @@ class Normals {
   }
 
  private:
-  sim::Rng rng_;
+  Rng rng_;
   std::optional<double> spare_;
 };
 

@@ -9,7 +9,7 @@
 #include "feint/collect/study.hpp"
 #include "feint/error.hpp"
 #include "feint/io/csv.hpp"
-#include "feint/sim/rng.hpp"
+#include "feint/rng.hpp"
 
 namespace feint::collect {
 namespace {
@@ -65,7 +65,7 @@ TEST(CollectRounds, AreTheSimulatorsRunsSeededPerParticipant) {
   sim::RunSettings rs;
   rs.algorithm = s.conditions[cond].algorithm;
   rs.iterations = s.iterations;
-  sim::Rng rng = sim::Rng::stream(42, 1000003 + 1);
+  Rng rng = Rng::stream(42, 1000003 + 1);
   const auto run = sim::generate_run(rs, rng);
   for (int i = 1; i <= s.iterations; ++i) {
     const Round r = study.plan_round(1, cond, RoundKind::main, i);

@@ -13,6 +13,7 @@
 #include "feint/sim/selection.hpp"
 
 using namespace feint::sim;
+using feint::Rng;
 
 namespace {
 std::vector<int> states_of(Algorithm a, int n, double lambda, Rng& rng, int k = kStates) {

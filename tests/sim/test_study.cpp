@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 using namespace feint::sim;
+using feint::Rng;
 
 TEST(TrialError, TrapezoidOverTheTrimmedWindow) {
   // pad 0.5 -> 1 linearly over [0, 10], target 1: |T - pad| = 0.5 - t/20; window [0.5, 9.5]

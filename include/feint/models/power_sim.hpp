@@ -14,7 +14,7 @@
 // Greenhouse-Geisser epsilon needs no eigen-decomposition: eps = tr(CEC)^2 / ((k-1) ||CEC||_F^2).
 //
 // Reproducible: study s draws from its own xoshiro256** stream seeded from (seed, s) by SplitMix64
-// (the scheme of feint/sim/rng.hpp), normals by Marsaglia's polar method, so the result depends on
+// (the scheme of feint/rng.hpp), normals by Marsaglia's polar method, so the result depends on
 // the seed only, not on the number of threads.
 #pragma once
 

@@ -23,7 +23,7 @@
 #include <array>
 #include <vector>
 
-#include "feint/sim/rng.hpp"
+#include "feint/rng.hpp"
 #include "feint/sim/selection.hpp"
 #include "feint/sim/trajectory.hpp"
 

@@ -20,7 +20,7 @@
 #include <utility>
 #include <vector>
 
-#include "feint/sim/rng.hpp"
+#include "feint/rng.hpp"
 
 namespace feint::sim {
 

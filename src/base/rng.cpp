@@ -1,9 +1,9 @@
-// Rng::normal - Marsaglia's polar method on Rng::uniform() (see feint/sim/rng.hpp).
+// Rng::normal - Marsaglia's polar method on Rng::uniform() (see feint/rng.hpp).
 #include <cmath>
 
-#include "feint/sim/rng.hpp"
+#include "feint/rng.hpp"
 
-namespace feint::sim {
+namespace feint {
 
 double Rng::normal() noexcept {
   for (;;) {
@@ -14,4 +14,4 @@ double Rng::normal() noexcept {
   }
 }
 
-}  // namespace feint::sim
+}  // namespace feint

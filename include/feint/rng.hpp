@@ -1,4 +1,4 @@
-// feint/sim/rng.hpp - the simulator's documented, portable random number generator.
+// feint/rng.hpp - the documented, portable random number generator (foundation: used by sim and models).
 //
 // Every simulated number comes from here, so a run is reproducible bit for bit on any machine and
 // with any standard library from its seed (std::uniform_*_distribution is not: its algorithm is
@@ -14,7 +14,7 @@
 
 #include <cstdint>
 
-namespace feint::sim {
+namespace feint {
 
 /// One SplitMix64 step: advances `state` by the golden-ratio increment and returns the mixed word.
 constexpr std::uint64_t splitmix64(std::uint64_t& state) noexcept {
@@ -103,4 +103,4 @@ class Rng {
   std::uint64_t s_[4];
 };
 
-}  // namespace feint::sim
+}  // namespace feint

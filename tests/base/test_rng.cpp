@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdint>
 
-#include "feint/sim/rng.hpp"
+#include "feint/rng.hpp"
 
-using feint::sim::Rng;
-using feint::sim::splitmix64;
+using feint::Rng;
+using feint::splitmix64;
 
 TEST(SplitMix64, MatchesReferenceOutputsForSeed1234567) {
   // Vigna's splitmix64.c, seed 1234567 (the widely published test sequence).
