@@ -25,7 +25,7 @@ struct StudySettings {
   double lambda = 0.5;    // of the adaptive condition
   std::uint64_t seed = 1;
   Geometry geometry;
-  ObserverParams observer;
+  ObserverParams observer = goal_inference_observer();
 };
 
 struct TrialRecord {
