@@ -377,14 +377,7 @@ void run_study(const StudyOptions& o) {
     s.observer = sim::ObserverParams{};  // feint 0.1's participant, with its own defaults
   }
   s.observer.pad_speed = o.pad_speed;
-  for (const auto& kv : o.observer) {
-    const auto eq = kv.find('=');
-    const auto value = eq == std::string::npos
-                           ? std::nullopt
-                           : io::parse_double(std::string_view(kv).substr(eq + 1));
-    if (!value) throw UsageError(fmt::format("--observer '{}': expected NAME=NUMBER, e.g. beta=1.5", kv));
-    sim::set_parameter(s.observer, std::string_view(kv).substr(0, eq), *value);
-  }
+  for (const auto& kv : o.observer) sim::set_parameter(s.observer, kv);
   sim::validate(s.geometry);
   sim::validate(s.observer);
   const auto people = sim::write_study(s, o.out);

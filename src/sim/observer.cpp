@@ -3,10 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <optional>
 
 #include <fmt/format.h>
 
 #include "feint/error.hpp"
+#include "feint/io/number.hpp"
 #include "feint/models/goal_inference.hpp"
 
 namespace feint::sim {
@@ -80,6 +83,40 @@ void set_parameter(ObserverParams& p, std::string_view key, double value) {
   std::string names;
   for (const auto& np : kParameters) names += fmt::format("{}{}", names.empty() ? "" : ", ", np.name);
   throw UsageError(fmt::format("unknown observer parameter '{}': expected one of {}", key, names));
+}
+
+namespace {
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+}  // namespace
+
+void set_parameter(ObserverParams& p, std::string_view assignment) {
+  const auto eq = assignment.find('=');
+  const auto value = eq == std::string_view::npos ? std::nullopt
+                                                  : io::parse_double(trim(assignment.substr(eq + 1)));
+  if (!value) {
+    throw UsageError(fmt::format("observer parameter '{}': expected NAME=NUMBER, e.g. beta=0.3", assignment));
+  }
+  set_parameter(p, trim(assignment.substr(0, eq)), *value);
+}
+
+void read_parameters(ObserverParams& p, const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw IoError(fmt::format("{}: cannot open the observer parameter file", path));
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const auto hash = line.find('#');
+    const std::string_view text = trim(std::string_view(line).substr(0, hash));
+    if (text.empty()) continue;
+    try {
+      set_parameter(p, text);
+    } catch (const UsageError& e) {
+      throw UsageError(fmt::format("{}:{}: {}", path, number, e.what()));
+    }
+  }
 }
 
 ParticipantModel parse_participant_model(std::string_view name) {

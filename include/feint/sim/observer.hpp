@@ -21,6 +21,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -67,6 +68,15 @@ void validate(const ObserverParams& p);
 /// Sets the numeric parameter named `key` (a field name of ObserverParams, e.g. "beta",
 /// "noise_sd"); throws UsageError listing the names when `key` is unknown.
 void set_parameter(ObserverParams& p, std::string_view key, double value);
+
+/// Applies one "NAME=VALUE" assignment (spaces around '=' allowed), e.g. "beta=0.3"; throws
+/// UsageError for a malformed assignment, an unknown name or a value that is not a number.
+void set_parameter(ObserverParams& p, std::string_view assignment);
+
+/// Applies every `name = value` line of a parameter file (blank lines and '#' comments skipped),
+/// e.g. one written from a fit to a pilot study. Throws IoError when the file cannot be read and
+/// UsageError naming the file and line for a bad line.
+void read_parameters(ObserverParams& p, const std::string& path);
 
 /// "heuristic" or "goal-inference" (also "goal_inference"); throws UsageError otherwise.
 ParticipantModel parse_participant_model(std::string_view name);
