@@ -1,6 +1,8 @@
 // `feint power observer`: how many participants per condition an adaptive-vs-random study needs,
 // by simulating whole studies of goal-inference participants (sim/study_power.hpp;
 // docs/paper-scale.md, "Power from a pilot").
+#include <fmt/format.h>
+
 #include <memory>
 #include <string>
 #include <thread>
@@ -9,6 +11,8 @@
 #include "commands.hpp"
 #include "feint/error.hpp"
 #include "feint/report/study_power_render.hpp"
+#include "feint/io/scores.hpp"
+#include "feint/sim/pilot_fit.hpp"
 #include "feint/sim/study_power.hpp"
 #include "report_options.hpp"
 
@@ -19,6 +23,9 @@ namespace {
 struct ObserverPowerArgs {
   std::vector<int> participants{10, 20, 30, 40, 60, 80, 100};
   std::string observer_file;
+  std::string pilot;
+  std::string metric = "error";
+  std::string compare = "adaptive,random";
   std::vector<std::string> observer;
   std::string participant_model = "goal-inference";
   int iterations = 20;
@@ -48,9 +55,25 @@ void run(const ObserverPowerArgs& a) {
   }
   if (!a.observer_file.empty()) sim::read_parameters(s.study.observer, a.observer_file);
   for (const auto& kv : a.observer) sim::set_parameter(s.study.observer, kv);
-  const auto result = sim::study_power(s);
   std::string source = a.observer_file.empty() ? std::string() : "from " + a.observer_file;
   if (!a.observer.empty()) source += std::string(source.empty() ? "" : ", ") + "set on the command line";
+  if (!a.pilot.empty()) {
+    // beta and recognition_logodds fitted to the pilot's error by simulated moments.
+    io::ScoresOptions so;
+    so.metrics = {a.metric};
+    const auto table = io::load_scores(a.pilot, so);
+    const auto [cond_a, cond_b] = parse_compare(a.compare);
+    const auto moments = sim::pilot_moments(table, 0, cond_a, cond_b, a.from_iteration);
+    sim::StudySettings search = s.study;
+    search.participants = 100;
+    search.seed = a.seed ^ 0x5049'4C4F'54ULL;  // "PILOT": not the power studies' streams
+    const auto fit = sim::fit_pilot(moments, search, a.from_iteration);
+    s.study.observer = fit.observer;
+    source += fmt::format("{}fitted to pilot {} ({} + {} participants): beta {:.3f}, recognition {:.2f}",
+                          source.empty() ? "" : "; ", a.pilot, moments.adaptive, moments.random,
+                          fit.observer.beta, fit.observer.recognition_logodds);
+  }
+  const auto result = sim::study_power(s);
   write_report(r.output, report::render_study_power(result, source, r.format, r.presentation));
 }
 
@@ -67,6 +90,12 @@ void add_power_observer_command(CLI::App& power) {
       ->capture_default_str();
   cmd->add_option("--observer-file", a->observer_file,
                   "Observer parameters, one 'name = value' per line (e.g. fitted to a pilot study)");
+  cmd->add_option("--pilot", a->pilot,
+                  "Pilot scores CSV (adaptive and random): fit beta and recognition_logodds to its "
+                  "error by simulated moments (docs/paper-scale.md)");
+  cmd->add_option("--metric", a->metric, "Pilot: the error column")->capture_default_str();
+  cmd->add_option("--compare", a->compare, "Pilot: the adaptive and the random condition, A,B")
+      ->capture_default_str();
   cmd->add_option("--observer", a->observer,
                   "NAME=VALUE: set an observer parameter (repeatable; after --observer-file)");
   cmd->add_option("--participant-model", a->participant_model, "goal-inference or heuristic")
