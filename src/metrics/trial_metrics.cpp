@@ -35,6 +35,10 @@ void MetricSettings::validate() const {
     throw UsageError(fmt::format("--trim-start + --trim-end = {} must be < 1 (nothing would be "
                                  "left of the trial)", trim_start + trim_end));
   }
+  if (!(std::isfinite(belief_deadband) && belief_deadband >= 0 && belief_deadband < 0.5)) {
+    throw UsageError(fmt::format("--belief-deadband: {} must be in [0, 0.5) (pad units: a lean "
+                                 "from the middle smaller than this is no side)", belief_deadband));
+  }
   if (!std::isfinite(deadband) || deadband < 0) {
     throw UsageError(fmt::format("--deadband: {} must be a finite number >= 0 (pad units)",
                                  deadband));
@@ -53,6 +57,105 @@ inline double abs_linear_integral(double g0, double g1, double h) {
   if ((g0 >= 0 && g1 >= 0) || (g0 <= 0 && g1 <= 0)) return 0.5 * (std::fabs(g0) + std::fabs(g1)) * h;
   const double a0 = std::fabs(g0), a1 = std::fabs(g1);
   return 0.5 * h * (a0 * a0 + a1 * a1) / (a0 + a1);
+}
+
+// The belief-trace measures of docs/metrics.md on a validated trace. `w(i)` is sample i's time
+// since t0 in the scaled unit of score_trace (2^-k s), [a, b] the window in that unit, and `k` the
+// exponent that turns the unit back into seconds. One pass over the samples, no allocation.
+template <class W>
+void belief_measures(std::span<const double> pads, double target, W w, double a, double b, int k,
+                     double delta, TrialScore& s) {
+  const std::size_t n = pads.size();
+  // Flips (whole trace): hysteresis. Before the first move beyond delta the direction is unknown
+  // and the running minimum and maximum are tracked; then `ext` is the extreme reached in the
+  // current direction, and a move of more than delta back from it is a flip.
+  {
+    int dir = 0;
+    double lo = pads[0], hi = pads[0], ext = pads[0];
+    int flips = 0;
+    for (std::size_t i = 1; i < n; ++i) {
+      const double m = pads[i];
+      if (dir == 0) {
+        lo = std::min(lo, m);
+        hi = std::max(hi, m);
+        if (m - lo > delta) {
+          dir = 1;
+          ext = m;
+        } else if (hi - m > delta) {
+          dir = -1;
+          ext = m;
+        }
+      } else if (dir > 0) {
+        if (m > ext) {
+          ext = m;
+        } else if (ext - m > delta) {
+          ++flips;
+          dir = -1;
+          ext = m;
+        }
+      } else {
+        if (m < ext) {
+          ext = m;
+        } else if (m - ext > delta) {
+          ++flips;
+          dir = 1;
+          ext = m;
+        }
+      }
+    }
+    s.flips = flips;
+  }
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  if (!(target != 0.5)) {  // no false side: every side-based measure is undefined
+    s.signed_area = s.max_deviation = s.time_deceived = s.final_belief_time = nan;
+    return;
+  }
+  const double sigma = target < 0.5 ? 1.0 : -1.0;
+  auto lean = [&](double mu) { return sigma * (mu - 0.5); };  // g: toward the false target
+  auto mu_at = [&](std::size_t i, double x) {  // mu at x inside segment i
+    const double x0 = w(i), x1 = w(i + 1);
+    if (x <= x0) return pads[i];
+    if (x >= x1) return pads[i + 1];
+    return pads[i] + (pads[i + 1] - pads[i]) * ((x - x0) / (x1 - x0));
+  };
+  // Window measures: exact per clipped segment [lo, hi] (the integrand is linear in t).
+  double area = 0, deceived = 0, max_dev = -std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const double x0 = w(i), x1 = w(i + 1);
+    if (x1 <= a) continue;
+    if (x0 >= b) break;
+    const double lo = std::max(x0, a), hi = std::min(x1, b);
+    const double m0 = mu_at(i, lo), m1 = mu_at(i, hi);
+    const double g0 = lean(m0) - delta, g1 = lean(m1) - delta;  // > 0: deceived
+    max_dev = std::max(max_dev, std::max(lean(m0), lean(m1)));
+    if (!(hi > lo)) continue;
+    const double h = hi - lo;
+    area += 0.5 * sigma * ((m0 - target) + (m1 - target)) * h;
+    if (g0 > 0 && g1 > 0) {
+      deceived += h;
+    } else if (g0 > 0 || g1 > 0) {  // one crossing inside: the part on the positive side
+      deceived += h * (g0 > 0 ? g0 : g1) / std::fabs(g1 - g0);
+    }
+  }
+  s.signed_area = std::clamp(area / (b - a), -1.0, 1.0);
+  s.max_deviation = max_dev;
+  s.time_deceived = std::clamp(deceived / (b - a), 0.0, 1.0);
+  // Final correct belief (whole trace): r = -g - delta > 0 on the true side beyond the dead band.
+  auto r = [&](std::size_t i) { return -lean(pads[i]) - delta; };
+  if (!(r(n - 1) > 0)) {
+    s.final_belief_time = nan;
+    return;
+  }
+  std::size_t i = n - 1;
+  while (i > 0 && r(i - 1) > 0) --i;
+  if (i == 0) {
+    s.final_belief_time = 0;  // on the true side from the first sample on
+    return;
+  }
+  // r(i - 1) <= 0 < r(i): the crossing inside segment i - 1 (at its start when r(i - 1) == 0).
+  const double r0 = r(i - 1), r1 = r(i);
+  const double x = w(i - 1) + (w(i) - w(i - 1)) * (-r0 / (r1 - r0));
+  s.final_belief_time = std::ldexp(x, k);
 }
 
 }  // namespace detail
@@ -174,6 +277,7 @@ TrialScore score_trace(std::span<const double> times, std::span<const double> pa
     // moving / tau in seconds: the 2^-k of the weights (squared) and of tau (once) leave one.
     s.confusion = std::ldexp(moving / tau, k);
   }
+  detail::belief_measures(pads, target, w, a, b, k, settings.belief_deadband, s);
   // A score that is not a finite number must never be written: the trial is invalid (e.g. a
   // segment moving faster than the largest double pad units per second, for the raw confusion).
   for (const auto& [name, value] : {std::pair<const char*, double>{"error", s.error},
