@@ -54,6 +54,11 @@ std::vector<TrajectorySample> robot_positions(Strategy s, Variant v, Target targ
   return out;
 }
 
+std::string format_metres(double metres) {
+  // A robot's position is not known better than 0.1 mm; + 0.0 turns -0 into 0.
+  return io::format_double(std::round(metres * 1e4) / 1e4 + 0.0);
+}
+
 RobotPath robot_path(const io::Trial& trial, const Geometry& g) {
   auto fail = [&](const std::string& what) -> InvalidData {
     return InvalidData(fmt::format("{}:{}: {} (trial {})", trial.file, trial.line, what,

@@ -46,11 +46,6 @@ std::string participant_id(int index, int total) {
 
 }  // namespace
 
-std::string format_metres(double metres) {
-  // Rounded to 0.1 mm (a robot's position is not known better); + 0.0 turns -0 into 0.
-  return io::format_double(std::round(metres * 1e4) / 1e4 + 0.0);
-}
-
 ParticipantRecord simulate_participant(const StudySettings& settings, int index) {
   validate(settings.geometry);
   if (settings.participants < 1) throw UsageError("participants per condition must be >= 1");

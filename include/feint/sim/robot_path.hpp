@@ -12,6 +12,7 @@
 
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -43,6 +44,10 @@ Point position_on_path(const std::vector<Point>& pts, double speed, double t) no
 /// for optimal/v2.
 std::vector<TrajectorySample> robot_positions(Strategy s, Variant v, Target target,
                                               const Geometry& g, std::span<const double> times);
+
+/// A robot coordinate (m) as the logs write it (robot_x, robot_y): rounded to 0.1 mm, shortest
+/// decimal, never "-0".
+std::string format_metres(double metres);
 
 /// The trial's robot path: its robot_x / robot_y when the log has them (rebuilt = false), else
 /// rebuilt from strategy, variant and target with `g` (rebuilt = true). Throws InvalidData naming

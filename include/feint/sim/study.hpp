@@ -56,9 +56,6 @@ ParticipantRecord simulate_participant(const StudySettings& settings, int index)
 /// Conditions in order: adaptive, random.
 inline constexpr std::array<Algorithm, 2> kStudyConditions = {Algorithm::adaptive, Algorithm::random};
 
-/// A robot coordinate (m) as the logs write it: rounded to 0.1 mm, shortest decimal, never "-0".
-std::string format_metres(double metres);
-
 /// Writes DIR/logs/<participant>.csv.gz (columns participant, condition, iteration, strategy,
 /// variant, target, t, pad, pad_speed, robot_x, robot_y: the robot's position in metres at each
 /// sample, formats.md "Robot path") and DIR/questionnaire.csv (participant, condition,
