@@ -137,8 +137,9 @@ void belief_measures(std::span<const double> pads, double target, W w, double a,
       deceived += h * (g0 > 0 ? g0 : g1) / std::fabs(g1 - g0);
     }
   }
-  s.signed_area = std::clamp(area / (b - a), -1.0, 1.0);
-  s.max_deviation = max_dev;
+  // + 0.0: a lean of sigma * 0 is -0 for sigma = -1; a score is never written as "-0".
+  s.signed_area = std::clamp(area / (b - a), -1.0, 1.0) + 0.0;
+  s.max_deviation = max_dev + 0.0;
   s.time_deceived = std::clamp(deceived / (b - a), 0.0, 1.0);
   // Final correct belief (whole trace): r = -g - delta > 0 on the true side beyond the dead band.
   auto r = [&](std::size_t i) { return -lean(pads[i]) - delta; };

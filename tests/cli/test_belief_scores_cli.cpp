@@ -84,3 +84,38 @@ TEST(BeliefScoresCli, NewColumnsTabulateAndAnUndefinedFinalBeliefIsMissing) {
   const auto desc = run_feint("describe " + scores + " --column final_belief_time");
   EXPECT_EQ(desc.exit_code, 0) << desc.err << desc.out;
 }
+
+TEST(BeliefScoresCli, ShortZeroDurationAndStillTrialsNeverGiveASilentNumber) {
+  TempDir d;
+  const std::string log =
+      "participant,iteration,target,t,pad\n"
+      "P1,1,right,0,0.5\n"                                      // one sample: rejected
+      "P1,2,right,0,0.5\nP1,2,right,0,0.6\n"                    // zero duration: rejected
+      "P1,3,right,0,0.5\nP1,3,right,1,0.5\nP1,3,right,2,0.5\n"  // never moves: scored
+      "P1,4,right,0,0.5\nP1,4,right,1,1\n";                     // two samples: scored
+  write_text(d / "log.csv", log);
+  const auto r = run_feint("score " + shell_quote((d / "log.csv").string()) + " -o " +
+                           shell_quote((d / "scores.csv").string()) +
+                           " --confusion-norm raw --on-error skip");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("2 trials scored, 2 rejected"), std::string::npos) << r.err;
+  const std::string rejects = read_text(d / "scores.csv.rejects.csv");
+  EXPECT_NE(rejects.find("log.csv:2: 1 valid sample(s); a trial needs at least 2"),
+            std::string::npos) << rejects;
+  EXPECT_NE(rejects.find("(trial P1/1)"), std::string::npos) << rejects;
+  EXPECT_NE(rejects.find("log.csv:4: column 't': 0 is not after the previous sample's 0"),
+            std::string::npos) << rejects;
+  EXPECT_NE(rejects.find("(trial P1/2)"), std::string::npos) << rejects;
+  feint::io::CsvReader in((d / "scores.csv").string());
+  ASSERT_TRUE(in.next());
+  const auto f = [&](const char* name) { return std::string(in.field(static_cast<std::size_t>(in.column(name)))); };
+  EXPECT_EQ(f("iteration"), "3");
+  EXPECT_EQ(f("flips"), "0");
+  EXPECT_EQ(f("time_deceived"), "0");
+  EXPECT_EQ(f("max_deviation"), "0");
+  EXPECT_EQ(f("final_belief_time"), "");  // never chose a side: empty, not 0
+  ASSERT_TRUE(in.next());
+  EXPECT_EQ(f("iteration"), "4");
+  EXPECT_EQ(*feint::io::parse_double(f("final_belief_time")), 0.1);  // 0.5 -> 1 passes 0.55 at 0.1
+  EXPECT_FALSE(in.next());
+}

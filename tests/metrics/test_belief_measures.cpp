@@ -155,6 +155,7 @@ TEST(BeliefMeasures, PadThatNeverMovesHasNoFinalBeliefAndNoFlips) {
   EXPECT_EQ(s.flips, 0);
   EXPECT_EQ(s.time_deceived, 0);
   EXPECT_EQ(s.max_deviation, 0);
+  EXPECT_FALSE(std::signbit(s.max_deviation));  // written "0", never "-0"
   EXPECT_EQ(s.signed_area, 0.5);
   EXPECT_TRUE(std::isnan(s.final_belief_time));  // never committed to the true side: empty, not 0
 }
