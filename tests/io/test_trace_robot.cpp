@@ -126,3 +126,19 @@ TEST(TraceRobot, BadValueNamesFileLineColumnAndTrialStrictOrLenient) {
       << rejected[1].reason;
   EXPECT_EQ(rejected[0].rows + rejected[1].rows + trials[0].rows, 6U);
 }
+
+TEST(TraceRobot, UnsortedModeKeepsEachTrialsPositionsWithItsSamples) {
+  const auto f = write("interleaved.csv", "participant,iteration,target,t,pad,robot_x,robot_y\n"
+                                          "P1,1,right,0,0.5,0,0\n"
+                                          "P1,2,left,0,0.5,0,0\n"
+                                          "P1,1,right,1,0.6,0.25,1\n"
+                                          "P1,2,left,1,0.4,-0.25,2\n");
+  auto opt = robot_options();
+  opt.unsorted = true;
+  const auto trials = read_all(f, opt);
+  ASSERT_EQ(trials.size(), 2U);
+  EXPECT_EQ(trials[0].robot_x, (std::vector<double>{0, 0.25}));
+  EXPECT_EQ(trials[0].robot_y, (std::vector<double>{0, 1}));
+  EXPECT_EQ(trials[1].robot_x, (std::vector<double>{0, -0.25}));
+  EXPECT_EQ(trials[1].robot_y, (std::vector<double>{0, 2}));
+}
