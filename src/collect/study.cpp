@@ -269,6 +269,8 @@ void Study::recover_log(Participant& p, RoundKind kind) {
   }
   p.saved[k] = complete;
   p.log_size[k] = good_end;
+  // Nothing kept (not even the header): the next round starts the log anew, in the new layout.
+  if (good_end == 0) p.legacy_log[k] = false;
 }
 
 void Study::rebuild() {
