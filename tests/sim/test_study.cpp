@@ -153,7 +153,8 @@ TEST(WriteStudy, WritesGzippedLogsAndAQuestionnaire) {
     feint::io::CsvReader r(file.string());
     EXPECT_TRUE(r.compressed());
     EXPECT_EQ(r.header(), (std::vector<std::string>{"participant", "condition", "iteration", "strategy",
-                                                    "variant", "target", "t", "pad", "pad_speed"}));
+                                                    "variant", "target", "t", "pad", "pad_speed",
+                                                    "robot_x", "robot_y"}));
     int rows = 0;
     double last_t = -1;
     std::string last_it;

@@ -57,7 +57,8 @@ ParticipantRecord simulate_participant(const StudySettings& settings, int index)
 inline constexpr std::array<Algorithm, 2> kStudyConditions = {Algorithm::adaptive, Algorithm::random};
 
 /// Writes DIR/logs/<participant>.csv.gz (columns participant, condition, iteration, strategy,
-/// variant, target, t, pad, pad_speed) and DIR/questionnaire.csv (participant, condition,
+/// variant, target, t, pad, pad_speed, robot_x, robot_y: the robot's position in metres at each
+/// sample, formats.md "Robot path") and DIR/questionnaire.csv (participant, condition,
 /// entertainment, deception, intelligence, trust). Files are written to temporaries and renamed.
 /// Returns the participants (for a summary). Throws IoError when a file cannot be written.
 std::vector<ParticipantRecord> write_study(const StudySettings& settings, const std::string& dir);
