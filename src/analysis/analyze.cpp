@@ -178,7 +178,12 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   } catch (const InvalidData& e) {
     note_left_out(d, "anova", fmt::format("no mixed ANOVA: {}", e.what()));
   }
-  if (study.tests.test.alternative != stats::Alternative::two_sided) {
+  // The model of condition x iteration needs two of each (and models::fit_mixed_model does not
+  // yet refuse fewer cleanly).
+  if (r.scores.conditions().size() < 2 || r.scores.iterations().size() < 2) {
+    note_left_out(d, "model",
+                  "no mixed model: it needs at least two conditions and two iterations");
+  } else if (study.tests.test.alternative != stats::Alternative::two_sided) {
     note_left_out(d, "model", "no mixed model: its contrasts are two-sided (alternative = two.sided)");
   } else {
     report::ModelOptions o;

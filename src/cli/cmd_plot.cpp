@@ -112,6 +112,10 @@ plot::Figure build(const PlotArgs& a, const ResolvedReportOptions& r) {
 }
 
 void run(const PlotArgs& a) {
+  if (a.report.apa) {
+    throw UsageError("--apa: a figure has no APA strings; use feint table --apa (or feint "
+                     "analyze --apa) for the numbers");
+  }
   const ResolvedReportOptions r = resolve_report_options(a.report);
   if (r.output == "-") throw UsageError("-o FILE.pdf|.svg|.png is required (the figure's file)");
   const plot::FileFormat format = plot::format_from_path(r.output);
@@ -175,7 +179,14 @@ void add_plot_command(CLI::App& app) {
   add_report_options(*cmd, args->report);
   // The figure's format comes from the output's extension; --format is the tables' option.
   cmd->remove_option(cmd->get_option("--format"));
-  cmd->get_option("--output")->description("Output figure: FILE.pdf, FILE.svg or FILE.png");
+  // -o is required (there is no figure on standard output): its help shows no default.
+  cmd->get_option("--output")
+      ->description("Output figure: FILE.pdf, FILE.svg or FILE.png (required)")
+      ->default_str("")
+      ->required();
+  // A figure has no APA string: --apa is refused rather than silently ignored.
+  cmd->get_option("--apa")->description(
+      "Not for figures (refused): APA strings are in feint table --apa and feint analyze --apa");
   cmd->callback([args] { run(*args); });
 }
 

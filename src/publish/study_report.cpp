@@ -177,18 +177,35 @@ std::string study_report_html(const analysis::StudyResults& r,
   }
   page.sections.push_back({"design", "Design", facts(design_rows(r, c))});
   {
-    std::string html = "<ul>\n";
-    for (const auto& l : diagnostics_lines(r.diagnostics)) html += "<li>" + html_escape(l) + "</li>\n";
-    html += "</ul>\n";
     const auto& s = r.diagnostics.scoring;
-    html += fmt::format(
-        "<p>rows read = rows scored + rows rejected: {} = {} + {}. The scores are in "
-        "<a href=\"scores.csv\">scores.csv</a>{}, beside this report.</p>\n",
-        s.rows_read, s.rows_scored, s.rows_rejected,
-        s.rejects_path.empty() ? std::string()
-                               : fmt::format(", the rejected trials in <a href=\"{0}\">{0}</a>",
-                                             html_escape(s.rejects_path)));
-    page.sections.push_back({"diagnostics", "Data read, excluded and warned about", html});
+    std::vector<std::pair<std::string, std::string>> rows = {
+        {"Log files read", std::to_string(s.files)},
+        {"Rows read", std::to_string(s.rows_read)},
+        {"Rows scored", std::to_string(s.rows_scored)},
+        {"Rows rejected", std::to_string(s.rows_rejected)},
+        {"Trials scored", std::to_string(s.trials_scored)},
+        {"Trials rejected", std::to_string(s.trials_rejected)},
+        {"Trials with an overspeed segment", std::to_string(s.overspeed_trials)},
+        {"Participants", std::to_string(r.diagnostics.participants)},
+        // Named relative to this page, which the output folder carries along when it is moved.
+        {"Scores", "scores.csv (beside this report)"},
+    };
+    if (!s.rejects_path.empty()) {
+      rows.emplace_back("Rejected trials listed in", s.rejects_path + " (beside this report)");
+    }
+    if (r.diagnostics.questionnaire_rows > 0) {
+      rows.emplace_back("Questionnaire rows read", std::to_string(r.diagnostics.questionnaire_rows));
+      rows.emplace_back("Respondents analysed", std::to_string(r.diagnostics.respondents));
+    }
+    std::string html = facts(rows);
+    html += fmt::format("<p>rows read = rows scored + rows rejected: {} = {} + {}.</p>\n",
+                        s.rows_read, s.rows_scored, s.rows_rejected);
+    html += "<h3>Excluded and warned about</h3>\n<ul class=\"diagnostics\">\n";
+    for (const auto& l : diagnostics_lines(r.diagnostics)) {
+      html += "<li>" + html_escape(l) + "</li>\n";
+    }
+    html += "</ul>\n";
+    page.sections.push_back({"accounting", "Accounting", html});
   }
   if (!figures.empty() || !notes.empty()) {
     std::string html;
@@ -249,7 +266,7 @@ std::string study_report_markdown(const analysis::StudyResults& r,
   }
   o += "## Design\n\n";
   for (const auto& [k, v] : design_rows(r, c)) o += fmt::format("- {}: {}\n", k, v);
-  o += "\n## Data read, excluded and warned about\n\n";
+  o += "\n## Accounting: data read, excluded and warned about\n\n";
   for (const auto& l : diagnostics_lines(r.diagnostics)) o += "- " + l + "\n";
   if (!figures.empty()) {
     o += "\n## Figures\n\n";
