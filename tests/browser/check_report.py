@@ -79,7 +79,8 @@ ABSOLUTE = re.compile(r'(?:href|src)="(?:/|file:)|(?<![\w.~-])/(?:home|tmp|work|
 
 def absolute_paths(html, roots):
     """Absolute paths in the page: the run's own folders, links to / or file:, /home/... text."""
-    found = [f"names the absolute path {r}" for r in roots if r in html]
+    found = [f"names the absolute path {r}" for r in roots
+             if re.search(r"(?<![\w./-])" + re.escape(r), html)]
     text = re.sub(r"<svg.*?</svg>", "", html, flags=re.S)
     for m in ABSOLUTE.finditer(text):
         found.append(f"names an absolute path: ...{text[max(0, m.start() - 40):m.end() + 40]}...")
@@ -129,6 +130,8 @@ def main():
         return SKIP
 
     work = args.work or tempfile.mkdtemp(prefix="feint-browser-")
+    if args.screenshot_dir:
+        os.makedirs(args.screenshot_dir, exist_ok=True)
     out = os.path.join(work, "out")
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(work, exist_ok=True)
@@ -202,6 +205,12 @@ def main():
                 d.s("POST", "/window/rect", {"width": width, "height": 1400 if width > 500 else 1600})
                 time.sleep(0.2)
                 d.screenshot(os.path.join(args.screenshot_dir, f"report-{width}.png"))
+                # A wide table in its own scrolling box, and the settings block.
+                for anchor in ("table1", "settings"):
+                    js(f"document.getElementById('{anchor}').scrollIntoView(); return 0")
+                    time.sleep(0.1)
+                    d.screenshot(os.path.join(args.screenshot_dir,
+                                              f"report-{width}-{anchor}.png"))
                 d.s("POST", "/window/rect", {"width": 1280, "height": 1000})
         inner = js("return window.innerWidth")
         scroll_width = js("return document.documentElement.scrollWidth")
