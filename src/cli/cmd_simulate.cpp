@@ -15,6 +15,7 @@
 #include "feint/report/simulation_render.hpp"
 #include "feint/sim/simulation.hpp"
 #include "feint/sim/study.hpp"
+#include "feint/sim/sweep.hpp"
 
 namespace feint::cli {
 
@@ -41,33 +42,6 @@ struct SelectionOptions {
 
 /// `a:b:step` -> a, a + step, ..., up to b (inclusive, with a tolerance of step/1e6); each value
 /// rounded to 12 significant digits so that 0:1:0.05 gives 0.15, not 0.15000000000000002.
-std::vector<double> parse_sweep(const std::string& text) {
-  const auto parts = io::split_csv_line(text, ':');
-  auto bad = [&](const std::string& why) {
-    return UsageError(fmt::format("--sweep-lambda '{}': {} (expected FROM:TO:STEP, e.g. 0:1:0.05)",
-                                  text, why));
-  };
-  if (parts.size() != 3) throw bad("three numbers are needed");
-  std::array<double, 3> v{};
-  for (std::size_t i = 0; i < 3; ++i) {
-    const auto d = io::parse_double(parts[i]);
-    if (!d) throw bad(fmt::format("'{}' is not a number", parts[i]));
-    v[i] = *d;
-  }
-  const double from = v[0], to = v[1], step = v[2];
-  if (!(from >= 0 && to <= 1 && from <= to)) throw bad("need 0 <= FROM <= TO <= 1");
-  if (!(step > 0)) throw bad("STEP must be > 0");
-  std::vector<double> out;
-  for (long i = 0;; ++i) {
-    const double x = from + static_cast<double>(i) * step;
-    if (x > to + step * 1e-6) break;
-    const double rounded = *io::parse_double(fmt::format("{:.12g}", x));
-    out.push_back(std::min(rounded, 1.0));
-    if (out.size() > 100000) throw bad("more than 100000 values");
-  }
-  return out;
-}
-
 std::string infer_format(const std::string& format, const std::string& output) {
   if (!format.empty()) {
     const std::string f = io::to_lower(format);
@@ -97,26 +71,8 @@ void run_selection(const SelectionOptions& o) {
   base.batch = o.batch;
   base.threads = o.threads;
 
-  std::vector<sim::SimulationSettings> all;
-  auto with = [&](Algorithm a, double lambda) {
-    sim::SimulationSettings s = base;
-    s.run.algorithm = a;
-    s.run.lambda = lambda;
-    all.push_back(s);
-  };
-  if (o.compare) {
-    for (auto a : {Algorithm::random, Algorithm::fixed_block, Algorithm::fixed_balanced}) {
-      with(a, base.run.lambda);
-    }
-  }
-  if (!o.sweep.empty()) {
-    for (double l : parse_sweep(o.sweep)) with(Algorithm::adaptive, l);
-  } else if (o.compare) {
-    with(Algorithm::adaptive, base.run.lambda);
-  } else {
-    all.push_back(base);
-  }
-
+  const std::vector<sim::SimulationSettings> all =
+      sim::selection_grid(base, o.compare, o.sweep.empty() ? std::vector<double>{} : sim::parse_lambda_sweep(o.sweep));
   std::vector<sim::SimulationSummary> rows;
   rows.reserve(all.size());
   for (const auto& s : all) rows.push_back(sim::simulate_selection(s));
@@ -196,22 +152,7 @@ void run_study(const StudyOptions& o) {
   const auto people = sim::write_study(s, o.out);
   // A short account: where the files are, and the mean trial error by condition (first and last
   // five iterations), computed on the written traces with the simple trapezoid error.
-  fmt::print("feint simulate study: {} participants ({} per condition: adaptive, random), {} iterations, "
-             "seed {}\n  logs: {}/logs/P*.csv.gz\n  questionnaire: {}/questionnaire.csv\n",
-             people.size(), o.participants, o.iterations, o.seed, o.out, o.out);
-  for (auto cond : sim::kStudyConditions) {
-    double first = 0, last = 0;
-    int nf = 0, nl = 0;
-    for (const auto& p : people) {
-      if (p.condition != cond) continue;
-      for (const auto& tr : p.trials) {
-        if (tr.iteration <= 5) { first += tr.error; ++nf; }
-        if (tr.iteration > o.iterations - 5) { last += tr.error; ++nl; }
-      }
-    }
-    fmt::print("  {:<8} mean error: iterations 1-5 {:.3f}, last 5 {:.3f}\n", sim::to_string(cond),
-               nf ? first / nf : std::nan(""), nl ? last / nl : std::nan(""));
-  }
+  fmt::print("{}", report::study_summary_text(people, s, o.out));
 }
 
 void add_study_command(CLI::App& parent) {

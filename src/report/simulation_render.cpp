@@ -206,4 +206,33 @@ std::string render_selection(const std::vector<sim::SimulationSummary>& rows,
   return render_table_(rows, format == "markdown");
 }
 
+std::string study_summary_text(const std::vector<sim::ParticipantRecord>& people,
+                               const sim::StudySettings& s, const std::string& dir) {
+  std::string o = fmt::format(
+      "feint simulate study: {} participants ({} per condition: adaptive, random), {} "
+      "iterations, seed {}\n  logs: {}/logs/P*.csv.gz\n  questionnaire: {}/questionnaire.csv\n",
+      people.size(), s.participants, s.iterations, s.seed, dir, dir);
+  for (auto cond : sim::kStudyConditions) {
+    double first = 0, last = 0;
+    int nf = 0, nl = 0;
+    for (const auto& p : people) {
+      if (p.condition != cond) continue;
+      for (const auto& tr : p.trials) {
+        if (tr.iteration <= 5) {
+          first += tr.error;
+          ++nf;
+        }
+        if (tr.iteration > s.iterations - 5) {
+          last += tr.error;
+          ++nl;
+        }
+      }
+    }
+    o += fmt::format("  {:<8} mean error: iterations 1-5 {:.3f}, last 5 {:.3f}\n",
+                     sim::to_string(cond), nf ? first / nf : std::nan(""),
+                     nl ? last / nl : std::nan(""));
+  }
+  return o;
+}
+
 }  // namespace feint::report

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "feint/sim/simulation.hpp"
+#include "feint/sim/study.hpp"
 
 namespace feint::report {
 
@@ -25,5 +26,10 @@ void write_selection_sequences(const std::string& path,
 /// cumulative_share, runs), written atomically to `path`.
 void write_selection_occurrence(const std::string& path,
                                 const std::vector<sim::SimulationSummary>& rows);
+
+/// What `feint simulate study` wrote into `dir`, and per condition the mean error of the first
+/// and the last five iterations (the wear-off at a glance).
+std::string study_summary_text(const std::vector<sim::ParticipantRecord>& people,
+                               const sim::StudySettings& settings, const std::string& dir);
 
 }  // namespace feint::report
