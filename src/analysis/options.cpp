@@ -9,6 +9,8 @@
 #include "feint/error.hpp"
 #include "feint/io/csv.hpp"
 #include "feint/io/number.hpp"
+#include "feint/io/questionnaire.hpp"
+#include "feint/stats/reliability.hpp"
 
 namespace feint::analysis {
 
@@ -123,6 +125,46 @@ std::vector<report::MetricSpec> parse_metric_specs(const std::vector<std::string
     specs.push_back(std::move(spec));
   }
   return specs;
+}
+
+namespace {
+
+std::vector<std::string> split_lists(const std::vector<std::string>& values) {
+  std::vector<std::string> out;
+  for (const auto& v : values) {
+    for (const auto& part : io::split_csv_line(v, ',')) {
+      const auto t = io::trim(part);
+      if (!t.empty()) out.emplace_back(t);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+report::LikertSettings likert_settings(const LikertOptions& o, const ResolvedReportOptions& r) {
+  report::LikertSettings s;
+  s.load.layout = io::parse_questionnaire_layout(o.layout);
+  const auto [lo, hi] = io::parse_scale(o.scale);
+  s.load.scale_min = lo;
+  s.load.scale_max = hi;
+  if (!o.labels.empty()) s.load.labels = io::parse_label_map(o.labels);
+  s.load.items = split_lists(o.items);
+  s.load.id_column = o.id_column;
+  s.load.condition_column = o.condition_column;
+  s.load.item_column = o.item_column;
+  s.load.response_column = o.response_column;
+  s.load.reverse = split_lists(o.reverse);
+  s.load.keep_unfinished = o.keep_unfinished;
+  s.load.keep_previews = o.keep_previews;
+  s.alpha_missing = stats::parse_alpha_missing(o.alpha_missing);
+  for (const auto& c : o.composites) s.composites.push_back(report::parse_composite(c));
+  s.reference = o.reference;
+  s.test = r.test;
+  s.alpha = r.alpha;
+  s.p_adjust = r.p_adjust;
+  s.apa = r.apa;
+  return s;
 }
 
 }  // namespace feint::analysis

@@ -78,28 +78,8 @@ Study load_study(const std::string& folder, const AnalysisSettings& a, const std
     s.questionnaire = (study / "questionnaire.csv").string();
   }
 
-  report::LikertSettings& l = s.likert;
-  const auto [lo, hi] = io::parse_scale(a.likert_scale);
-  l.load.scale_min = lo;
-  l.load.scale_max = hi;
-  l.load.reverse = a.reverse;
-  l.load.layout = io::parse_questionnaire_layout(a.layout);
-  if (!a.labels.empty()) l.load.labels = io::parse_label_map(a.labels);
-  l.load.items = a.items;
-  l.load.id_column = a.id_column;
-  l.load.condition_column = a.condition_column;
-  l.load.item_column = a.item_column;
-  l.load.response_column = a.response_column;
-  l.load.keep_unfinished = a.keep_unfinished;
-  l.load.keep_previews = a.keep_previews;
-  l.alpha_missing = stats::parse_alpha_missing(a.alpha_missing);
-  for (const auto& c : a.composites) l.composites.push_back(report::parse_composite(c));
-  l.reference = a.likert_reference;
-  l.test = s.tests.test;
-  l.alpha = s.tests.alpha;
-  l.p_adjust = s.tests.p_adjust;
-  l.apa = s.tests.apa;
-  if (!s.questionnaire.empty()) s.answers = io::load_questionnaire(s.questionnaire, l.load);
+  s.likert = likert_settings(a.likert, s.tests);
+  if (!s.questionnaire.empty()) s.answers = io::load_questionnaire(s.questionnaire, s.likert.load);
   return s;
 }
 

@@ -136,53 +136,7 @@ void add_analyze_command(CLI::App& app) {
                   "Likert file, relative to STUDY "
                   "(default STUDY/questionnaire.csv when present)")
       ->group(likert);
-  cmd->add_option("--likert-reference", args->s.likert_reference,
-                  "Reference of the one-sample "
-                  "tests (default: the scale midpoint; the paper used 3.5)")
-      ->group(likert);
-  cmd->add_option("--likert-scale", args->s.likert_scale, "MIN-MAX")
-      ->capture_default_str()
-      ->group(likert);
-  one_per_use(cmd->add_option("--composite", args->s.composites,
-                              "NAME=ITEM,ITEM,...: a multi-item scale "
-                              "(repeatable)"))
-      ->group(likert);
-  one_per_use(cmd->add_option("--reverse", args->s.reverse, "Items to reverse-code")->delimiter(','))
-      ->group(likert);
-  one_per_use(cmd->add_option("--items", args->s.items,
-                              "Items to analyse, in order; NAME=COLUMN renames (trust=Q5_1)")
-                  ->delimiter(','))
-      ->group(likert);
-  cmd->add_option("--labels", args->s.labels,
-                  "Text answers to scale points: \"Strongly disagree=1,Disagree=2,...\"")
-      ->group(likert);
-  cmd->add_option("--id-column", args->s.id_column, "Questionnaire: respondent id column")
-      ->capture_default_str()
-      ->group(likert);
-  cmd->add_option("--condition-column", args->s.condition_column,
-                  "Questionnaire: condition column")
-      ->capture_default_str()
-      ->group(likert);
-  cmd->add_option("--layout", args->s.layout, "Questionnaire: long, wide or auto")
-      ->capture_default_str()
-      ->group(likert);
-  cmd->add_option("--item-column", args->s.item_column, "Questionnaire, long layout: item column")
-      ->capture_default_str()
-      ->group(likert);
-  cmd->add_option("--response-column", args->s.response_column,
-                  "Questionnaire, long layout: response column")
-      ->capture_default_str()
-      ->group(likert);
-  cmd->add_option("--alpha-missing", args->s.alpha_missing,
-                  "Cronbach's alpha with missing answers: pairwise (psych's default) or complete")
-      ->capture_default_str()
-      ->group(likert);
-  cmd->add_flag("--keep-unfinished", args->s.keep_unfinished,
-                "Survey exports: keep unfinished responses (Finished False, Progress < 100)")
-      ->group(likert);
-  cmd->add_flag("--keep-previews", args->s.keep_previews,
-                "Survey exports: keep Survey Preview / Test / Spam responses")
-      ->group(likert);
+  add_questionnaire_options(*cmd, args->s.likert, true, likert);
   auto* out = "Output";
   one_per_use(cmd->add_option("--formats", args->s.formats, "Formats written for every table")
                   ->delimiter(',')

@@ -54,6 +54,13 @@ void add_scores_column_options(CLI::App& cmd, io::ScoresOptions& columns,
 /// Registers `--label`, `--caption`, `--latex-wide` (in CLI11 group `group` when not empty).
 void add_presentation_options(CLI::App& cmd, ReportOptions& options, const std::string& group = "");
 
+/// Registers the questionnaire options (analysis::LikertOptions): --layout, --scale, --labels,
+/// --items, the column names, --reverse, --composite, --reference, --alpha-missing,
+/// --keep-unfinished, --keep-previews; `in_analyze` names the scale and the reference
+/// --likert-scale and --likert-reference (feint analyze's tables have a reference of their own).
+void add_questionnaire_options(CLI::App& cmd, analysis::LikertOptions& options, bool in_analyze,
+                               const std::string& group = "");
+
 /// Writes `content` to `path` atomically (temporary file + rename; `-` = standard output).
 void write_report(const std::string& path, std::string_view content);
 

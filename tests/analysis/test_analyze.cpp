@@ -16,7 +16,7 @@ const std::string kDemo = std::string(FEINT_SOURCE_DIR) + "/data/demo";
 analysis::AnalysisSettings demo_settings() {
   analysis::AnalysisSettings s;  // as data/demo/feint.toml
   s.compare = "adaptive,random";
-  s.likert_reference = 3.5;
+  s.likert.reference = 3.5;
   return s;
 }
 }  // namespace
@@ -87,7 +87,7 @@ TEST(Analyze, ScoringWarningsAreCollectedNotPrinted) {
 
 TEST(Settings, TomlNamesEverySettingAndQuotesStrings) {
   analysis::AnalysisSettings s;
-  s.labels = "Agree \"a lot\"=7";
+  s.likert.labels = "Agree \"a lot\"=7";
   s.scoring.trim = 0.1;
   const std::string t = analysis::settings_toml(s);
   EXPECT_NE(t.find("labels = \"Agree \\\"a lot\\\"=7\"\n"), std::string::npos) << t;

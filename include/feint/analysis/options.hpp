@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "feint/metrics/score.hpp"
+#include "feint/report/likert.hpp"
 #include "feint/report/table1.hpp"
 #include "feint/report/writers.hpp"
 #include "feint/stats/htest.hpp"
@@ -68,5 +69,29 @@ std::pair<std::string, std::string> parse_compare(const std::string& text);
 
 /// --metric NAME=REF list (default: the paper's error=0.5 confusion=0.95). Throws UsageError.
 std::vector<report::MetricSpec> parse_metric_specs(const std::vector<std::string>& texts);
+
+/// The questionnaire options of `feint likert` and `feint analyze` (docs/likert.md). Lists may
+/// hold comma-separated names ("a,b"); they are split and trimmed.
+struct LikertOptions {
+  std::string layout = "auto";
+  std::string scale = "1-7";
+  std::string labels;              ///< "Strongly disagree=1,Disagree=2,..." ("" = built-in)
+  std::vector<std::string> items;  ///< NAME or NAME=COLUMN
+  std::string id_column = "participant";
+  std::string condition_column = "condition";
+  std::string item_column = "item";
+  std::string response_column = "response";
+  std::vector<std::string> reverse;
+  std::vector<std::string> composites;  ///< NAME=ITEM,ITEM,...
+  std::optional<double> reference;      ///< default: the scale midpoint
+  std::string alpha_missing = "pairwise";
+  bool keep_unfinished = false;
+  bool keep_previews = false;
+};
+
+/// The Likert analysis settings (loading, composites, reference, tests); throws UsageError naming
+/// the option for a value it cannot take.
+report::LikertSettings likert_settings(const LikertOptions& options,
+                                       const ResolvedReportOptions& tests);
 
 }  // namespace feint::analysis

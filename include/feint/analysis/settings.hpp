@@ -23,20 +23,7 @@ struct AnalysisSettings {
   std::optional<double> equivalence;
   // Questionnaire (feint likert).
   std::string questionnaire;  ///< relative to the study; default questionnaire.csv when present
-  std::optional<double> likert_reference;
-  std::string likert_scale = "1-7";
-  std::vector<std::string> composites;
-  std::vector<std::string> reverse;
-  std::string layout = "auto";
-  std::string labels;
-  std::vector<std::string> items;
-  std::string id_column = "participant";
-  std::string condition_column = "condition";
-  std::string item_column = "item";
-  std::string response_column = "response";
-  std::string alpha_missing = "pairwise";
-  bool keep_unfinished = false;
-  bool keep_previews = false;
+  LikertOptions likert;  ///< --likert-scale, --likert-reference, --layout, --items, ...
   // Tests and output (format, output, label and caption are not used by a study run).
   ReportOptions report;
   std::vector<std::string> formats = {"text", "markdown", "latex", "csv", "json"};
