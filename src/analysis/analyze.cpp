@@ -74,15 +74,21 @@ std::string bare_reason(const std::string& reason) {
   return r;
 }
 
-void count_rejections(const fs::path& rejects, Diagnostics& d) {
-  if (!fs::exists(rejects)) return;
+// Rejected trials counted by reason; the participants of the rejected trials returned.
+std::set<std::string> count_rejections(const fs::path& rejects, Diagnostics& d) {
+  std::set<std::string> participants;
+  if (!fs::exists(rejects)) return participants;
   io::CsvReader csv(rejects.string());
   const int reason = csv.column("reason");
   const int file = csv.column("file");
   const int line = csv.column("line");
-  if (reason < 0) return;
+  const int participant = csv.column("participant");
+  if (reason < 0) return participants;
   std::map<std::string, Exclusion> by_reason;
   while (csv.next()) {
+    if (participant >= 0) {
+      participants.insert(std::string(csv.field(static_cast<std::size_t>(participant))));
+    }
     const std::string why = bare_reason(std::string(csv.field(static_cast<std::size_t>(reason))));
     Exclusion& e = by_reason[why];
     e.stage = "scoring";
@@ -96,6 +102,7 @@ void count_rejections(const fs::path& rejects, Diagnostics& d) {
     }
   }
   for (auto& [_, e] : by_reason) d.exclusions.push_back(std::move(e));
+  return participants;
 }
 
 void note_left_out(Diagnostics& d, const std::string& stage, const std::string& reason) {
@@ -125,9 +132,10 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   if (!d.scoring.sidecar_path.empty()) {
     r.scores_sidecar = without_prefix(read_all(d.scoring.sidecar_path), prefix);
   }
+  std::set<std::string> rejected_participants;
   if (!d.scoring.rejects_path.empty()) {
     r.rejects_csv = read_all(d.scoring.rejects_path);
-    count_rejections(d.scoring.rejects_path, d);
+    rejected_participants = count_rejections(d.scoring.rejects_path, d);
   }
   d.scoring.output_path = "scores.csv";
   if (!d.scoring.sidecar_path.empty()) {
@@ -160,6 +168,14 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
       all.insert(rec.participant);
     }
     d.participants = all.size();
+    // A participant whose every trial was rejected is not in the scores at all: say so.
+    Exclusion gone{"scoring", "participant", 0, "every trial rejected (not in the analysis)", {}};
+    for (const auto& p : rejected_participants) {
+      if (all.count(p) != 0) continue;
+      ++gone.count;
+      if (gone.examples.size() < 5) gone.examples.push_back(p);
+    }
+    if (gone.count > 0) d.exclusions.push_back(std::move(gone));
     for (const auto& c : r.scores.conditions()) d.participants_per_condition.emplace_back(c, per[c].size());
   }
   r.table1 = report::build_table1(r.scores, t);

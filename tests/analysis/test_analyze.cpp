@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <vector>
 #include <string>
 
 #include "feint/analysis/analyze.hpp"
@@ -104,4 +106,41 @@ TEST(DisplayPath, RelativeToTheBaseNeverAbsolute) {
   const std::string outside = analysis::display_path(kDemo, kDemo + "/logs");
   EXPECT_FALSE(fs::path(outside).is_absolute()) << outside;
   EXPECT_EQ(analysis::display_path("", kDemo), "");
+}
+
+TEST(Analyze, RejectedTrialsAndParticipantsAreCountedByReason) {
+  // Two participants; P2's only trial goes back in time and is rejected (--on-error skip).
+  const fs::path study = fs::temp_directory_path() / "feint-test-rejects-study";
+  fs::remove_all(study);
+  fs::create_directories(study / "logs");
+  {
+    std::ofstream f(study / "logs" / "s.csv");
+    f << "participant,condition,iteration,target,t,pad,pad_speed\n";
+    for (int it = 1; it <= 2; ++it) {
+      for (int k = 0; k <= 5; ++k) f << "P1,adaptive," << it << ",right," << k * 0.2 << ",0.6,0.5\n";
+    }
+    f << "P2,adaptive,1,right,0,0.5,0.5\nP2,adaptive,1,right,0.4,0.5,0.5\n"
+      << "P2,adaptive,1,right,0.2,0.5,0.5\n";
+  }
+  analysis::AnalysisSettings s;
+  s.scoring.on_error = "skip";
+  const auto r = analysis::analyze(analysis::load_study(study.string(), s), "test");
+  EXPECT_EQ(r.diagnostics.scoring.trials_scored, 2u);
+  EXPECT_EQ(r.diagnostics.scoring.trials_rejected, 1u);
+  EXPECT_EQ(r.diagnostics.participants, 1u);
+  bool trial = false, participant = false;
+  for (const auto& e : r.diagnostics.exclusions) {
+    if (e.stage == "scoring" && e.what == "trial") {
+      trial = e.count == 1 && e.examples == std::vector<std::string>{"s.csv:16"};
+      EXPECT_EQ(e.reason.find("s.csv"), std::string::npos) << "the reason without the place: "
+                                                          << e.reason;
+    }
+    if (e.what == "participant") {
+      participant = e.count == 1 && e.examples == std::vector<std::string>{"P2"};
+    }
+  }
+  EXPECT_TRUE(trial) << r.rejects_csv;
+  EXPECT_TRUE(participant);
+  EXPECT_FALSE(r.rejects_csv.empty());
+  fs::remove_all(study);
 }
