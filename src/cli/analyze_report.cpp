@@ -150,7 +150,7 @@ void draw_figures(const AnalyzeContext& c, FigureWriter& w, std::vector<std::str
   }
   std::optional<std::vector<plot::TrialLabel>> labels;
   try {
-    labels = plot::read_trial_labels(c.scores_path);
+    labels = metrics::read_trial_labels(c.scores_path);
   } catch (const InvalidData& e) {
     notes.push_back(fmt::format("No strategy figures: {}", e.what()));
   }
@@ -165,7 +165,7 @@ void draw_figures(const AnalyzeContext& c, FigureWriter& w, std::vector<std::str
     topt.delimiter = c.scoring->delimiter;
     topt.unsorted = c.scoring->unsorted;
     const auto curves =
-        plot::mean_traces(io::expand_inputs(c.logs), topt, *labels, t.options.test.conf_level);
+        metrics::mean_traces(io::expand_inputs(c.logs), topt, *labels, t.options.test.conf_level);
     if (curves.empty()) {
       notes.push_back("No trace figure: no scored trial was found again in the logs.");
     } else {
