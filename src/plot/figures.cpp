@@ -57,6 +57,7 @@ double clip(double v, const MetricRange& r) { return std::isnan(v) ? v : std::cl
 
 std::string number(double v) {
   if (!std::isfinite(v)) return "NA";
+  if (std::fabs(v) < 0.005) v = 0;  // no "-0.00"
   return fmt::format("{:.2f}", v);
 }
 
@@ -258,7 +259,7 @@ std::string alt_text(const MetricFigureData& d) {
                                 condition_name(series.condition),
                                 number(n ? sum / static_cast<double>(n) : kNaN), below, above));
   }
-  s += fmt::format(" {}", and_list(parts));
+  s += fmt::format(" {}", capitalise(and_list(parts)));
   if (!d.group1.empty()) {
     s += fmt::format("; {} and {} differ at {} iteration{}", d.group1, d.group2, d.marked.size(),
                      d.marked.size() == 1 ? "" : "s");
@@ -410,12 +411,18 @@ Figure exposure_figure(const metrics::ExposureTrend& d) {
   return exposure_figure(d, metric_range(d.metric));
 }
 
-Figure exposure_figure(const metrics::ExposureTrend& d, MetricRange range) {
+Figure exposure_figure(const metrics::ExposureTrend& d, MetricRange range,
+                       std::size_t min_trials) {
   Figure f;
   long long max_exposure = 1;
   for (const auto& st : d.strategies) {
     for (const auto& se : st.series) {
-      for (const auto& pt : se.points) max_exposure = std::max(max_exposure, pt.exposure);
+      for (const auto& pt : se.points) {
+        if (pt.n >= min_trials) max_exposure = std::max(max_exposure, pt.exposure);
+      }
+      if (se.fit.fitted && !se.fit.exposure.empty()) {
+        max_exposure = std::max(max_exposure, static_cast<long long>(se.fit.exposure.back()));
+      }
     }
   }
   const std::size_t k = d.conditions.size();
@@ -445,6 +452,7 @@ Figure exposure_figure(const metrics::ExposureTrend& d, MetricRange range) {
       means.error_bars = ErrorBars::vertical;
       const double dodge = k <= 1 ? 0.0 : 0.16 * (static_cast<double>(c) / (k - 1) - 0.5);
       for (const auto& pt : se.points) {
+        if (pt.n < min_trials) continue;  // a mean of one or two trials is noise
         means.x.push_back(static_cast<double>(pt.exposure) + dodge);
         means.y.push_back(pt.mean);
         means.lo.push_back(clip(pt.conf_low, range));
@@ -462,24 +470,37 @@ Figure exposure_figure(const metrics::ExposureTrend& d, MetricRange range) {
   }
   for (const auto& c : d.conditions) {
     f.legend.push_back({LegendEntry::Kind::band,
-                        fmt::format("{}: mean, fitted slope", condition_name(c)),
+                        fmt::format("{}: fitted line, mean ± CI", condition_name(c)),
                         style_of_condition(d.conditions, c), false});
   }
-  f.columns = std::min<std::size_t>(3, std::max<std::size_t>(1, d.strategies.size()));
+  if (min_trials > 1) {
+    f.legend.push_back(
+        {LegendEntry::Kind::text, fmt::format("(means of ≥ {} trials)", min_trials), {}, false});
+  }
+  const std::size_t n = std::max<std::size_t>(1, d.strategies.size());
+  f.columns = n == 4 ? 2 : std::min<std::size_t>(3, n);
   f.shared_axes = true;
   f.aspect = 0.85;
   return f;
 }
 
 std::string alt_text(const metrics::ExposureTrend& d) {
-  std::vector<std::string> strategies, slopes;
+  std::vector<std::string> strategies;
+  const metrics::ExposureSeries* lo = nullptr;
+  const metrics::ExposureSeries* hi = nullptr;
+  std::string lo_name, hi_name;
   for (const auto& st : d.strategies) {
     strategies.push_back(st.strategy);
     for (const auto& se : st.series) {
       if (!se.fit.fitted) continue;
-      slopes.push_back(fmt::format("{} in {}: {} per exposure [{}, {}]", st.strategy,
-                                   condition_name(se.condition), number(se.fit.slope),
-                                   number(se.fit.slope_low), number(se.fit.slope_high)));
+      if (lo == nullptr || se.fit.slope < lo->fit.slope) {
+        lo = &se;
+        lo_name = st.strategy;
+      }
+      if (hi == nullptr || se.fit.slope > hi->fit.slope) {
+        hi = &se;
+        hi_name = st.strategy;
+      }
     }
   }
   std::string s = fmt::format(
@@ -487,7 +508,11 @@ std::string alt_text(const metrics::ExposureTrend& d) {
       "strategy ({}), for {}, with each condition's fitted line and its {:g}% band.",
       d.metric, and_list(strategies), and_list(condition_names(d.conditions)),
       d.conf_level * 100);
-  if (!slopes.empty()) s += fmt::format(" Slopes: {}.", fmt::join(slopes, "; "));
+  if (lo != nullptr) {
+    s += fmt::format(" The fitted slopes per exposure range from {} ({}, {}) to {} ({}, {}).",
+                     number(lo->fit.slope), lo_name, condition_name(lo->condition),
+                     number(hi->fit.slope), hi_name, condition_name(hi->condition));
+  }
   return s;
 }
 
@@ -512,13 +537,17 @@ Figure model_fit_figure(const ModelFitFigureData& d) {
     }
     p.lines.push_back(std::move(fit));
   }
-  for (const auto& s : d.means.series) {
+  const std::size_t k = d.means.series.size();
+  for (std::size_t c = 0; c < k; ++c) {
+    const auto& s = d.means.series[c];
     Line l;
     l.style = style_of_condition(conditions, s.condition);
     l.connect = false;
     l.error_bars = ErrorBars::vertical;
+    // Dodged sideways so that the conditions' intervals do not overlap.
+    const double dodge = k <= 1 ? 0.0 : 0.3 * (static_cast<double>(c) / (k - 1) - 0.5);
     for (const auto& pt : s.points) {
-      l.x.push_back(static_cast<double>(pt.iteration));
+      l.x.push_back(static_cast<double>(pt.iteration) + dodge);
       l.y.push_back(pt.mean);
       l.lo.push_back(clip(pt.conf_low, range));
       l.hi.push_back(clip(pt.conf_high, range));
@@ -637,19 +666,28 @@ Figure likert_means_figure(const LikertMeansData& d) {
 }
 
 std::string alt_text(const LikertMeansData& d) {
-  std::vector<std::string> differ;
+  std::size_t differ = 0, finite = 0;
+  const LikertMean* lo = nullptr;
+  const LikertMean* hi = nullptr;
   for (const auto& m : d.means) {
-    if (m.differs) {
-      differ.push_back(fmt::format("{} in {} ({})", m.name, condition_name(m.group), number(m.mean)));
-    }
+    if (!std::isfinite(m.mean)) continue;
+    ++finite;
+    differ += m.differs ? 1 : 0;
+    if (lo == nullptr || m.mean < lo->mean) lo = &m;
+    if (hi == nullptr || m.mean > hi->mean) hi = &m;
   }
-  return fmt::format(
-      "Mean rating of each questionnaire item ({}) on the {}–{} scale for {}, with {:g}% "
-      "confidence intervals, against the reference {:g}. {}.",
+  std::string s = fmt::format(
+      "Mean rating of each questionnaire item ({}) on the {}\u2013{} scale for {}, with {:g}% "
+      "confidence intervals, against the reference {:g}.",
       and_list(d.names), d.scale_min, d.scale_max, and_list(condition_names(d.groups)),
-      d.conf_level * 100, d.reference,
-      differ.empty() ? std::string("No mean differs from the reference")
-                     : "Differing from the reference: " + and_list(differ));
+      d.conf_level * 100, d.reference);
+  if (lo != nullptr) {
+    s += fmt::format(" Means range from {} ({}, {}) to {} ({}, {}); {} of {} differ from the "
+                     "reference.",
+                     number(lo->mean), lo->name, condition_name(lo->group), number(hi->mean),
+                     hi->name, condition_name(hi->group), differ, finite);
+  }
+  return s;
 }
 
 namespace {
@@ -948,18 +986,28 @@ Figure traces_figure(const std::vector<TraceCurve>& curves, double conf_level) {
 }
 
 std::string alt_text(const TracesFigureData& d) {
-  std::vector<std::string> parts;
+  std::vector<std::string> panels;
+  double end[2] = {0, 0};
+  std::size_t n[2] = {0, 0};
   for (const auto& c : d.curves) {
-    if (c.mean.empty()) continue;
-    parts.push_back(fmt::format("{}{} {} ends at {}", c.strategy,
-                                c.variant.empty() ? "" : "/" + c.variant,
-                                c.first_exposure ? "first" : "later", number(c.mean.back())));
+    const std::string name = c.strategy + (c.variant.empty() ? "" : "/" + c.variant);
+    if (std::find(panels.begin(), panels.end(), name) == panels.end()) panels.push_back(name);
+    if (c.mean.empty() || !std::isfinite(c.mean.back())) continue;
+    end[c.first_exposure ? 0 : 1] += c.mean.back();
+    ++n[c.first_exposure ? 0 : 1];
   }
-  return fmt::format(
-      "Mean pad position over normalised time per strategy, mirrored so that the true target is "
-      "at 1, first exposure (solid) against later exposures (dashed), with {:g}% confidence "
-      "bands. {}.",
-      d.conf_level * 100, parts.empty() ? std::string("No trace") : capitalise(and_list(parts)));
+  std::string s = fmt::format(
+      "Mean pad position over normalised time, one panel per strategy and version ({}), mirrored "
+      "so that the true target is at 1; first exposure (solid) against later exposures (dashed), "
+      "with {:g}% confidence bands.",
+      and_list(panels), d.conf_level * 100);
+  if (n[0] > 0 && n[1] > 0) {
+    s += fmt::format(" At the end of the trial the first exposures average {} and the later ones "
+                     "{}.",
+                     number(end[0] / static_cast<double>(n[0])),
+                     number(end[1] / static_cast<double>(n[1])));
+  }
+  return s;
 }
 
 }  // namespace feint::plot

@@ -294,47 +294,56 @@ TEST(Participants, FaintLinesUnderTheMeansWithTheirBand) {
 // ---------------------------------------------------------------------------------------------
 // Exposure
 
-TEST(ExposureTrend, MeansAndTheFittedLineAreRsLm) {
-  // One strategy, one condition: P1 sees it at iterations 1-3 (exposures 1, 2, 3), P2 at 1-2.
+TEST(ExposureTrend, MeansAndTheFittedLineAreRsLmWithClusteredErrors) {
+  // One strategy s in one condition: P1 sees it at iterations 1-3 (exposures 1, 2, 3), P2 at 1-2
+  // (then o), P3 at 1-4.
   const fs::path p = write("exposure.csv",
                            "participant,condition,iteration,strategy,error,confusion\n"
                            "P1,A,1,s,0.1,0.5\nP1,A,2,s,0.3,0.5\nP1,A,3,s,0.2,0.5\n"
-                           "P2,A,1,s,0.2,0.5\nP2,A,2,s,0.4,0.5\nP2,A,3,o,0.9,0.5\n");
+                           "P2,A,1,s,0.2,0.5\nP2,A,2,s,0.4,0.5\nP2,A,3,o,0.9,0.5\n"
+                           "P3,A,1,s,0.5,0.5\nP3,A,2,s,0.45,0.5\nP3,A,3,s,0.3,0.5\n"
+                           "P3,A,4,s,0.35,0.5\n");
   const io::ScoresTable scores = io::load_scores(p.string());
   const auto labels = metrics::read_trial_labels(p.string());
   const auto t = metrics::exposure_trend(scores, labels, "error");
   ASSERT_EQ(t.strategies.size(), 2u);
   EXPECT_EQ(t.strategies[0].strategy, "o");
   const auto& s = t.strategies[1].series[0];
-  ASSERT_EQ(s.points.size(), 3u);
+  ASSERT_EQ(s.points.size(), 4u);
   EXPECT_EQ(s.points[0].exposure, 1);
-  EXPECT_EQ(s.points[0].n, 2u);
-  EXPECT_DOUBLE_EQ(s.points[0].mean, 0.15);
-  EXPECT_DOUBLE_EQ(s.points[1].mean, 0.35);
-  EXPECT_EQ(s.points[2].n, 1u);
-  EXPECT_TRUE(std::isnan(s.points[2].conf_low));
-  // R: lm(y ~ x), predict(interval = "confidence") (tests/golden/plot/exposure_ols.R).
+  EXPECT_EQ(s.points[0].n, 3u);
+  EXPECT_NEAR(s.points[0].mean, (0.1 + 0.2 + 0.5) / 3, 1e-12);
+  EXPECT_NEAR(s.points[1].mean, (0.3 + 0.4 + 0.45) / 3, 1e-12);
+  EXPECT_EQ(s.points[3].n, 1u);
+  EXPECT_TRUE(std::isnan(s.points[3].conf_low));
+  // R: lm(y ~ x) with the CR1 cluster-robust covariance (tests/golden/plot/exposure_ols.R).
   ASSERT_TRUE(s.fit.fitted);
-  EXPECT_NEAR(s.fit.intercept, 0.15, 1e-12);
-  EXPECT_NEAR(s.fit.slope, 0.05, 1e-12);
-  EXPECT_NEAR(s.fit.slope_low, -0.18293121861108708, 1e-9);
-  EXPECT_NEAR(s.fit.slope_high, 0.28293121861108711, 1e-9);
-  const double lwr[] = {-0.055163365560919136, 0.069572253901492076, -0.029414488459891752};
-  const double upr[] = {0.45516336556091896, 0.43042774609850781, 0.62941448845989156};
-  for (std::size_t i = 0; i < 3; ++i) {
-    EXPECT_NEAR(s.fit.fit[i], 0.2 + 0.05 * static_cast<double>(i), 1e-12);
-    EXPECT_NEAR(s.fit.low[i], lwr[i], 1e-9);
-    EXPECT_NEAR(s.fit.high[i], upr[i], 1e-9);
+  EXPECT_EQ(s.fit.participants, 3u);
+  EXPECT_NEAR(s.fit.intercept, 0.29, 1e-12);
+  EXPECT_NEAR(s.fit.slope, 0.01, 1e-12);
+  EXPECT_NEAR(s.fit.slope_low, -0.15918373035071859, 1e-9);
+  EXPECT_NEAR(s.fit.slope_high, 0.17918373035071861, 1e-9);
+  const double low[] = {-0.1726977172233140068, -0.0036296768098073029, 0.1452708218004628016,
+                        0.1887793694833634350};
+  const double high[] = {0.77269771722331404, 0.62362967680980730, 0.49472917819953721,
+                         0.47122063051663660};
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_NEAR(s.fit.fit[i], 0.3 + 0.01 * static_cast<double>(i), 1e-12);
+    EXPECT_NEAR(s.fit.low[i], low[i], 1e-9);
+    EXPECT_NEAR(s.fit.high[i], high[i], 1e-9);
   }
   // The single trial of "o" cannot be fitted.
   EXPECT_FALSE(t.strategies[0].series[0].fit.fitted);
-  // The figure clips the band at 0 (error's range).
-  const plot::Figure f = plot::exposure_figure(t);
+  // The figure clips the band at 0 (error's range); the means of fewer than min_trials trials
+  // are not drawn.
+  const plot::Figure f = plot::exposure_figure(t, plot::metric_range("error"), 2);
   ASSERT_EQ(f.panels.size(), 2u);
   const auto& band = f.panels[1].lines[0];
   ASSERT_TRUE(band.band);
   EXPECT_EQ(band.lo[0], 0.0);
-  EXPECT_NEAR(band.lo[1], lwr[1], 1e-9);
+  EXPECT_EQ(band.lo[1], 0.0);
+  EXPECT_NEAR(band.lo[2], low[2], 1e-9);
+  EXPECT_EQ(f.panels[1].lines[1].x.size(), 3u);  // exposure 4 has one trial
   EXPECT_THROW(metrics::exposure_trend(scores, labels, "speed"), InvalidData);
 }
 
@@ -424,7 +433,7 @@ TEST(AltText, NamesTheMetricAndTheConditions) {
   // The metric's numbers: adaptive's mean over the iterations.
   double sum = 0;
   for (const auto& pt : m.series[0].points) sum += pt.mean;
-  EXPECT_TRUE(contains(plot::alt_text(m), fmt::format("adaptive averages {:.2f}", sum / 8)))
+  EXPECT_TRUE(contains(plot::alt_text(m), fmt::format("Adaptive averages {:.2f}", sum / 8)))
       << plot::alt_text(m);
 }
 

@@ -22,14 +22,19 @@ struct ExposurePoint {
 };
 
 /// The least-squares line y = intercept + slope * exposure through the condition's trials of one
-/// strategy, with the pointwise confidence band of the fitted mean at each exposure,
-/// fit -+ qt(1 - (1 - conf)/2, n - 2) s sqrt(1/n + (x - xbar)^2 / Sxx) (Draper & Smith, ch. 1).
-/// Descriptive: it treats trials as independent, so it ignores that a participant contributes
-/// several trials (the mixed model of feint model is the inference). `fitted` is false with
-/// fewer than 3 trials or a single exposure value.
+/// strategy, with intervals that respect that a participant contributes several trials: the
+/// participant-clustered sandwich covariance V = c (X'X)^-1 [sum_g X_g' e_g e_g' X_g] (X'X)^-1
+/// with X = [1, exposure], e the residuals, g the participants, the small-sample factor
+/// c = G/(G-1) (N-1)/(N-2) (CR1, as Stata's `regress, vce(cluster)`), and t quantiles with G - 1
+/// df (Cameron & Miller 2015, "A practitioner's guide to cluster-robust inference"). The band at
+/// exposure x is fit -+ qt(1 - (1 - conf)/2, G - 1) sqrt(a' V a), a = (1, x); the slope's interval
+/// is slope -+ qt(...) sqrt(V_11). Descriptive: the mixed model of `feint model --exposure` is
+/// the inference. `fitted` is false with fewer than 3 trials, fewer than 2 participants or a
+/// single exposure value.
 struct ExposureFit {
   bool fitted = false;
-  std::size_t n = 0;
+  std::size_t n = 0;             ///< trials
+  std::size_t participants = 0;  ///< clusters
   double intercept = 0, slope = 0, slope_low = 0, slope_high = 0;
   std::vector<double> exposure, fit, low, high;  ///< the band, at each observed exposure
 };

@@ -128,7 +128,11 @@ std::string alt_text(const ParticipantsData& data);
 // ---------------------------------------------------------------------------------------------
 // Condition x exposure per strategy (metrics::exposure_trend)
 
-Figure exposure_figure(const metrics::ExposureTrend& data, MetricRange range);
+/// One panel per strategy; per condition the fitted line with its band (clipped to `range`) and
+/// the means with their intervals at the exposures with at least `min_trials` trials (fewer are
+/// noise; the fit uses every trial).
+Figure exposure_figure(const metrics::ExposureTrend& data, MetricRange range,
+                       std::size_t min_trials = 5);
 Figure exposure_figure(const metrics::ExposureTrend& data);  ///< range = metric_range(metric)
 std::string alt_text(const metrics::ExposureTrend& data);
 
