@@ -569,7 +569,8 @@ void draw_legend(cairo_t* cr, const Figure& f, const Layout& L) {
       }
       cairo_set_source_rgb(cr, 0, 0, 0);
       if (e.kind == LegendEntry::Kind::text) {
-        set_font(cr, kFontSize, true);
+        // A heading ("Strategy:") in bold, a remark in plain text.
+        set_font(cr, kFontSize, !e.label.empty() && e.label.back() == ':');
         draw_text(cr, e.label, x, y, 0);
         set_font(cr, kFontSize);
       } else {
@@ -827,14 +828,27 @@ void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, d
 void draw(cairo_t* cr, const Figure& f, const Layout& L,
           const std::vector<std::pair<Scale, Scale>>& scales) {
   draw_legend(cr, f, L);
+  // Small multiples in several rows with one y label: drawn once, centred on the rows (a long
+  // label does not fit beside one short panel).
+  bool one_ylabel = f.shared_axes && L.rows > 1 && !f.panels.empty();
+  for (const auto& p : f.panels) one_ylabel = one_ylabel && p.y.label == f.panels[0].y.label;
   for (std::size_t i = 0; i < f.panels.size(); ++i) {
     const std::size_t col = i % L.columns, row = i / L.columns;
     const double px = kMargin + L.left + static_cast<double>(col) * L.cell_width;
     const double oy = kMargin + L.legend_height + static_cast<double>(row) * L.cell_height;
     const bool last_in_column = i + L.columns >= f.panels.size();
     draw_panel(cr, f.panels[i], scales[i].first, scales[i].second, px, oy, L,
-               !f.shared_axes || col == 0, !f.shared_axes || last_in_column,
+               !one_ylabel && (!f.shared_axes || col == 0), !f.shared_axes || last_in_column,
                px - L.left + kFontSize * 0.6);
+  }
+  if (one_ylabel && !f.panels[0].y.label.empty()) {
+    const double top = kMargin + L.legend_height + L.top;
+    const double bottom = kMargin + L.legend_height + static_cast<double>(L.rows - 1) * L.cell_height +
+                          L.top + L.plot_height;
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    set_font(cr, kFontSize);
+    draw_text(cr, f.panels[0].y.label, kMargin + kFontSize * 0.6, (top + bottom) / 2, 0.5,
+              -M_PI / 2);
   }
 }
 
