@@ -127,7 +127,8 @@ void draw_figures(const AnalyzeContext& c, FigureWriter& w, std::vector<std::str
     const plot::MetricFigureData d = plot::metric_figure_data(t, c.comparison, m.column);
     std::string caption = fmt::format(
         "Mean {} per iteration and condition with its {} confidence interval (the one-sample "
-        "t-tests of Table 1), against the reference R = {:g} (dashed). Filled markers: the mean "
+        "t-tests of Table 1), against the reference R = {:g} (dashed; an arrow at the edge when "
+        "far from the data). Filled markers: the mean "
         "differs from R (p < {:g}, {}); hollow: no difference found.",
         m.column, level, m.reference, t.options.alpha, adjustment_words(t.options.p_adjust));
     if (c.comparison != nullptr) {
@@ -142,9 +143,9 @@ void draw_figures(const AnalyzeContext& c, FigureWriter& w, std::vector<std::str
   }
   for (const auto& m : t.options.metrics) {
     w.add("participants-" + m.column, capitalised(m.column) + " of each participant",
-          fmt::format("Each participant's {} over the iterations (thin grey lines), one panel per "
-                      "condition, with the condition's mean from Table 1 (thick line). A "
-                      "participant who stopped playing or an outlier stands out.",
+          fmt::format("Each participant's {} over the iterations (faint lines), one panel per "
+                      "condition, with the condition's mean and its interval from Table 1 (thick "
+                      "line and band). A participant who stopped playing or an outlier stands out.",
                       m.column),
           plot::participants_figure(*c.scores, m.column, &t));
   }

@@ -271,14 +271,19 @@ std::string alt_text(const MetricFigureData& d) {
 
 ParticipantsData participants_data(const io::ScoresTable& scores, const std::string& metric,
                                    const report::Table1* one_sample) {
+  return participants_data(scores, metric, one_sample, metric_range(metric));
+}
+
+ParticipantsData participants_data(const io::ScoresTable& scores, const std::string& metric,
+                                   const report::Table1* one_sample, MetricRange range) {
   const int m = scores.metric_index(metric);
   if (m < 0) throw InvalidData(fmt::format("figure participants: metric '{}' not loaded", metric));
   ParticipantsData d;
   d.metric = metric;
-  d.range = metric_range(metric);
+  d.range = range;
   std::optional<MetricFigureData> means;
   if (one_sample != nullptr) {
-    means = metric_figure_data(*one_sample, nullptr, metric);
+    means = metric_figure_data(*one_sample, nullptr, metric, range);
     d.reference = means->reference;
     d.conf_level = means->conf_level;
   }

@@ -117,9 +117,12 @@ struct ParticipantsData {
   std::optional<double> reference;  ///< the table's reference (none without a table)
   std::vector<ParticipantsPanel> panels;  ///< one per condition, the scores' order
 };
-/// Throws InvalidData when `metric` is not loaded in `scores`.
+/// Throws InvalidData when `metric` is not loaded in `scores`. The range defaults to
+/// metric_range(metric).
 ParticipantsData participants_data(const io::ScoresTable& scores, const std::string& metric,
                                    const report::Table1* one_sample);
+ParticipantsData participants_data(const io::ScoresTable& scores, const std::string& metric,
+                                   const report::Table1* one_sample, MetricRange range);
 Figure participants_figure(const ParticipantsData& data);
 Figure participants_figure(const io::ScoresTable& scores, const std::string& metric,
                            const report::Table1* one_sample);
