@@ -60,7 +60,8 @@ MeanTraceAccumulator::MeanTraceAccumulator(const std::vector<TrialLabel>& labels
 }
 
 bool MeanTraceAccumulator::add(const io::Trial& trial) {
-  const auto f = first_.find(Key{trial.participant, trial.condition, trial.strategy, trial.variant});
+  const auto f =
+      first_.find(Key{trial.participant, trial.condition, trial.strategy, trial.variant});
   if (f == first_.end() || trial.times.size() < 2 || trial.pads.size() != trial.times.size()) {
     return false;
   }
@@ -122,8 +123,8 @@ std::vector<TraceCurve> mean_traces(const std::vector<io::Trial>& trials,
 }
 
 std::vector<TraceCurve> mean_traces(const std::vector<std::string>& log_files,
-                                    io::TraceOptions options,
-                                    const std::vector<TrialLabel>& labels, double conf_level) {
+                                    io::TraceOptions options, const std::vector<TrialLabel>& labels,
+                                    double conf_level) {
   MeanTraceAccumulator acc(labels);
   options.on_reject = [](const io::Rejection&) {};  // scored elsewhere; invalid trials skipped
   io::TraceReader reader(log_files, std::move(options));

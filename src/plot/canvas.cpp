@@ -751,8 +751,7 @@ void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, d
         cairo_close_path(cr);
         cairo_fill(cr);
         if (!ref.label.empty()) {
-          draw_text_halo(cr, ref.label + (high ? " (above)" : " (below)"), x - a - 2, y + d * a,
-                         1);
+          draw_text_halo(cr, ref.label + (high ? " (above)" : " (below)"), x - a - 2, y + d * a, 1);
         }
       }
       continue;
@@ -843,8 +842,8 @@ void draw(cairo_t* cr, const Figure& f, const Layout& L,
   }
   if (one_ylabel && !f.panels[0].y.label.empty()) {
     const double top = kMargin + L.legend_height + L.top;
-    const double bottom = kMargin + L.legend_height + static_cast<double>(L.rows - 1) * L.cell_height +
-                          L.top + L.plot_height;
+    const double bottom = kMargin + L.legend_height +
+                          static_cast<double>(L.rows - 1) * L.cell_height + L.top + L.plot_height;
     cairo_set_source_rgb(cr, 0, 0, 0);
     set_font(cr, kFontSize);
     draw_text(cr, f.panels[0].y.label, kMargin + kFontSize * 0.6, (top + bottom) / 2, 0.5,

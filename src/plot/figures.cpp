@@ -53,7 +53,9 @@ void bound(Axis& a, const MetricRange& r) {
   if (std::isfinite(r.hi)) a.bound_max = r.hi;
 }
 
-double clip(double v, const MetricRange& r) { return std::isnan(v) ? v : std::clamp(v, r.lo, r.hi); }
+double clip(double v, const MetricRange& r) {
+  return std::isnan(v) ? v : std::clamp(v, r.lo, r.hi);
+}
 
 std::string number(double v) {
   if (!std::isfinite(v)) return "NA";
@@ -375,10 +377,10 @@ Figure participants_figure(const ParticipantsData& d) {
     s.marker = Marker::none;
     if (d.reference || std::any_of(d.panels.begin(), d.panels.end(),
                                    [](const ParticipantsPanel& p) { return !p.means.empty(); })) {
-      f.legend.push_back({LegendEntry::Kind::band,
-                          fmt::format("{}: mean \u00b1 {:g}% CI", condition_name(c),
-                                      d.conf_level * 100),
-                          s, false});
+      f.legend.push_back(
+          {LegendEntry::Kind::band,
+           fmt::format("{}: mean \u00b1 {:g}% CI", condition_name(c), d.conf_level * 100), s,
+           false});
     }
   }
   f.legend.push_back({LegendEntry::Kind::line, "faint: one participant",
@@ -416,8 +418,7 @@ Figure exposure_figure(const metrics::ExposureTrend& d) {
   return exposure_figure(d, metric_range(d.metric));
 }
 
-Figure exposure_figure(const metrics::ExposureTrend& d, MetricRange range,
-                       std::size_t min_trials) {
+Figure exposure_figure(const metrics::ExposureTrend& d, MetricRange range, std::size_t min_trials) {
   Figure f;
   long long max_exposure = 1;
   for (const auto& st : d.strategies) {
@@ -511,8 +512,7 @@ std::string alt_text(const metrics::ExposureTrend& d) {
   std::string s = fmt::format(
       "Mean {} against the number of times the participant had seen the strategy, one panel per "
       "strategy ({}), for {}, with each condition's fitted line and its {:g}% band.",
-      d.metric, and_list(strategies), and_list(condition_names(d.conditions)),
-      d.conf_level * 100);
+      d.metric, and_list(strategies), and_list(condition_names(d.conditions)), d.conf_level * 100);
   if (lo != nullptr) {
     s += fmt::format(" The fitted slopes per exposure range from {} ({}, {}) to {} ({}, {}).",
                      number(lo->fit.slope), lo_name, condition_name(lo->condition),
@@ -651,10 +651,10 @@ Figure likert_means_figure(const LikertMeansData& d) {
     f.legend.push_back({LegendEntry::Kind::marker, l.label, l.style, false});
     p.lines.push_back(std::move(l));
   }
-  f.legend.push_back({LegendEntry::Kind::marker,
-                      fmt::format("hollow: ≈ R (p ≥ {}{})", p_threshold(d.alpha),
-                                  adjust_words(d.p_adjust)),
-                      Style{Colour{0.3, 0.3, 0.3}, Dash::solid, Marker::circle}, true});
+  f.legend.push_back(
+      {LegendEntry::Kind::marker,
+       fmt::format("hollow: ≈ R (p ≥ {}{})", p_threshold(d.alpha), adjust_words(d.p_adjust)),
+       Style{Colour{0.3, 0.3, 0.3}, Dash::solid, Marker::circle}, true});
   for (std::size_t i = 0; i < items; ++i) {
     p.y.categories.emplace_back(static_cast<double>(items - 1 - i), d.names[i]);
   }
@@ -662,8 +662,8 @@ Figure likert_means_figure(const LikertMeansData& d) {
   p.x.min = d.scale_min - 0.25;
   p.x.max = d.scale_max + 0.25;
   for (int v = d.scale_min; v <= d.scale_max; ++v) p.x.ticks.push_back(v);
-  p.x.label = fmt::format("Mean rating ± {:g}% CI (scale {}–{})", d.conf_level * 100,
-                          d.scale_min, d.scale_max);
+  p.x.label = fmt::format("Mean rating ± {:g}% CI (scale {}–{})", d.conf_level * 100, d.scale_min,
+                          d.scale_max);
   f.aspect = std::clamp(0.12 * static_cast<double>(items * groups) + 0.1, 0.3, 0.9);
   f.max_plot_height = 12.0 * static_cast<double>(items * groups) + 20;
   f.panels.push_back(std::move(p));
@@ -687,10 +687,11 @@ std::string alt_text(const LikertMeansData& d) {
       and_list(d.names), d.scale_min, d.scale_max, and_list(condition_names(d.groups)),
       d.conf_level * 100, d.reference);
   if (lo != nullptr) {
-    s += fmt::format(" Means range from {} ({}, {}) to {} ({}, {}); {} of {} differ from the "
-                     "reference.",
-                     number(lo->mean), lo->name, condition_name(lo->group), number(hi->mean),
-                     hi->name, condition_name(hi->group), differ, finite);
+    s += fmt::format(
+        " Means range from {} ({}, {}) to {} ({}, {}); {} of {} differ from the "
+        "reference.",
+        number(lo->mean), lo->name, condition_name(lo->group), number(hi->mean), hi->name,
+        condition_name(hi->group), differ, finite);
   }
   return s;
 }
@@ -703,8 +704,8 @@ std::vector<std::string> answer_labels(const report::LikertAnalysis& a) {
   if (map.empty()) map = io::builtin_agree_labels(a.scale_min, a.scale_max);
   std::vector<std::string> out;
   for (int v = a.scale_min; v <= a.scale_max; ++v) {
-    const auto it = std::find_if(map.begin(), map.end(),
-                                 [&](const io::LabelEntry& e) { return e.value == v; });
+    const auto it =
+        std::find_if(map.begin(), map.end(), [&](const io::LabelEntry& e) { return e.value == v; });
     out.push_back(it != map.end() ? it->text : std::to_string(v));
   }
   return out;
@@ -927,7 +928,8 @@ std::string alt_text(const Occurrence& o) {
           "{} {:.0f}%", o.strategies[s],
           all == 0 ? 0.0 : 100.0 * static_cast<double>(total[s]) / static_cast<double>(all)));
     }
-    parts.push_back(fmt::format("{}: {}", condition_name(o.conditions[c]), fmt::join(shares, ", ")));
+    parts.push_back(
+        fmt::format("{}: {}", condition_name(o.conditions[c]), fmt::join(shares, ", ")));
   }
   return fmt::format(
       "Stacked bars of the share of participants shown each strategy ({}) per iteration, one "
@@ -943,8 +945,7 @@ Figure traces_figure(const std::vector<TraceCurve>& curves, double conf_level) {
   const Style first{Colour{0, 0, 0}, Dash::solid, Marker::none};
   const Style later{Colour{0.5, 0.5, 0.5}, Dash::dashed, Marker::none};
   f.legend.push_back({LegendEntry::Kind::band,
-                      fmt::format("first exposure (± {:g}% CI)", conf_level * 100), first,
-                      false});
+                      fmt::format("first exposure (± {:g}% CI)", conf_level * 100), first, false});
   f.legend.push_back({LegendEntry::Kind::band, "later exposures", later, false});
   std::size_t i = 0;
   while (i < curves.size()) {
@@ -1007,10 +1008,10 @@ std::string alt_text(const TracesFigureData& d) {
       "with {:g}% confidence bands.",
       and_list(panels), d.conf_level * 100);
   if (n[0] > 0 && n[1] > 0) {
-    s += fmt::format(" At the end of the trial the first exposures average {} and the later ones "
-                     "{}.",
-                     number(end[0] / static_cast<double>(n[0])),
-                     number(end[1] / static_cast<double>(n[1])));
+    s += fmt::format(
+        " At the end of the trial the first exposures average {} and the later ones "
+        "{}.",
+        number(end[0] / static_cast<double>(n[0])), number(end[1] / static_cast<double>(n[1])));
   }
   return s;
 }

@@ -227,8 +227,9 @@ TEST(Colours, StrategyPaletteAvoidsTheConditionsColoursAndDiffersInGrey) {
   }
   for (std::size_t i = 0; i < 4; ++i) {
     for (std::size_t j = i + 1; j < 4; ++j) {
-      EXPECT_GT(std::fabs(luminance(plot::strategy_colour(i)) - luminance(plot::strategy_colour(j))),
-                0.08)
+      EXPECT_GT(
+          std::fabs(luminance(plot::strategy_colour(i)) - luminance(plot::strategy_colour(j))),
+          0.08)
           << i << " " << j;
     }
   }
@@ -240,7 +241,8 @@ TEST(Colours, StrategyPaletteAvoidsTheConditionsColoursAndDiffersInGrey) {
 
 TEST(Colours, AConditionHasTheSameStyleInEveryFigure) {
   const auto& st = study();
-  const plot::Figure metric = plot::metric_figure(plot::metric_figure_data(st.one, nullptr, "error"));
+  const plot::Figure metric =
+      plot::metric_figure(plot::metric_figure_data(st.one, nullptr, "error"));
   const plot::Figure people = plot::participants_figure(st.scores, "error", &st.one);
   const auto trend = metrics::exposure_trend(st.scores, st.labels, "error");
   const plot::Figure exposure = plot::exposure_figure(trend);
@@ -401,7 +403,8 @@ TEST(LikertLabels, BuiltInAgreeLabelsOrTheQuestionnairesMap) {
   EXPECT_EQ(d.answer_labels.back(), "Strongly agree");
   const plot::Figure f = plot::likert_distribution_figure(d);
   EXPECT_EQ(f.legend.front().label, "1 Strongly disagree");
-  l.load.labels = io::parse_label_map("Never=1,Rarely=2,Sometimes=3,Often=4,Mostly=5,Usually=6,Always=7");
+  l.load.labels =
+      io::parse_label_map("Never=1,Rarely=2,Sometimes=3,Often=4,Mostly=5,Usually=6,Always=7");
   const auto u = plot::likert_distribution_data(report::analyze_likert_file(p.string(), l));
   EXPECT_EQ(u.answer_labels.front(), "Never");
   EXPECT_EQ(u.answer_labels.back(), "Always");
@@ -514,12 +517,11 @@ TEST(DemoFigures, EveryFigureRendersInThreeFormatsAtBothWidths) {
   const bool xmllint = have_xmllint();
   for (const auto& [name, figure] : d.figures) {
     for (const auto width : {plot::Width::one_column, plot::Width::two_column}) {
-      for (const auto format : {plot::FileFormat::pdf, plot::FileFormat::svg,
-                                plot::FileFormat::png}) {
+      for (const auto format :
+           {plot::FileFormat::pdf, plot::FileFormat::svg, plot::FileFormat::png}) {
         const std::string bytes = plot::render(figure, width, format);
-        const std::string file = fmt::format("{}-{}col.{}", name,
-                                             width == plot::Width::one_column ? 1 : 2,
-                                             plot::extension(format));
+        const std::string file = fmt::format(
+            "{}-{}col.{}", name, width == plot::Width::one_column ? 1 : 2, plot::extension(format));
         ASSERT_GT(bytes.size(), 500u) << file;
         if (format == plot::FileFormat::pdf) {
           EXPECT_EQ(bytes.substr(0, 5), "%PDF-") << file;

@@ -46,16 +46,16 @@ struct ExposureSeries {
 };
 
 struct ExposureStrategy {
-  std::string strategy;                 ///< "(none)" for an empty strategy label
-  std::vector<ExposureSeries> series;   ///< one per condition (ExposureTrend::conditions' order)
+  std::string strategy;                ///< "(none)" for an empty strategy label
+  std::vector<ExposureSeries> series;  ///< one per condition (ExposureTrend::conditions' order)
 };
 
 struct ExposureTrend {
   std::string metric;
   double conf_level = 0.95;
-  std::vector<std::string> conditions;      ///< the scores' order
+  std::vector<std::string> conditions;       ///< the scores' order
   std::vector<ExposureStrategy> strategies;  ///< sorted
-  std::size_t unmatched = 0;  ///< scored trials without a label (left out)
+  std::size_t unmatched = 0;                 ///< scored trials without a label (left out)
 };
 
 /// Joins the scores with the trial labels by (participant, condition, iteration). A trial's

@@ -70,8 +70,7 @@ std::vector<TraceCurve> mean_traces(const std::vector<io::Trial>& trials,
 /// Streams the logs once through io::TraceReader with `options` (invalid trials are skipped, as
 /// `feint score --on-error skip` does) into a MeanTraceAccumulator.
 std::vector<TraceCurve> mean_traces(const std::vector<std::string>& log_files,
-                                    io::TraceOptions options,
-                                    const std::vector<TrialLabel>& labels,
+                                    io::TraceOptions options, const std::vector<TrialLabel>& labels,
                                     double conf_level = 0.95);
 
 }  // namespace feint::metrics

@@ -16,7 +16,7 @@ struct TrendPoint {
 };
 
 struct FittedTrend {
-  std::string group;  ///< the group level (condition)
+  std::string group;               ///< the group level (condition)
   std::vector<TrendPoint> points;  ///< ascending time
 };
 

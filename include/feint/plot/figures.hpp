@@ -114,7 +114,7 @@ struct ParticipantsData {
   std::string metric;
   MetricRange range;
   double conf_level = 0.95;
-  std::optional<double> reference;  ///< the table's reference (none without a table)
+  std::optional<double> reference;        ///< the table's reference (none without a table)
   std::vector<ParticipantsPanel> panels;  ///< one per condition, the scores' order
 };
 /// Throws InvalidData when `metric` is not loaded in `scores`. The range defaults to
