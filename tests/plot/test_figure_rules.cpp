@@ -548,3 +548,45 @@ TEST(DemoFigures, EveryFigureRendersInThreeFormatsAtBothWidths) {
     if (keep != nullptr) std::ofstream(fs::path(keep) / (name + ".alt.txt")) << alt << "\n";
   }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Mean traces from loaded trials (metrics, upstream of plot)
+
+TEST(MeanTraces, LoadedTrialsGiveTheSameCurvesAsTheStreamedLogs) {
+  const fs::path log = write("traces.csv",
+                             "participant,condition,iteration,strategy,variant,target,t,pad\n"
+                             "P1,A,1,s,main,right,0,0.5\nP1,A,1,s,main,right,1,0.7\n"
+                             "P1,A,2,s,main,left,0,0.5\nP1,A,2,s,main,left,2,0.2\n"
+                             "P2,A,1,s,main,left,0,0.5\nP2,A,1,s,main,left,1,0.4\n"
+                             "P3,A,1,s,main,right,0,0.5\nP3,A,1,s,main,right,1,0.9\n");
+  const std::vector<metrics::TrialLabel> labels = {
+      {"P1", "A", 1, "s", "main"}, {"P1", "A", 2, "s", "main"}, {"P2", "A", 1, "s", "main"}};
+  std::vector<io::Trial> trials;
+  io::TraceReader reader({log.string()}, io::TraceOptions{});
+  io::Trial t;
+  while (reader.next(t)) trials.push_back(t);
+  ASSERT_EQ(trials.size(), 4u);
+  metrics::MeanTraceAccumulator acc(labels);
+  EXPECT_TRUE(acc.add(trials[0]));
+  EXPECT_FALSE(acc.add(trials[3]));  // P3 is not in the scores: skipped
+  const auto loaded = metrics::mean_traces(trials, labels);
+  const auto streamed = metrics::mean_traces({log.string()}, io::TraceOptions{}, labels);
+  ASSERT_EQ(loaded.size(), 2u);  // first (P1 it 1, P2), later (P1 it 2)
+  ASSERT_EQ(streamed.size(), loaded.size());
+  for (std::size_t c = 0; c < loaded.size(); ++c) {
+    EXPECT_EQ(loaded[c].trials, streamed[c].trials);
+    EXPECT_EQ(loaded[c].mean, streamed[c].mean);
+  }
+  EXPECT_TRUE(loaded[0].first_exposure);
+  EXPECT_EQ(loaded[0].trials, 2u);
+  // At the end: P1 0.7 (right), P2 1 - 0.4 = 0.6 (left): mean 0.65.
+  EXPECT_NEAR(loaded[0].mean.back(), 0.65, 1e-12);
+  // Later exposure: P1 at iteration 2, target left, pad 0.2: 0.8.
+  EXPECT_NEAR(loaded[1].mean.back(), 0.8, 1e-12);
+  // The figure clips the band at [0, 1]; the alt text says first against later.
+  const plot::Figure f = plot::traces_figure(loaded);
+  EXPECT_EQ(f.panels[0].y.bound_max, 1.0);
+  const std::string alt = plot::alt_text(plot::TracesFigureData{loaded, 0.95});
+  EXPECT_TRUE(contains(alt, "s/main")) << alt;
+  EXPECT_TRUE(contains(alt, "first exposures average 0.65 and the later ones 0.80")) << alt;
+}
