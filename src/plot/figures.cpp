@@ -241,6 +241,7 @@ Figure metric_figure(const MetricFigureData& d) {
 
 std::string alt_text(const MetricFigureData& d) {
   const auto [first, last] = iteration_span(d);
+  if (first > last) return fmt::format("Line chart of the mean {}: no data.", d.metric);
   std::string s = fmt::format(
       "Line chart of the mean {} per iteration ({} to {}) for {}, each with its {:g}% confidence "
       "band, against the reference {:g}.",
@@ -585,6 +586,7 @@ std::string alt_text(const ModelFitFigureData& d) {
     parts.push_back(fmt::format("{} from {} to {}", condition_name(t.group),
                                 number(t.points.front().fit), number(t.points.back().fit)));
   }
+  if (parts.empty()) return fmt::format("The mixed model's fitted {}: no fit.", d.means.metric);
   return fmt::format(
       "The mixed model's fitted {} per iteration{} with its {:g}% band for {}, over the observed "
       "means with their intervals. The fit goes {}.",

@@ -590,3 +590,44 @@ TEST(MeanTraces, LoadedTrialsGiveTheSameCurvesAsTheStreamedLogs) {
   EXPECT_TRUE(contains(alt, "s/main")) << alt;
   EXPECT_TRUE(contains(alt, "first exposures average 0.65 and the later ones 0.80")) << alt;
 }
+
+// ---------------------------------------------------------------------------------------------
+// Edge cases: no data, one condition
+
+TEST(EdgeCases, EmptyDataRenderAndHaveAltText) {
+  const metrics::ExposureTrend none{"error", 0.95, {}, {}, 0};
+  const plot::ModelFitFigureData no_fit{plot::MetricFigureData{}, {}, ""};
+  const plot::TracesFigureData no_traces{};
+  for (const plot::Figure& f :
+       {plot::exposure_figure(none), plot::model_fit_figure(no_fit),
+        plot::traces_figure(no_traces.curves), plot::metric_figure(plot::MetricFigureData{})}) {
+    for (const auto format :
+         {plot::FileFormat::pdf, plot::FileFormat::svg, plot::FileFormat::png}) {
+      EXPECT_FALSE(plot::render(f, plot::Width::one_column, format).empty());
+    }
+  }
+  EXPECT_FALSE(plot::alt_text(none).empty());
+  EXPECT_EQ(plot::alt_text(plot::MetricFigureData{}), "Line chart of the mean : no data.");
+  EXPECT_FALSE(plot::alt_text(no_fit).empty());
+  EXPECT_FALSE(plot::alt_text(no_traces).empty());
+}
+
+TEST(EdgeCases, OneConditionIsAllParticipantsInTheFirstStyle) {
+  const fs::path p = write("onecond.csv",
+                           "participant,iteration,strategy,error,confusion\n"
+                           "P1,1,s,0.2,0.3\nP1,2,s,0.3,0.3\nP2,1,s,0.4,0.5\nP2,2,s,0.6,0.4\n"
+                           "P3,1,s,0.5,0.2\nP3,2,s,0.5,0.6\n");
+  const io::ScoresTable scores = io::load_scores(p.string());
+  const report::Table1 one = report::build_table1(scores, report::Table1Options{});
+  const auto d = plot::metric_figure_data(one, nullptr, "error");
+  const plot::Figure f = plot::metric_figure(d);
+  EXPECT_EQ(f.panels[0].lines[0].label, "all participants");
+  EXPECT_TRUE(same(f.panels[0].lines[0].style.colour, plot::condition_style(0).colour));
+  EXPECT_TRUE(contains(plot::alt_text(d), "all participants")) << plot::alt_text(d);
+  const auto e =
+      metrics::exposure_trend(scores, metrics::read_trial_labels(p.string()), "confusion");
+  ASSERT_EQ(e.strategies.size(), 1u);
+  EXPECT_EQ(e.strategies[0].series[0].points.size(), 2u);
+  EXPECT_TRUE(e.strategies[0].series[0].fit.fitted);
+  EXPECT_TRUE(contains(plot::alt_text(e), "all participants")) << plot::alt_text(e);
+}
