@@ -115,7 +115,7 @@ MetricRange metric_range(const std::string& metric) {
 
 std::string metric_axis_label(const std::string& metric) {
   if (metric == "error") return "Error (pad units)";
-  if (metric == "confusion") return "Confusion (fraction, 0\u20131)";
+  if (metric == "confusion") return "Confusion (0\u20131)";
   std::string s = metric;
   if (!s.empty()) s[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(s[0])));
   return s;
@@ -471,23 +471,25 @@ Figure exposure_figure(const metrics::ExposureTrend& d, MetricRange range, std::
     p.x.min = 0.5;
     p.x.max = static_cast<double>(max_exposure) + 0.5;
     p.x.ticks = iteration_ticks(1, max_exposure);
-    p.y.label = fmt::format("{} ± {:g}% CI", metric_axis_label(d.metric), d.conf_level * 100);
+    p.y.label = metric_axis_label(d.metric);  // short: small panels; the legend says CI
     bound(p.y, range);
     f.panels.push_back(std::move(p));
   }
   for (const auto& c : d.conditions) {
-    f.legend.push_back({LegendEntry::Kind::band,
-                        fmt::format("{}: fitted line, mean ± CI", condition_name(c)),
-                        style_of_condition(d.conditions, c), false});
+    f.legend.push_back(
+        {LegendEntry::Kind::band,
+         fmt::format("{}: fitted line, mean ± {:g}% CI", condition_name(c), d.conf_level * 100),
+         style_of_condition(d.conditions, c), false});
   }
   if (min_trials > 1) {
     f.legend.push_back(
         {LegendEntry::Kind::text, fmt::format("(means of ≥ {} trials)", min_trials), {}, false});
   }
   const std::size_t n = std::max<std::size_t>(1, d.strategies.size());
-  f.columns = n == 4 ? 2 : std::min<std::size_t>(3, n);
+  f.columns = std::min<std::size_t>(4, n);  // one row across a page
+  f.max_columns_narrow = 2;                 // 2 x 2 in a column
   f.shared_axes = true;
-  f.aspect = 0.85;
+  f.aspect = 0.95;
   return f;
 }
 
