@@ -744,7 +744,7 @@ void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, d
           draw_text_halo(cr, ref.label, x - d * (2 * a + 2), y, high ? 1 : 0);
         }
       } else {
-        const double x = px + pw - a - 1, y = high ? py + 1 : py + ph - 1, d = high ? 1 : -1;
+        const double x = px + pw - a - 1, y = high ? py + 4 : py + ph - 4, d = high ? 1 : -1;
         cairo_move_to(cr, x, y);
         cairo_line_to(cr, x - a, y + d * 2 * a);
         cairo_line_to(cr, x + a, y + d * 2 * a);
