@@ -453,8 +453,11 @@ struct Demo {
 };
 
 Demo demo_figures() {
-  const std::string root = FEINT_SOURCE_DIR;
-  const std::string logs = root + "/data/demo/logs";
+  // FEINT_DEMO_DIR=DIR: another study folder with logs/ and questionnaire.csv (default the
+  // repository's data/demo).
+  const char* demo = std::getenv("FEINT_DEMO_DIR");
+  const std::string dir = demo != nullptr ? demo : std::string(FEINT_SOURCE_DIR) + "/data/demo";
+  const std::string logs = dir + "/logs";
   const std::vector<std::string> log_files = io::expand_inputs({logs});
   const fs::path scores_path = folder() / "demo-scores.csv";
   metrics::ScoreSettings ss;
@@ -497,7 +500,7 @@ Demo demo_figures() {
   d.alt.emplace_back("traces", plot::alt_text(traces));
   report::LikertSettings ls;
   ls.reference = 3.5;
-  const auto likert = report::analyze_likert_file(root + "/data/demo/questionnaire.csv", ls);
+  const auto likert = report::analyze_likert_file(dir + "/questionnaire.csv", ls);
   const auto dist = plot::likert_distribution_data(likert);
   d.figures.emplace_back("likert", plot::likert_distribution_figure(dist));
   d.alt.emplace_back("likert", plot::alt_text(dist));
