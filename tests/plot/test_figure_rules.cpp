@@ -634,3 +634,25 @@ TEST(EdgeCases, OneConditionIsAllParticipantsInTheFirstStyle) {
   EXPECT_TRUE(e.strategies[0].series[0].fit.fitted);
   EXPECT_TRUE(contains(plot::alt_text(e), "all participants")) << plot::alt_text(e);
 }
+
+// ---------------------------------------------------------------------------------------------
+// Figures take data, never files (issue 19): no reader in the plot module's sources.
+
+TEST(Architecture, PlotReadsNoFile) {
+  const fs::path root = FEINT_SOURCE_DIR;
+  const char* forbidden[] = {"feint/io/trace.hpp",  "feint/io/csv.hpp", "TraceReader",
+                             "CsvReader",           "expand_inputs",    "load_scores(",
+                             "analyze_likert_file", "std::ifstream",    "read_trial_labels("};
+  std::size_t files = 0;
+  for (const fs::path& dir : {root / "src/plot", root / "include/feint/plot"}) {
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      std::ifstream in(entry.path());
+      const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+      ++files;
+      for (const char* word : forbidden) {
+        EXPECT_EQ(text.find(word), std::string::npos) << entry.path() << " uses " << word;
+      }
+    }
+  }
+  EXPECT_GE(files, 4u);
+}
