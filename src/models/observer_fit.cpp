@@ -1,0 +1,635 @@
+// Maximum-likelihood fit of the goal-inference observer to pad traces
+// (feint/models/observer_fit.hpp, docs/observer.md).
+#include "feint/models/observer_fit.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <tuple>
+
+#include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/tools/minima.hpp>
+#include <boost/math/tools/roots.hpp>
+#include <fmt/format.h>
+
+#include "feint/error.hpp"
+
+namespace feint::models {
+
+namespace {
+
+// Full parameter vector: beta (1/m), tau (s), logit of the prior, gamma (learning rate).
+enum Param : std::size_t { kBeta = 0, kTau = 1, kPrior = 2, kGamma = 3 };
+constexpr std::size_t kParams = 4;
+using Theta = std::array<double, kParams>;
+constexpr std::array<const char*, kParams> kNames = {"beta", "tau", "prior_right", "gamma"};
+constexpr double kGammaMax = 1.0;   // |gamma| per earlier trial of the strategy
+constexpr double kLogitMax = 8.0;   // prior in [3.4e-4, 0.99966]
+
+double logistic(double z) noexcept {
+  if (z >= 0) return 1.0 / (1.0 + std::exp(-z));
+  const double e = std::exp(z);
+  return e / (1.0 + e);
+}
+
+/// A trial ready for the likelihood: the pad samples kept after thinning, the start's distances.
+struct Prepared {
+  const ObservedTrial* trial = nullptr;
+  std::vector<double> times, pads;
+  double right0 = 0, left0 = 0;  // |S - G_R|, |S - G_L|
+};
+
+struct Problem {
+  std::vector<Prepared> trials;
+  Goals goals;
+  PadNoise noise = PadNoise::ar1;
+  std::size_t samples = 0;
+  mutable std::size_t evaluations = 0;
+};
+
+Problem prepare(std::span<const ObservedTrial> trials, const ObserverFitSettings& s) {
+  Problem p;
+  p.goals = s.goals;
+  p.noise = s.noise;
+  for (const auto& tr : trials) {
+    Prepared q;
+    q.trial = &tr;
+    double last = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < tr.times.size(); ++i) {
+      if (s.thin > 0 && tr.times[i] - last < s.thin * (1 - 1e-9)) continue;
+      last = tr.times[i];
+      q.times.push_back(tr.times[i]);
+      q.pads.push_back(tr.pads[i]);
+    }
+    const PathSample& s0 = tr.path.front();
+    q.right0 = std::hypot(s0.x - s.goals.right.x, s0.y - s.goals.right.y);
+    q.left0 = std::hypot(s0.x - s.goals.left.x, s0.y - s.goals.left.y);
+    p.samples += q.times.size();
+    p.trials.push_back(std::move(q));
+  }
+  return p;
+}
+
+struct Likelihood {
+  double loglik = 0;
+  double sigma = 0;
+  double phi = 0;
+};
+
+/// The profile log-likelihood at theta (sigma and phi in closed form).
+Likelihood evaluate(const Problem& p, const Theta& th) {
+  ++p.evaluations;
+  double sxx = 0, sxy = 0, syy = 0;
+  std::size_t m = 0;
+  const double rx = p.goals.right.x, ry = p.goals.right.y, lx = p.goals.left.x, ly = p.goals.left.y;
+  for (const auto& q : p.trials) {
+    const auto& path = q.trial->path;
+    const double beta = th[kBeta] * std::exp(th[kGamma] * q.trial->exposure);
+    const std::size_t last = path.size() - 1;
+    std::size_t k = 0;
+    double prev = 0;
+    for (std::size_t i = 0; i < q.times.size(); ++i) {
+      const double t = q.times[i] - th[kTau];
+      double x, y;
+      if (t <= path[0].t) {
+        x = path[0].x;
+        y = path[0].y;
+      } else if (t >= path[last].t) {
+        x = path[last].x;
+        y = path[last].y;
+      } else {
+        while (path[k + 1].t <= t) ++k;
+        const double w = (t - path[k].t) / (path[k + 1].t - path[k].t);
+        x = path[k].x + w * (path[k + 1].x - path[k].x);
+        y = path[k].y + w * (path[k + 1].y - path[k].y);
+      }
+      const double dr = std::sqrt((x - rx) * (x - rx) + (y - ry) * (y - ry)) - q.right0;
+      const double dl = std::sqrt((x - lx) * (x - lx) + (y - ly) * (y - ly)) - q.left0;
+      const double r = q.pads[i] - logistic(th[kPrior] - beta * (dr - dl));
+      if (p.noise == PadNoise::independent) {
+        syy += r * r;
+        ++m;
+      } else if (i > 0) {
+        sxx += prev * prev;
+        sxy += prev * r;
+        syy += r * r;
+        ++m;
+      }
+      prev = r;
+    }
+  }
+  Likelihood out;
+  double rss = syy;
+  if (p.noise == PadNoise::ar1 && sxx > 0) {
+    out.phi = std::clamp(sxy / sxx, -0.9999, 0.9999);
+    rss = syy - 2 * out.phi * sxy + out.phi * out.phi * sxx;
+  }
+  const double md = static_cast<double>(m);
+  const double var = std::max(rss / md, 1e-24);  // a perfect fit would be +inf
+  out.sigma = std::sqrt(var);
+  out.loglik = -md / 2 * (std::log(2 * std::numbers::pi * var) + 1);
+  return out;
+}
+
+struct Box {
+  Theta lo{}, hi{}, scale{};
+  std::array<bool, kParams> free{};
+};
+
+Theta clamp(Theta th, const Box& b) {
+  for (std::size_t j = 0; j < kParams; ++j) th[j] = std::clamp(th[j], b.lo[j], b.hi[j]);
+  return th;
+}
+
+/// Nelder & Mead (1965) on the free coordinates (standard coefficients 1, 2, 1/2, 1/2), every point
+/// projected into the box. Maximises f; returns the best point and its value.
+std::pair<Theta, double> nelder_mead(const std::function<double(const Theta&)>& f, Theta start,
+                                     const Box& box, const std::array<bool, kParams>& free,
+                                     double step_factor, int max_evals) {
+  std::vector<std::size_t> idx;
+  for (std::size_t j = 0; j < kParams; ++j)
+    if (free[j]) idx.push_back(j);
+  start = clamp(start, box);
+  const double f0 = f(start);
+  if (idx.empty()) return {start, f0};
+  const std::size_t d = idx.size();
+  std::vector<Theta> x(d + 1, start);
+  std::vector<double> v(d + 1, f0);
+  int evals = 1;
+  for (std::size_t k = 0; k < d; ++k) {
+    const std::size_t j = idx[k];
+    double step = box.scale[j] * step_factor;
+    if (start[j] + step > box.hi[j]) step = -step;  // step into the box
+    x[k + 1][j] = std::clamp(start[j] + step, box.lo[j], box.hi[j]);
+    v[k + 1] = f(x[k + 1]);
+    ++evals;
+  }
+  std::vector<std::size_t> order(d + 1);
+  while (evals < max_evals) {
+    for (std::size_t i = 0; i <= d; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return v[a] > v[b]; });
+    const std::size_t best = order.front(), worst = order.back(), second = order[d - 1];
+    // Converged: values within 1e-9 (relative 1e-12) and the simplex within 1e-7 of each scale.
+    double spread = 0;
+    for (std::size_t i = 0; i <= d; ++i)
+      for (std::size_t j : idx) spread = std::max(spread, std::abs(x[i][j] - x[best][j]) / box.scale[j]);
+    if (std::abs(v[best] - v[worst]) <= 1e-9 + 1e-12 * std::abs(v[best]) && spread < 1e-7) break;
+    Theta centroid = x[best];
+    for (std::size_t j : idx) {
+      double s = 0;
+      for (std::size_t i = 0; i <= d; ++i)
+        if (i != worst) s += x[i][j];
+      centroid[j] = s / static_cast<double>(d);
+    }
+    auto along = [&](double c) {
+      Theta y = centroid;
+      for (std::size_t j : idx) y[j] = centroid[j] + c * (x[worst][j] - centroid[j]);
+      return clamp(y, box);
+    };
+    const Theta xr = along(-1.0);
+    const double vr = f(xr);
+    ++evals;
+    if (vr > v[best]) {
+      const Theta xe = along(-2.0);
+      const double ve = f(xe);
+      ++evals;
+      if (ve > vr) { x[worst] = xe; v[worst] = ve; } else { x[worst] = xr; v[worst] = vr; }
+      continue;
+    }
+    if (vr > v[second]) { x[worst] = xr; v[worst] = vr; continue; }
+    const bool outside = vr > v[worst];
+    const Theta xc = along(outside ? -0.5 : 0.5);
+    const double vc = f(xc);
+    ++evals;
+    if (vc > std::max(vr, v[worst])) { x[worst] = xc; v[worst] = vc; continue; }
+    for (std::size_t i = 0; i <= d; ++i) {  // shrink toward the best
+      if (i == best) continue;
+      for (std::size_t j : idx) x[i][j] = x[best][j] + 0.5 * (x[i][j] - x[best][j]);
+      v[i] = f(x[i]);
+      ++evals;
+    }
+  }
+  std::size_t best = 0;
+  for (std::size_t i = 1; i <= d; ++i)
+    if (v[i] > v[best]) best = i;
+  return {x[best], v[best]};
+}
+
+/// Maximises over the free parameters other than `fixed` (kParams = none fixed), from `start`.
+std::pair<Theta, double> maximise(const Problem& p, const Box& box, Theta start, std::size_t fixed,
+                                  bool warm) {
+  auto f = [&](const Theta& th) { return evaluate(p, th).loglik; };
+  std::array<bool, kParams> free = box.free;
+  if (fixed < kParams) free[fixed] = false;
+  std::size_t nfree = 0, only = 0;
+  for (std::size_t j = 0; j < kParams; ++j)
+    if (free[j]) { ++nfree; only = j; }
+  if (nfree == 1) {
+    // Brent's method on a bracket around the warm start (widened to the whole range if the
+    // optimum lands on the bracket's edge).
+    auto brent = [&](double lo, double hi) {
+      Theta th = start;
+      auto g = [&](double v) { th[only] = v; return -f(th); };
+      const auto r = boost::math::tools::brent_find_minima(g, lo, hi, 24);
+      th[only] = r.first;
+      return std::pair<Theta, double>{th, -r.second};
+    };
+    const double w = 2 * box.scale[only];
+    double lo = box.lo[only], hi = box.hi[only];
+    if (warm) {
+      lo = std::max(lo, start[only] - w);
+      hi = std::min(hi, start[only] + w);
+    }
+    auto r = brent(lo, hi);
+    const double tol = 1e-4 * box.scale[only];
+    if (warm && ((r.first[only] - lo < tol && lo > box.lo[only]) ||
+                 (hi - r.first[only] < tol && hi < box.hi[only]))) {
+      r = brent(box.lo[only], box.hi[only]);
+    }
+    return r;
+  }
+  return nelder_mead(f, start, box, free, warm ? 0.2 : 0.5, 2000);
+}
+
+/// Grid start, then Nelder-Mead; a second Nelder-Mead from the first's optimum guards against a
+/// premature stop.
+std::pair<Theta, double> global_max(const Problem& p, const Box& box, Theta base) {
+  Theta best = base;
+  double vbest = -std::numeric_limits<double>::infinity();
+  for (double b : {0.1, 0.3, 1.0, 3.0, 10.0}) {
+    for (double t : {0.0, 0.25, 0.6, 1.2}) {
+      Theta th = base;
+      if (box.free[kBeta]) th[kBeta] = std::min(b, box.hi[kBeta]);
+      if (box.free[kTau]) th[kTau] = std::min(t, box.hi[kTau]);
+      const double v = evaluate(p, th).loglik;
+      if (v > vbest) { vbest = v; best = th; }
+    }
+  }
+  auto f = [&](const Theta& th) { return evaluate(p, th).loglik; };
+  auto r = nelder_mead(f, best, box, box.free, 0.5, 3000);
+  auto r2 = nelder_mead(f, r.first, box, box.free, 0.05, 3000);
+  return r2.second >= r.second ? r2 : r;
+}
+
+struct Interval {
+  double low = 0, high = 0;
+  bool low_at_bound = false, high_at_bound = false;
+};
+
+/// Profile-likelihood interval of parameter j around the maximum (th, lmax).
+Interval profile_interval(const Problem& p, const Box& box, const Theta& th, double lmax, std::size_t j,
+                          double level) {
+  const double q = boost::math::quantile(boost::math::chi_squared(1.0), level);
+  const double target = lmax - q / 2;
+  Interval out;
+  for (int side : {-1, 1}) {
+    const double bound = side < 0 ? box.lo[j] : box.hi[j];
+    double& end = side < 0 ? out.low : out.high;
+    bool& at_bound = side < 0 ? out.low_at_bound : out.high_at_bound;
+    Theta warm = th;
+    auto g = [&](double v) {
+      Theta s = warm;
+      s[j] = v;
+      const auto r = maximise(p, box, s, j, true);
+      warm = r.first;
+      return r.second - target;
+    };
+    // Step outward until the profile falls below the target (a bracket) or the bound is reached.
+    double inside = th[j];
+    double d = 0.25 * box.scale[j];
+    double outside = inside;
+    double g_out = 0;
+    bool bracket = false;
+    while (true) {
+      outside = std::clamp(inside + side * d, box.lo[j], box.hi[j]);
+      if (outside == inside) break;
+      g_out = g(outside);
+      if (g_out < 0) { bracket = true; break; }
+      if (outside == bound) break;
+      inside = outside;
+      d *= 3;
+    }
+    if (!bracket) {
+      end = bound;
+      at_bound = true;
+      continue;
+    }
+    warm = th;
+    const double g_in = inside == th[j] ? lmax - target : g(inside);
+    std::uintmax_t iters = 40;
+    const auto r = boost::math::tools::toms748_solve(
+        g, std::min(inside, outside), std::max(inside, outside), side < 0 ? g_out : g_in,
+        side < 0 ? g_in : g_out, boost::math::tools::eps_tolerance<double>(20), iters);
+    end = (r.first + r.second) / 2;
+  }
+  return out;
+}
+
+Box make_box(const ObserverFitSettings& s, bool gamma) {
+  Box b;
+  b.lo = {0.0, 0.0, -kLogitMax, -kGammaMax};
+  b.hi = {s.beta_max, s.tau_max, kLogitMax, kGammaMax};
+  b.scale = {1.0, 0.25, 0.5, 0.05};
+  b.free = {true, true, s.fit_prior, gamma};
+  return b;
+}
+
+ParameterEstimate estimate_of(std::size_t j, const Theta& th, const Interval& ci) {
+  ParameterEstimate e;
+  e.name = kNames[j];
+  e.estimate = th[j];
+  e.conf_low = ci.low;
+  e.conf_high = ci.high;
+  e.low_at_bound = ci.low_at_bound;
+  e.high_at_bound = ci.high_at_bound;
+  if (j == kPrior) {
+    e.estimate = logistic(th[j]);
+    e.conf_low = logistic(ci.low);
+    e.conf_high = logistic(ci.high);
+  }
+  return e;
+}
+
+double prior_logit(double p) { return std::log(p) - std::log1p(-p); }
+
+struct Sums {
+  double n = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, sdd = 0;
+  void add(double x, double y) {
+    n += 1; sx += x; sy += y; sxx += x * x; syy += y * y; sxy += x * y; sdd += (x - y) * (x - y);
+  }
+  double r() const {
+    if (n < 3) return std::nan("");
+    const double vx = sxx - sx * sx / n, vy = syy - sy * sy / n;
+    if (!(vx > 0) || !(vy > 0)) return std::nan("");
+    return (sxy - sx * sy / n) / std::sqrt(vx * vy);
+  }
+  double rmse() const { return n > 0 ? std::sqrt(sdd / n) : std::nan(""); }
+  double mean_x() const { return n > 0 ? sx / n : std::nan(""); }
+  double mean_y() const { return n > 0 ? sy / n : std::nan(""); }
+};
+
+}  // namespace
+
+void ObserverFitSettings::validate() const {
+  auto bad = [](const char* name, double v, const char* expected) {
+    throw UsageError(fmt::format("observer fit setting '{}' = {} is invalid: expected {}", name, v, expected));
+  };
+  if (!(beta_max > 0) || !std::isfinite(beta_max)) bad("beta_max", beta_max, "a finite number > 0 (1/m)");
+  if (!(tau_max > 0) || !std::isfinite(tau_max)) bad("tau_max", tau_max, "a finite delay > 0 (s)");
+  if (!(prior_right > 0 && prior_right < 1)) bad("prior_right", prior_right, "a probability in (0, 1)");
+  if (!(thin >= 0) || !std::isfinite(thin)) bad("thin", thin, "a finite time >= 0 (s)");
+  if (!(level > 0 && level < 1)) bad("level", level, "a confidence level in (0, 1)");
+  if (!(pad_speed > 0) || !std::isfinite(pad_speed)) bad("pad_speed", pad_speed, "a finite speed > 0");
+  metric.validate();
+}
+
+const ParameterEstimate& ObserverFit::parameter(std::string_view name) const {
+  for (const auto& p : parameters)
+    if (p.name == name) return p;
+  throw UsageError(fmt::format("the observer fit has no parameter '{}'", name));
+}
+
+GoalObserver ObserverFit::observer() const {
+  GoalObserver o;
+  o.beta = parameter("beta").estimate;
+  o.tau = parameter("tau").estimate;
+  for (const auto& p : parameters)
+    if (p.name == "prior_right") o.prior_right = p.estimate;
+  return o;
+}
+
+std::optional<std::string> trial_problem(const ObservedTrial& tr) {
+  try {
+    validate_path(tr.path);
+  } catch (const InvalidData& e) {
+    return std::string(e.what());
+  }
+  if (tr.times.size() != tr.pads.size()) {
+    return fmt::format("the pad trace has {} times but {} pad values", tr.times.size(), tr.pads.size());
+  }
+  if (tr.times.size() < 3) {
+    return fmt::format("the pad trace has {} sample(s); at least 3 are needed to fit the observer",
+                       tr.times.size());
+  }
+  for (std::size_t i = 0; i < tr.times.size(); ++i) {
+    if (!std::isfinite(tr.times[i]) || !std::isfinite(tr.pads[i])) {
+      return fmt::format("pad sample {} is not finite (t = {}, pad = {})", i + 1, tr.times[i], tr.pads[i]);
+    }
+    if (i > 0 && !(tr.times[i] > tr.times[i - 1])) {
+      return fmt::format("pad times must increase strictly: sample {} has t = {} after t = {}", i + 1,
+                         tr.times[i], tr.times[i - 1]);
+    }
+  }
+  if (!(tr.times.back() - tr.times.front() > 0)) return std::string("the pad trace has zero duration");
+  return std::nullopt;
+}
+
+double observer_log_likelihood(std::span<const ObservedTrial> trials, const ObserverFitSettings& settings,
+                               const GoalObserver& observer) {
+  settings.validate();
+  validate(observer);
+  const Problem p = prepare(trials, settings);
+  return evaluate(p, Theta{observer.beta, observer.tau, prior_logit(observer.prior_right), 0.0}).loglik;
+}
+
+namespace {
+
+ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, std::string unit, bool gamma,
+                        Theta base, std::size_t ntrials) {
+  const Box box = make_box(settings, gamma);
+  const auto [th, lmax] = global_max(p, box, base);
+  ObserverFit fit;
+  fit.unit = std::move(unit);
+  fit.trials = ntrials;
+  fit.samples = p.samples;
+  const Likelihood at = evaluate(p, th);
+  fit.log_likelihood = at.loglik;
+  fit.sigma = at.sigma;
+  fit.phi = at.phi;
+  for (std::size_t j = 0; j < kParams; ++j) {
+    if (!box.free[j]) {
+      if (j == kPrior) {
+        fit.parameters.push_back({"prior_right", settings.prior_right, settings.prior_right,
+                                  settings.prior_right, false, false});
+      }
+      continue;
+    }
+    const Interval ci = profile_interval(p, box, th, lmax, j, settings.level);
+    fit.parameters.push_back(estimate_of(j, th, ci));
+  }
+  // Fixed prior: listed for completeness but not a fitted parameter.
+  if (!box.free[kPrior]) {
+    fit.parameters.erase(std::remove_if(fit.parameters.begin(), fit.parameters.end(),
+                                        [](const ParameterEstimate& e) { return e.name == "prior_right"; }),
+                         fit.parameters.end());
+  }
+  const double btol = 1e-3;
+  if (th[kBeta] >= settings.beta_max - btol) {
+    fit.notes.push_back(fmt::format(
+        "{}: beta is at the upper bound {} (the pad follows whichever side the path leans to at once); "
+        "beta is not identified above it, and its CI is closed at the bound",
+        fit.unit, settings.beta_max));
+  } else if (th[kBeta] <= btol) {
+    fit.notes.push_back(fmt::format("{}: beta is at 0: the pad does not follow the robot's path (belief = "
+                                    "prior); tau is then not identified",
+                                    fit.unit));
+  }
+  if (th[kTau] >= settings.tau_max - btol) {
+    fit.notes.push_back(fmt::format("{}: tau is at the upper bound {} s; its CI is closed at the bound",
+                                    fit.unit, settings.tau_max));
+  }
+  fit.evaluations = p.evaluations;
+  return fit;
+}
+
+}  // namespace
+
+ObserverFit fit_observer(std::span<const ObservedTrial> trials, const ObserverFitSettings& settings,
+                         std::string unit) {
+  settings.validate();
+  if (trials.empty()) throw InvalidData(fmt::format("{}: no usable trial to fit the observer to", unit));
+  for (const auto& tr : trials) {
+    if (auto why = trial_problem(tr)) {
+      throw InvalidData(fmt::format("trial {}: {}", tr.label.empty() ? tr.participant : tr.label, *why));
+    }
+  }
+  const Problem p = prepare(trials, settings);
+  ObserverFit fit = fit_problem(p, settings, std::move(unit), false,
+                                Theta{1.0, 0.0, prior_logit(settings.prior_right), 0.0}, trials.size());
+  if (!trials.empty()) fit.condition = trials.front().condition;
+  return fit;
+}
+
+StudyObserverFit fit_study(std::vector<ObservedTrial> trials, const ObserverFitSettings& settings) {
+  settings.validate();
+  StudyObserverFit out;
+  // 1. Check every trial; a bad one is named and left out.
+  std::vector<ObservedTrial> good;
+  good.reserve(trials.size());
+  for (auto& tr : trials) {
+    if (tr.label.empty()) {
+      tr.label = tr.condition.empty() ? fmt::format("{}/{}", tr.participant, tr.iteration)
+                                      : fmt::format("{}/{}/{}", tr.participant, tr.condition, tr.iteration);
+    }
+    if (auto why = trial_problem(tr)) {
+      out.issues.push_back({tr.label, *why + "; the trial is left out of the fit"});
+      continue;
+    }
+    good.push_back(std::move(tr));
+  }
+  // 2. Exposure: earlier trials of the same strategy by the same participant (by iteration).
+  std::stable_sort(good.begin(), good.end(), [](const ObservedTrial& a, const ObservedTrial& b) {
+    return std::tie(a.condition, a.participant, a.iteration) < std::tie(b.condition, b.participant, b.iteration);
+  });
+  {
+    std::map<std::tuple<std::string, std::string, std::string>, int> seen;
+    for (auto& tr : good) tr.exposure = seen[{tr.condition, tr.participant, tr.strategy}]++;
+  }
+  out.trials_used = good.size();
+  // 3. Per participant.
+  std::map<std::pair<std::string, std::string>, GoalObserver> fitted;
+  for (std::size_t i = 0; i < good.size();) {
+    std::size_t j = i;
+    while (j < good.size() && good[j].participant == good[i].participant && good[j].condition == good[i].condition) ++j;
+    const std::span<const ObservedTrial> part(good.data() + i, j - i);
+    try {
+      auto fit = fit_observer(part, settings, good[i].participant);
+      for (const auto& n : fit.notes) out.issues.push_back({good[i].participant, n});
+      fitted[{good[i].condition, good[i].participant}] = fit.observer();
+      out.participants.push_back(std::move(fit));
+    } catch (const Error& e) {
+      out.issues.push_back({good[i].participant, fmt::format("the participant's fit failed: {}", e.what())});
+    }
+    i = j;
+  }
+  // 4. Pooled per condition (and the learning test).
+  for (std::size_t i = 0; i < good.size();) {
+    std::size_t j = i;
+    while (j < good.size() && good[j].condition == good[i].condition) ++j;
+    const std::span<const ObservedTrial> cond(good.data() + i, j - i);
+    const std::string name = good[i].condition.empty() ? "all" : good[i].condition;
+    try {
+      auto fit = fit_observer(cond, settings, name);
+      fit.condition = good[i].condition;
+      for (const auto& n : fit.notes) out.issues.push_back({name, n});
+      if (settings.learning) {
+        const Problem p = prepare(cond, settings);
+        const Theta base{fit.parameter("beta").estimate, fit.parameter("tau").estimate,
+                         settings.fit_prior ? prior_logit(fit.observer().prior_right)
+                                            : prior_logit(settings.prior_right),
+                         0.0};
+        const ObserverFit with = fit_problem(p, settings, name, true, base, cond.size());
+        LearningTest lt;
+        lt.condition = name;
+        lt.gamma = with.parameter("gamma");
+        lt.beta0 = with.parameter("beta").estimate;
+        lt.log_likelihood0 = fit.log_likelihood;
+        lt.log_likelihood1 = std::max(with.log_likelihood, fit.log_likelihood);
+        lt.statistic = 2 * (lt.log_likelihood1 - lt.log_likelihood0);
+        lt.p_value = boost::math::cdf(boost::math::complement(boost::math::chi_squared(1.0), lt.statistic));
+        out.learning.push_back(lt);
+      }
+      out.conditions.push_back(std::move(fit));
+    } catch (const Error& e) {
+      out.issues.push_back({name, fmt::format("the pooled fit failed: {}", e.what())});
+    }
+    i = j;
+  }
+  // 5. Agreement: the model's trace at each participant's fitted parameters against the pad.
+  std::map<std::tuple<std::string, std::string, long long>, std::array<Sums, 3>> groups;
+  for (const auto& tr : good) {
+    const auto it = fitted.find({tr.condition, tr.participant});
+    if (it == fitted.end()) continue;
+    const auto model = belief_trace(tr.path, tr.times, settings.goals, it->second);
+    const double target = tr.goal == GoalSide::right ? 1.0 : 0.0;
+    const double v = tr.pad_speed.value_or(settings.pad_speed);
+    metrics::TrialScore hs, ms;
+    try {
+      hs = metrics::score_trace(tr.times, tr.pads, target, v, settings.metric);
+      ms = metrics::score_trace(tr.times, model, target, v, settings.metric);
+    } catch (const Error& e) {
+      out.issues.push_back({tr.label, fmt::format("left out of the agreement tables: {}", e.what())});
+      continue;
+    }
+    const std::string cond = tr.condition.empty() ? "all" : tr.condition;
+    const std::string strat = tr.strategy.empty() ? "unknown" : tr.strategy;
+    // Each trial counts in its own cell and in the "all" margins (once, when it is already "all").
+    std::vector<std::string> conds{cond}, strats{strat};
+    if (cond != "all") conds.push_back("all");
+    if (strat != "all") strats.push_back("all");
+    std::vector<long long> its{tr.iteration};
+    if (tr.iteration != 0) its.push_back(0);
+    for (const auto& c : conds) {
+      for (const auto& s : strats) {
+        for (long long k : its) {
+          auto& g = groups[{c, s, k}];
+          g[0].add(hs.error, ms.error);
+          g[1].add(hs.confusion, ms.confusion);
+          for (std::size_t i = 0; i < model.size(); ++i) g[2].add(tr.pads[i], model[i]);
+        }
+      }
+    }
+  }
+  for (const auto& [key, g] : groups) {
+    AgreementRow r;
+    std::tie(r.condition, r.strategy, r.iteration) = key;
+    r.trials = static_cast<std::size_t>(g[0].n);
+    r.human_error = g[0].mean_x();
+    r.model_error = g[0].mean_y();
+    r.error_r = g[0].r();
+    r.error_rmse = g[0].rmse();
+    r.human_confusion = g[1].mean_x();
+    r.model_confusion = g[1].mean_y();
+    r.confusion_r = g[1].r();
+    r.confusion_rmse = g[1].rmse();
+    r.trace_r = g[2].r();
+    r.trace_rmse = g[2].rmse();
+    out.agreement.push_back(r);
+  }
+  return out;
+}
+
+}  // namespace feint::models
