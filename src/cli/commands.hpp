@@ -19,5 +19,6 @@ void add_anova_command(CLI::App& app);     // cmd_anova.cpp    (issue 10: mixed 
 void add_power_command(CLI::App& app);     // cmd_power.cpp    (issue 10: power)
 void add_plot_command(CLI::App& app);      // cmd_plot.cpp     (issue #9: figures)
 void add_model_command(CLI::App& app);     // cmd_model.cpp    (issue #10: mixed model)
+void add_observer_command(CLI::App& app);  // cmd_observer.cpp (issue #16: observer fit)
 
 }  // namespace feint::cli
