@@ -233,7 +233,7 @@ std::pair<Theta, double> maximise(const Problem& p, const Box& box, Theta start,
     auto brent = [&](double lo, double hi) {
       Theta th = start;
       auto g = [&](double v) { th[only] = v; return -f(th); };
-      const auto r = boost::math::tools::brent_find_minima(g, lo, hi, 24);
+      const auto r = boost::math::tools::brent_find_minima(g, lo, hi, 14);
       th[only] = r.first;
       return std::pair<Theta, double>{th, -r.second};
     };
@@ -322,7 +322,7 @@ Interval profile_interval(const Problem& p, const Box& box, const Theta& th, dou
     std::uintmax_t iters = 40;
     const auto r = boost::math::tools::toms748_solve(
         g, std::min(inside, outside), std::max(inside, outside), side < 0 ? g_out : g_in,
-        side < 0 ? g_in : g_out, boost::math::tools::eps_tolerance<double>(20), iters);
+        side < 0 ? g_in : g_out, boost::math::tools::eps_tolerance<double>(16), iters);
     end = (r.first + r.second) / 2;
   }
   return out;
