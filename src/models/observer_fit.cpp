@@ -6,10 +6,13 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <functional>
 #include <map>
+#include <optional>
 #include <numbers>
 #include <tuple>
 
+#include <Eigen/Dense>
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/tools/minima.hpp>
 #include <boost/math/tools/roots.hpp>
@@ -39,6 +42,7 @@ double logistic(double z) noexcept {
 struct Prepared {
   const ObservedTrial* trial = nullptr;
   std::vector<double> times, pads;
+  std::vector<double> inv_dt;    // 1 / (t_{k+1} - t_k) of each path segment (no division per sample)
   double right0 = 0, left0 = 0;  // |S - G_R|, |S - G_L|
 };
 
@@ -64,6 +68,7 @@ Problem prepare(std::span<const ObservedTrial> trials, const ObserverFitSettings
       q.times.push_back(tr.times[i]);
       q.pads.push_back(tr.pads[i]);
     }
+    for (std::size_t k = 0; k + 1 < tr.path.size(); ++k) q.inv_dt.push_back(1.0 / (tr.path[k + 1].t - tr.path[k].t));
     const PathSample& s0 = tr.path.front();
     q.right0 = std::hypot(s0.x - s.goals.right.x, s0.y - s.goals.right.y);
     q.left0 = std::hypot(s0.x - s.goals.left.x, s0.y - s.goals.left.y);
@@ -102,7 +107,7 @@ Likelihood evaluate(const Problem& p, const Theta& th) {
         y = path[last].y;
       } else {
         while (path[k + 1].t <= t) ++k;
-        const double w = (t - path[k].t) / (path[k + 1].t - path[k].t);
+        const double w = (t - path[k].t) * q.inv_dt[k];
         x = path[k].x + w * (path[k + 1].x - path[k].x);
         y = path[k].y + w * (path[k + 1].y - path[k].y);
       }
@@ -172,11 +177,12 @@ std::pair<Theta, double> nelder_mead(const std::function<double(const Theta&)>& 
     for (std::size_t i = 0; i <= d; ++i) order[i] = i;
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return v[a] > v[b]; });
     const std::size_t best = order.front(), worst = order.back(), second = order[d - 1];
-    // Converged: values within 1e-9 (relative 1e-12) and the simplex within 1e-7 of each scale.
+    // Converged: values within 1e-7 (relative 1e-10) and the simplex within 1e-5 of each scale
+    // (the log-likelihood then is within ~1e-7 of its maximum: far below what moves a CI end).
     double spread = 0;
     for (std::size_t i = 0; i <= d; ++i)
       for (std::size_t j : idx) spread = std::max(spread, std::abs(x[i][j] - x[best][j]) / box.scale[j]);
-    if (std::abs(v[best] - v[worst]) <= 1e-9 + 1e-12 * std::abs(v[best]) && spread < 1e-7) break;
+    if (std::abs(v[best] - v[worst]) <= 1e-7 + 1e-10 * std::abs(v[best]) && spread < 1e-5) break;
     Theta centroid = x[best];
     for (std::size_t j : idx) {
       double s = 0;
@@ -218,9 +224,47 @@ std::pair<Theta, double> nelder_mead(const std::function<double(const Theta&)>& 
   return {x[best], v[best]};
 }
 
-/// Maximises over the free parameters other than `fixed` (kParams = none fixed), from `start`.
+/// Maximises a 1-D concave-near-the-top function by successive parabolas through three points
+/// spaced `h` around the warm start (a few evaluations when the warm start is close, as it is along a
+/// profile); nullopt when the points are not concave (the caller falls back to Brent).
+std::optional<std::pair<Theta, double>> parabolic_max(const std::function<double(const Theta&)>& f, Theta th,
+                                                      std::size_t k, double h, const Box& box) {
+  auto at = [&](double x) { Theta y = th; y[k] = std::clamp(x, box.lo[k], box.hi[k]); return std::pair{y, f(y)}; };
+  auto best = at(th[k]);
+  for (int iter = 0; iter < 8; ++iter) {
+    const double b = best.first[k];
+    double a = std::max(box.lo[k], b - h), c = std::min(box.hi[k], b + h);
+    std::array<std::pair<double, double>, 3> pt;
+    if (b - h < box.lo[k]) {
+      pt = {std::pair{b, best.second}, std::pair{b + h / 2, at(b + h / 2).second}, std::pair{b + h, at(b + h).second}};
+    } else if (b + h > box.hi[k]) {
+      pt = {std::pair{b - h, at(b - h).second}, std::pair{b - h / 2, at(b - h / 2).second}, std::pair{b, best.second}};
+    } else {
+      pt = {std::pair{a, at(a).second}, std::pair{b, best.second}, std::pair{c, at(c).second}};
+    }
+    const auto [x0, f0] = pt[0];
+    const auto [x1, f1] = pt[1];
+    const auto [x2, f2] = pt[2];
+    const double d01 = (f1 - f0) / (x1 - x0), d12 = (f2 - f1) / (x2 - x1);
+    const double curv = (d12 - d01) / (x2 - x0);  // half the second derivative
+    if (!(curv < 0)) return std::nullopt;
+    // Vertex of the parabola through the three points, kept within 3 h of the centre.
+    const double xv = std::clamp((x0 + x1) / 2 - d01 / (2 * curv), b - 3 * h, b + 3 * h);
+    auto cand = at(xv);
+    for (const auto& q : pt)
+      if (q.second > cand.second) cand = at(q.first);
+    const double moved = std::abs(cand.first[k] - b);
+    if (cand.second >= best.second) best = cand;
+    if (moved < 0.05 * h) return best;
+    h = std::max(moved, 0.1 * h);
+  }
+  return best;
+}
+
+/// Maximises over the free parameters other than `fixed` (kParams = none fixed), from `start`;
+/// `h` is the step of the parabolic search (an SE of that parameter) when exactly one is free.
 std::pair<Theta, double> maximise(const Problem& p, const Box& box, Theta start, std::size_t fixed,
-                                  bool warm) {
+                                  bool warm, const Theta& h = Theta{}) {
   auto f = [&](const Theta& th) { return evaluate(p, th).loglik; };
   std::array<bool, kParams> free = box.free;
   if (fixed < kParams) free[fixed] = false;
@@ -228,34 +272,63 @@ std::pair<Theta, double> maximise(const Problem& p, const Box& box, Theta start,
   for (std::size_t j = 0; j < kParams; ++j)
     if (free[j]) { ++nfree; only = j; }
   if (nfree == 1) {
-    // Brent's method on a bracket around the warm start (widened to the whole range if the
-    // optimum lands on the bracket's edge).
-    auto brent = [&](double lo, double hi) {
-      Theta th = start;
-      auto g = [&](double v) { th[only] = v; return -f(th); };
-      const auto r = boost::math::tools::brent_find_minima(g, lo, hi, 14);
-      th[only] = r.first;
-      return std::pair<Theta, double>{th, -r.second};
-    };
-    const double w = 2 * box.scale[only];
-    double lo = box.lo[only], hi = box.hi[only];
-    if (warm) {
-      lo = std::max(lo, start[only] - w);
-      hi = std::min(hi, start[only] + w);
+    if (warm && h[only] > 0) {
+      if (auto r = parabolic_max(f, start, only, h[only], box)) return *r;
     }
-    auto r = brent(lo, hi);
-    const double tol = 1e-4 * box.scale[only];
-    if (warm && ((r.first[only] - lo < tol && lo > box.lo[only]) ||
-                 (hi - r.first[only] < tol && hi < box.hi[only]))) {
-      r = brent(box.lo[only], box.hi[only]);
-    }
-    return r;
+    // Brent's method on the whole range.
+    Theta th = start;
+    auto g = [&](double v) { th[only] = v; return -f(th); };
+    const auto r = boost::math::tools::brent_find_minima(g, box.lo[only], box.hi[only], 20);
+    th[only] = r.first;
+    return {th, -r.second};
   }
   return nelder_mead(f, start, box, free, warm ? 0.2 : 0.5, 2000);
 }
 
-/// Grid start, then Nelder-Mead; a second Nelder-Mead from the first's optimum guards against a
-/// premature stop.
+/// Observed information at the maximum by central differences (points kept in the box): returns the
+/// Wald SE and the conditional SE (1 / sqrt(-H_jj)) of each free parameter; zeros where the
+/// Hessian is not negative definite.
+std::pair<Theta, Theta> standard_errors(const Problem& p, const Box& box, const Theta& th, double l0) {
+  std::vector<std::size_t> idx;
+  for (std::size_t j = 0; j < kParams; ++j)
+    if (box.free[j]) idx.push_back(j);
+  const std::size_t d = idx.size();
+  Theta wald{}, cond{};
+  Eigen::MatrixXd H(d, d);
+  Theta c = th;
+  Theta h{};
+  for (std::size_t a = 0; a < d; ++a) {
+    const std::size_t j = idx[a];
+    h[j] = 1e-3 * box.scale[j];
+    c[j] = std::clamp(th[j], box.lo[j] + h[j], box.hi[j] - h[j]);  // room for the differences
+  }
+  const double fc = c == th ? l0 : evaluate(p, c).loglik;
+  auto f = [&](std::size_t a, double sa, std::size_t b, double sb) {
+    Theta y = c;
+    y[idx[a]] += sa * h[idx[a]];
+    if (b < d) y[idx[b]] += sb * h[idx[b]];
+    return evaluate(p, y).loglik;
+  };
+  for (std::size_t a = 0; a < d; ++a) {
+    H(a, a) = (f(a, 1, d, 0) - 2 * fc + f(a, -1, d, 0)) / (h[idx[a]] * h[idx[a]]);
+    for (std::size_t b = a + 1; b < d; ++b) {
+      H(a, b) = H(b, a) = (f(a, 1, b, 1) - f(a, 1, b, -1) - f(a, -1, b, 1) + f(a, -1, b, -1)) /
+                          (4 * h[idx[a]] * h[idx[b]]);
+    }
+  }
+  const Eigen::MatrixXd info = -H;
+  Eigen::LLT<Eigen::MatrixXd> llt(info);
+  if (llt.info() != Eigen::Success) return {wald, cond};
+  const Eigen::MatrixXd cov = llt.solve(Eigen::MatrixXd::Identity(static_cast<Eigen::Index>(d), static_cast<Eigen::Index>(d)));
+  for (std::size_t a = 0; a < d; ++a) {
+    wald[idx[a]] = std::sqrt(cov(a, a));
+    cond[idx[a]] = 1 / std::sqrt(info(a, a));
+  }
+  return {wald, cond};
+}
+
+/// Grid start, then Nelder-Mead. (A premature stop would show in the profile, which never finds a
+/// higher value than the maximum: see profile_interval.)
 std::pair<Theta, double> global_max(const Problem& p, const Box& box, Theta base) {
   Theta best = base;
   double vbest = -std::numeric_limits<double>::infinity();
@@ -270,8 +343,7 @@ std::pair<Theta, double> global_max(const Problem& p, const Box& box, Theta base
   }
   auto f = [&](const Theta& th) { return evaluate(p, th).loglik; };
   auto r = nelder_mead(f, best, box, box.free, 0.5, 3000);
-  auto r2 = nelder_mead(f, r.first, box, box.free, 0.05, 3000);
-  return r2.second >= r.second ? r2 : r;
+  return r;
 }
 
 struct Interval {
@@ -279,51 +351,63 @@ struct Interval {
   bool low_at_bound = false, high_at_bound = false;
 };
 
-/// Profile-likelihood interval of parameter j around the maximum (th, lmax).
+/// Profile-likelihood interval of parameter j around the maximum (th, lmax). Each end solves
+/// r(v) = +-z for the signed root deviance r(v) = sign(v - th_j) sqrt(2 (lmax - l_p(v))), which is
+/// close to linear in v: secant steps from the Wald end, kept inside a bracket once one is known
+/// (bisection otherwise), to |r - z| < 1e-3 (the deviance within ~0.004 of chi2_1(level)).
 Interval profile_interval(const Problem& p, const Box& box, const Theta& th, double lmax, std::size_t j,
-                          double level) {
-  const double q = boost::math::quantile(boost::math::chi_squared(1.0), level);
-  const double target = lmax - q / 2;
+                          double level, const Theta& wald, const Theta& cond) {
+  const double z = std::sqrt(boost::math::quantile(boost::math::chi_squared(1.0), level));
+  Theta step = cond;
+  for (std::size_t k = 0; k < kParams; ++k)
+    if (!(step[k] > 0)) step[k] = 0.1 * box.scale[k];
+  const double se = wald[j] > 0 ? wald[j] : 0.25 * box.scale[j];
   Interval out;
   for (int side : {-1, 1}) {
     const double bound = side < 0 ? box.lo[j] : box.hi[j];
     double& end = side < 0 ? out.low : out.high;
     bool& at_bound = side < 0 ? out.low_at_bound : out.high_at_bound;
     Theta warm = th;
-    auto g = [&](double v) {
-      Theta s = warm;
-      s[j] = v;
-      const auto r = maximise(p, box, s, j, true);
+    // s(v) = side * r(v): 0 at the maximum, increasing outward; the end is s = z.
+    auto s_of = [&](double v) {
+      Theta x = warm;
+      x[j] = v;
+      const auto r = maximise(p, box, x, j, true, step);
+      if (r.second > lmax) return 0.0;  // a higher maximum along the profile: inside the interval
       warm = r.first;
-      return r.second - target;
+      return std::sqrt(2 * (lmax - r.second));
     };
-    // Step outward until the profile falls below the target (a bracket) or the bound is reached.
-    double inside = th[j];
-    double d = 0.25 * box.scale[j];
-    double outside = inside;
-    double g_out = 0;
-    bool bracket = false;
-    while (true) {
-      outside = std::clamp(inside + side * d, box.lo[j], box.hi[j]);
-      if (outside == inside) break;
-      g_out = g(outside);
-      if (g_out < 0) { bracket = true; break; }
-      if (outside == bound) break;
-      inside = outside;
-      d *= 3;
-    }
-    if (!bracket) {
+    if (th[j] == bound) {
       end = bound;
       at_bound = true;
       continue;
     }
-    warm = th;
-    const double g_in = inside == th[j] ? lmax - target : g(inside);
-    std::uintmax_t iters = 40;
-    const auto r = boost::math::tools::toms748_solve(
-        g, std::min(inside, outside), std::max(inside, outside), side < 0 ? g_out : g_in,
-        side < 0 ? g_in : g_out, boost::math::tools::eps_tolerance<double>(16), iters);
-    end = (r.first + r.second) / 2;
+    double v_in = th[j], s_in = 0;                 // inside: s < z
+    double v_out = std::nan(""), s_out = std::nan("");  // outside: s >= z (once known)
+    double v_prev = th[j], s_prev = 0;
+    double v = std::clamp(th[j] + side * z * se, box.lo[j], box.hi[j]);
+    bool done = false;
+    for (int iter = 0; iter < 40 && !done; ++iter) {
+      const double sv = s_of(v);
+      if (sv < z) { v_in = v; s_in = sv; } else { v_out = v; s_out = sv; }
+      if (std::abs(sv - z) < 1e-3) { end = v; done = true; break; }
+      if (std::isnan(v_out) && v == bound) { end = bound; at_bound = true; done = true; break; }
+      // Secant on (v_prev, s_prev), (v, sv); fall back to bisection of the bracket.
+      double next = sv != s_prev ? v + (z - sv) * (v - v_prev) / (sv - s_prev) : std::nan("");
+      v_prev = v;
+      s_prev = sv;
+      if (!std::isnan(v_out)) {
+        const double lo = std::min(v_in, v_out), hi = std::max(v_in, v_out);
+        if (!(next > lo && next < hi)) next = (v_in + v_out) / 2;
+        if (hi - lo < 1e-9 * box.scale[j]) { end = (v_in + v_out) / 2; done = true; break; }
+      } else if (!(side * (next - v_in) > 0)) {
+        next = v_in + side * 2 * std::max(std::abs(v_in - th[j]), se);  // keep going outward
+      }
+      v = std::clamp(next, box.lo[j], box.hi[j]);
+    }
+    if (!done) end = std::isnan(v_out) ? v_in : (v_in + v_out) / 2;
+    (void)s_in;
+    (void)s_out;
   }
   return out;
 }
@@ -437,10 +521,15 @@ double observer_log_likelihood(std::span<const ObservedTrial> trials, const Obse
 
 namespace {
 
+/// The fit of the free parameters; CIs for all of them, or only for `ci_only` (the learning test
+/// needs gamma's alone; the others get NaN ends).
 ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, std::string unit, bool gamma,
-                        Theta base, std::size_t ntrials) {
+                        Theta base, std::size_t ntrials, std::size_t ci_only = kParams) {
   const Box box = make_box(settings, gamma);
-  const auto [th, lmax] = global_max(p, box, base);
+  // The learning model starts from the pooled fit (gamma = 0), already near its maximum.
+  const auto [th, lmax] = gamma ? nelder_mead([&](const Theta& x) { return evaluate(p, x).loglik; }, base, box,
+                                              box.free, 0.2, 3000)
+                                : global_max(p, box, base);
   ObserverFit fit;
   fit.unit = std::move(unit);
   fit.trials = ntrials;
@@ -449,6 +538,7 @@ ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, s
   fit.log_likelihood = at.loglik;
   fit.sigma = at.sigma;
   fit.phi = at.phi;
+  const auto ses = standard_errors(p, box, th, lmax);
   for (std::size_t j = 0; j < kParams; ++j) {
     if (!box.free[j]) {
       if (j == kPrior) {
@@ -457,7 +547,10 @@ ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, s
       }
       continue;
     }
-    const Interval ci = profile_interval(p, box, th, lmax, j, settings.level);
+    Interval ci{std::nan(""), std::nan(""), false, false};
+    if (ci_only == kParams || ci_only == j) {
+      ci = profile_interval(p, box, th, lmax, j, settings.level, ses.first, ses.second);
+    }
     fit.parameters.push_back(estimate_of(j, th, ci));
   }
   // Fixed prior: listed for completeness but not a fitted parameter.
@@ -561,7 +654,7 @@ StudyObserverFit fit_study(std::vector<ObservedTrial> trials, const ObserverFitS
                          settings.fit_prior ? prior_logit(fit.observer().prior_right)
                                             : prior_logit(settings.prior_right),
                          0.0};
-        const ObserverFit with = fit_problem(p, settings, name, true, base, cond.size());
+        const ObserverFit with = fit_problem(p, settings, name, true, base, cond.size(), kGamma);
         LearningTest lt;
         lt.condition = name;
         lt.gamma = with.parameter("gamma");
