@@ -526,10 +526,20 @@ namespace {
 ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, std::string unit, bool gamma,
                         Theta base, std::size_t ntrials, std::size_t ci_only = kParams) {
   const Box box = make_box(settings, gamma);
-  // The learning model starts from the pooled fit (gamma = 0), already near its maximum.
-  const auto [th, lmax] = gamma ? nelder_mead([&](const Theta& x) { return evaluate(p, x).loglik; }, base, box,
-                                              box.free, 0.2, 3000)
-                                : global_max(p, box, base);
+  // The learning model starts from the pooled fit (gamma = 0), already near its maximum; beta0 and
+  // gamma are strongly correlated, so Nelder-Mead is restarted until it stops improving.
+  auto learning_max = [&] {
+    auto f = [&](const Theta& x) { return evaluate(p, x).loglik; };
+    auto r = nelder_mead(f, base, box, box.free, 0.5, 3000);
+    for (int restart = 0; restart < 5; ++restart) {
+      auto r2 = nelder_mead(f, r.first, box, box.free, 0.2, 3000);
+      const bool better = r2.second > r.second + 1e-6;
+      if (r2.second > r.second) r = r2;
+      if (!better) break;
+    }
+    return r;
+  };
+  const auto [th, lmax] = gamma ? learning_max() : global_max(p, box, base);
   ObserverFit fit;
   fit.unit = std::move(unit);
   fit.trials = ntrials;
