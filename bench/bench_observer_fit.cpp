@@ -4,7 +4,8 @@
 //                           learning test.
 //   BM_FitParticipant       one participant's fit (20 trials) with profile CIs.
 //   BM_Coverage             parameter recovery over many simulated participants: the share of 95%
-//                           profile CIs that cover the true beta and tau (counters).
+//                           profile CIs that cover the true beta and tau (counters), for the AR(1)
+//                           model and for independent errors on every / on thinned samples.
 #include <benchmark/benchmark.h>
 
 #include "../tests/models/observer_test_paths.hpp"
@@ -63,6 +64,7 @@ void BM_Coverage(benchmark::State& state) {
   const GoalObserver truth{1.5, 0.4, 0.5};
   ObserverFitSettings s;
   s.noise = noise;
+  if (state.range(1) == 2) s.thin = 0.5;  // independent errors on one sample per 0.5 s
   int cb = 0, ct = 0, both = 0;
   for (auto _ : state) {
     cb = ct = both = 0;
@@ -83,7 +85,8 @@ void BM_Coverage(benchmark::State& state) {
   state.counters["tau_coverage"] = static_cast<double>(ct) / studies;
   state.counters["joint_coverage"] = static_cast<double>(both) / studies;
 }
-BENCHMARK(BM_Coverage)->Args({1000, 0})->Args({200, 1})->Iterations(1)->Unit(benchmark::kSecond);
+// range(1): 0 = AR(1) on every sample, 1 = independent on every sample, 2 = independent, thinned.
+BENCHMARK(BM_Coverage)->Args({1000, 0})->Args({200, 1})->Args({200, 2})->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace
 
