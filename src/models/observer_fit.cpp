@@ -15,7 +15,6 @@
 #include <Eigen/Dense>
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/tools/minima.hpp>
-#include <boost/math/tools/roots.hpp>
 #include <fmt/format.h>
 
 #include "feint/error.hpp"
@@ -382,14 +381,14 @@ Interval profile_interval(const Problem& p, const Box& box, const Theta& th, dou
       at_bound = true;
       continue;
     }
-    double v_in = th[j], s_in = 0;                 // inside: s < z
-    double v_out = std::nan(""), s_out = std::nan("");  // outside: s >= z (once known)
+    double v_in = th[j];           // inside: s < z
+    double v_out = std::nan("");   // outside: s >= z (once known)
     double v_prev = th[j], s_prev = 0;
     double v = std::clamp(th[j] + side * z * se, box.lo[j], box.hi[j]);
     bool done = false;
     for (int iter = 0; iter < 40 && !done; ++iter) {
       const double sv = s_of(v);
-      if (sv < z) { v_in = v; s_in = sv; } else { v_out = v; s_out = sv; }
+      if (sv < z) v_in = v; else v_out = v;
       if (std::abs(sv - z) < 1e-3) { end = v; done = true; break; }
       if (std::isnan(v_out) && v == bound) { end = bound; at_bound = true; done = true; break; }
       // Secant on (v_prev, s_prev), (v, sv); fall back to bisection of the bracket.
@@ -406,8 +405,6 @@ Interval profile_interval(const Problem& p, const Box& box, const Theta& th, dou
       v = std::clamp(next, box.lo[j], box.hi[j]);
     }
     if (!done) end = std::isnan(v_out) ? v_in : (v_in + v_out) / 2;
-    (void)s_in;
-    (void)s_out;
   }
   return out;
 }

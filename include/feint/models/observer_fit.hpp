@@ -15,9 +15,10 @@
 //
 // beta in [0, beta_max], tau in [0, tau_max] (and prior_right in (0, 1) when fitted, on the logit
 // scale) maximise the log-likelihood: a start on a coarse grid, then Nelder & Mead (1965) in the box.
-// CIs are profile-likelihood intervals, {theta_j : 2 (l_max - l_p(theta_j)) <= chi2_1(level)}, the
-// ends found by TOMS 748 (Alefeld, Potra & Shi 1995) with the other parameters re-maximised; an end
-// that reaches a bound is reported as the bound and flagged.
+// CIs are profile-likelihood intervals, {theta_j : 2 (l_max - l_p(theta_j)) <= chi2_1(level)}: each
+// end solves sign(v - theta_j) sqrt(2 (l_max - l_p(v))) = +-z by safeguarded secant steps from the
+// Wald end, the other parameters re-maximised at each step; an end that reaches a bound is reported
+// as the bound and flagged.
 #pragma once
 
 #include <optional>
