@@ -109,3 +109,19 @@ TEST(ObserverFit, ProfileCiCoverageOver100SimulatedStudies) {
   EXPECT_LE(c.tau, 98);
   std::printf("coverage over %d studies: beta %d%%, tau %d%%, both %d%%\n", c.n, c.beta, c.tau, c.both);
 }
+
+TEST(ObserverFit, RecoversAFittedPrior) {
+  Rng rng(17);
+  const GoalObserver truth{1.5, 0.3, 0.3};
+  const auto trs = tp::simulate_participant(truth, 20, 0.9, 0.02, rng);
+  ObserverFitSettings s;
+  s.fit_prior = true;
+  const auto fit = fit_observer(trs, s, "P1");
+  const auto& p = fit.parameter("prior_right");
+  EXPECT_NEAR(p.estimate, 0.3, 0.03);
+  EXPECT_LT(p.conf_low, 0.3);
+  EXPECT_GT(p.conf_high, 0.3);
+  EXPECT_NEAR(fit.parameter("beta").estimate, 1.5, 0.2);
+  // Without the prior in the fit the list has beta and tau only.
+  EXPECT_EQ(fit_observer(trs, ObserverFitSettings{}, "P1").parameters.size(), 2u);
+}
