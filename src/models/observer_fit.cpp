@@ -281,6 +281,28 @@ std::pair<Theta, double> maximise(const Problem& p, const Box& box, Theta start,
     th[only] = r.first;
     return {th, -r.second};
   }
+  if (warm) {
+    // Cyclic parabolic searches over each free coordinate (the profile's remaining parameters are
+    // only weakly correlated once the profiled one is fixed); Nelder-Mead if a parabola fails.
+    bool ok = true;
+    for (std::size_t j = 0; j < kParams; ++j) ok = ok && (!free[j] || h[j] > 0);
+    if (ok) {
+      Theta x = start;
+      double fx = f(x);
+      for (int cycle = 0; cycle < 8 && ok; ++cycle) {
+        double moved = 0;
+        for (std::size_t j = 0; j < kParams && ok; ++j) {
+          if (!free[j]) continue;
+          const auto r = parabolic_max(f, x, j, h[j], box);
+          if (!r) { ok = false; break; }
+          moved = std::max(moved, std::abs(r->first[j] - x[j]) / h[j]);
+          x = r->first;
+          fx = r->second;
+        }
+        if (ok && moved < 0.05) return {x, fx};
+      }
+    }
+  }
   return nelder_mead(f, start, box, free, warm ? 0.2 : 0.5, 2000);
 }
 
