@@ -370,6 +370,7 @@ std::pair<Theta, double> global_max(const Problem& p, const Box& box, Theta base
 struct Interval {
   double low = 0, high = 0;
   bool low_at_bound = false, high_at_bound = false;
+  bool hull = false;  // the profile fell below the cut-off again beyond a first crossing
 };
 
 /// Profile-likelihood interval of parameter j around the maximum (th, lmax). Each end solves
@@ -403,30 +404,60 @@ Interval profile_interval(const Problem& p, const Box& box, const Theta& th, dou
       at_bound = true;
       continue;
     }
-    double v_in = th[j];           // inside: s < z
-    double v_out = std::nan("");   // outside: s >= z (once known)
-    double v_prev = th[j], s_prev = 0;
-    double v = std::clamp(th[j] + side * z * se, box.lo[j], box.hi[j]);
-    bool done = false;
-    for (int iter = 0; iter < 40 && !done; ++iter) {
-      const double sv = s_of(v);
-      if (sv < z) v_in = v; else v_out = v;
-      if (std::abs(sv - z) < 1e-3) { end = v; done = true; break; }
-      if (std::isnan(v_out) && v == bound) { end = bound; at_bound = true; done = true; break; }
-      // Secant on (v_prev, s_prev), (v, sv); fall back to bisection of the bracket.
-      double next = sv != s_prev ? v + (z - sv) * (v - v_prev) / (sv - s_prev) : std::nan("");
-      v_prev = v;
-      s_prev = sv;
-      if (!std::isnan(v_out)) {
-        const double lo = std::min(v_in, v_out), hi = std::max(v_in, v_out);
-        if (!(next > lo && next < hi)) next = (v_in + v_out) / 2;
-        if (hi - lo < 1e-9 * box.scale[j]) { end = (v_in + v_out) / 2; done = true; break; }
-      } else if (!(side * (next - v_in) > 0)) {
-        next = v_in + side * 2 * std::max(std::abs(v_in - th[j]), se);  // keep going outward
+    // One search outward from a point inside (s < z) to the crossing s = z.
+    auto search = [&](double from, double s_from) {
+      double v_in = from;            // inside: s < z
+      double v_out = std::nan("");   // outside: s >= z (once known)
+      double v_prev = from, s_prev = s_from;
+      double v = std::clamp(from + side * std::max(z - s_from, 0.1) * se, box.lo[j], box.hi[j]);
+      for (int iter = 0; iter < 40; ++iter) {
+        const double sv = s_of(v);
+        if (sv < z) v_in = v; else v_out = v;
+        if (std::abs(sv - z) < 1e-3) return v;
+        if (std::isnan(v_out) && v == bound) { at_bound = true; return bound; }
+        // Secant on (v_prev, s_prev), (v, sv); fall back to bisection of the bracket.
+        double next = sv != s_prev ? v + (z - sv) * (v - v_prev) / (sv - s_prev) : std::nan("");
+        v_prev = v;
+        s_prev = sv;
+        if (!std::isnan(v_out)) {
+          const double lo = std::min(v_in, v_out), hi = std::max(v_in, v_out);
+          if (!(next > lo && next < hi)) next = (v_in + v_out) / 2;
+          if (hi - lo < 1e-9 * box.scale[j]) return (v_in + v_out) / 2;
+        } else if (!(side * (next - v_in) > 0)) {
+          next = v_in + side * 2 * std::max(std::abs(v_in - th[j]), se);  // keep going outward
+        }
+        v = std::clamp(next, box.lo[j], box.hi[j]);
       }
-      v = std::clamp(next, box.lo[j], box.hi[j]);
+      return std::isnan(v_out) ? v_in : (v_in + v_out) / 2;
+    };
+    // The profile need not be unimodal (over tau it can be rough: the pad moves in steps). Probe
+    // 0.5, 1 and 2 SE beyond each end; where the profile comes back below the cut-off, search on
+    // from there: the interval reported is the hull of the region below the cut-off that was found.
+    double from = th[j], s_from = 0;
+    for (int round = 0; round < 6; ++round) {
+      end = search(from, s_from);
+      if (at_bound) break;
+      bool reentry = false;
+      for (double k : {0.5, 1.0, 2.0}) {
+        const double v = std::clamp(end + side * k * se, box.lo[j], box.hi[j]);
+        if (v == end) break;
+        // One evaluation at the other parameters' last values bounds the profile from below (s is
+        // at most this); only a near miss pays for the re-maximisation.
+        Theta x = warm;
+        x[j] = v;
+        const double l_fixed = evaluate(p, x).loglik;
+        const double s_fixed = l_fixed > lmax ? 0.0 : std::sqrt(2 * (lmax - l_fixed));
+        const double sv = s_fixed < z || s_fixed > z + 1 ? s_fixed : s_of(v);
+        if (sv < z) {
+          from = v;
+          s_from = sv;
+          reentry = true;
+          out.hull = true;
+          break;
+        }
+      }
+      if (!reentry) break;
     }
-    if (!done) end = std::isnan(v_out) ? v_in : (v_in + v_out) / 2;
   }
   return out;
 }
@@ -576,9 +607,15 @@ ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, s
       }
       continue;
     }
-    Interval ci{std::nan(""), std::nan(""), false, false};
+    Interval ci{std::nan(""), std::nan(""), false, false, false};
     if (ci_only == kParams || ci_only == j) {
       ci = profile_interval(p, box, th, lmax, j, settings.level, ses.first, ses.second);
+    }
+    if (ci.hull) {
+      fit.notes.push_back(fmt::format(
+          "{}: the profile likelihood of {} is not unimodal; its CI is the hull of the region within the "
+          "cut-off",
+          fit.unit, kNames[j]));
     }
     fit.parameters.push_back(estimate_of(j, th, ci));
   }
@@ -625,6 +662,14 @@ ObserverFit fit_observer(std::span<const ObservedTrial> trials, const ObserverFi
   return fit;
 }
 
+namespace {
+/// A note without its leading "unit: " (the issue list names the unit already).
+std::string without_unit(const std::string& note, const std::string& unit) {
+  const std::string prefix = unit + ": ";
+  return note.rfind(prefix, 0) == 0 ? note.substr(prefix.size()) : note;
+}
+}  // namespace
+
 StudyObserverFit fit_study(std::vector<ObservedTrial> trials, const ObserverFitSettings& settings) {
   settings.validate();
   StudyObserverFit out;
@@ -659,7 +704,7 @@ StudyObserverFit fit_study(std::vector<ObservedTrial> trials, const ObserverFitS
     const std::span<const ObservedTrial> part(good.data() + i, j - i);
     try {
       auto fit = fit_observer(part, settings, good[i].participant);
-      for (const auto& n : fit.notes) out.issues.push_back({good[i].participant, n});
+      for (const auto& n : fit.notes) out.issues.push_back({good[i].participant, without_unit(n, fit.unit)});
       fitted[{good[i].condition, good[i].participant}] = fit.observer();
       out.participants.push_back(std::move(fit));
     } catch (const Error& e) {
@@ -676,7 +721,7 @@ StudyObserverFit fit_study(std::vector<ObservedTrial> trials, const ObserverFitS
     try {
       auto fit = fit_observer(cond, settings, name);
       fit.condition = good[i].condition;
-      for (const auto& n : fit.notes) out.issues.push_back({name, n});
+      for (const auto& n : fit.notes) out.issues.push_back({name, without_unit(n, name)});
       if (settings.learning) {
         const Problem p = prepare(cond, settings);
         const Theta base{fit.parameter("beta").estimate, fit.parameter("tau").estimate,
