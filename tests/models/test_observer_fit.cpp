@@ -125,3 +125,15 @@ TEST(ObserverFit, RecoversAFittedPrior) {
   // Without the prior in the fit the list has beta and tau only.
   EXPECT_EQ(fit_observer(trs, ObserverFitSettings{}, "P1").parameters.size(), 2u);
 }
+
+TEST(ObserverFit, AFixedPriorIsTheOneUsedAndReported) {
+  Rng rng(23);
+  const GoalObserver truth{1.5, 0.3, 0.3};
+  const auto trs = tp::simulate_participant(truth, 12, 0.9, 0.02, rng);
+  ObserverFitSettings s;
+  s.prior_right = 0.3;  // known, not fitted
+  const auto fit = fit_observer(trs, s, "P1");
+  EXPECT_EQ(fit.observer().prior_right, 0.3);
+  EXPECT_NEAR(fit.parameter("beta").estimate, 1.5, 0.2);
+  EXPECT_NEAR(fit.log_likelihood, observer_log_likelihood(trs, s, fit.observer()), 1e-9);
+}

@@ -85,10 +85,12 @@ struct ObserverFit {
   double sigma = 0;             // innovation sd (pad units)
   double phi = 0;               // lag-1 autocorrelation of the pad error (0 for independent)
   std::vector<ParameterEstimate> parameters;  // beta, tau[, prior_right]
+  double prior_right = 0.5;     // the fitted prior, or the fixed one
   std::size_t evaluations = 0;  // likelihood evaluations
   std::vector<std::string> notes;  // e.g. "beta at the upper bound 20 ..."
 
   const ParameterEstimate& parameter(std::string_view name) const;
+  /// beta, tau and the prior (fitted or fixed) at the maximum.
   GoalObserver observer() const;
 };
 
@@ -132,6 +134,11 @@ struct LearningTest {
   double log_likelihood0 = 0, log_likelihood1 = 0;
   std::string method = "Likelihood-ratio test of gamma = 0 in beta_k = beta0 exp(gamma exposure_k)";
 };
+
+/// The learning test on trials whose `exposure` is filled, against their pooled fit `pooled` (its
+/// unit names the result).
+LearningTest test_learning(std::span<const ObservedTrial> trials, const ObserverFitSettings& settings,
+                           const ObserverFit& pooled);
 
 struct TrialIssue {
   std::string label;
