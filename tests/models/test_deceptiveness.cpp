@@ -159,3 +159,22 @@ TEST(ObserverFitLearning, DetectsADecliningBeta) {
   EXPECT_LT(r.learning[0].gamma.conf_low, -0.3);
   EXPECT_GT(r.learning[0].gamma.conf_high, -0.3);
 }
+
+TEST(Deceptiveness, BetaAtTheBoundsGivesTheLimits) {
+  DeceptivenessSettings s;
+  s.observer.beta = 0;  // belief = prior everywhere
+  const auto m = deceptiveness(tp::shape(1, 1.0), GoalSide::right, s);
+  EXPECT_DOUBLE_EQ(m.legibility, 0.5);
+  EXPECT_EQ(m.time_deceived, 0.0);
+  EXPECT_EQ(m.last_deceptive_point, 1.0);
+  EXPECT_NEAR(m.belief_error, 0.5, 1e-15);
+  EXPECT_EQ(m.belief_confusion, 0.0);
+  s.observer.beta = 1e6;  // a step function of the side: finite, bounded, the jumps clamped to v
+  const auto h = deceptiveness(tp::shape(1, 1.0), GoalSide::right, s);
+  for (double v : {h.legibility, h.time_deceived, h.last_deceptive_point, h.belief_error, h.belief_confusion}) {
+    EXPECT_TRUE(std::isfinite(v));
+    EXPECT_GE(v, 0.0);
+    EXPECT_LE(v, 1.0);
+  }
+  EXPECT_GT(h.belief_overspeed_segments, 0);
+}
