@@ -43,6 +43,14 @@ struct Problem {
 
 Eigen::VectorXd optimise_theta(const Problem& problem);
 
+/// The exponent k of the power of two 2^k nearest the spread (largest |y - mean|) of y; the fit
+/// works on y / 2^k so that it is scale-free and multiplying back is exact.
+int response_scale_exponent(const Eigen::VectorXd& y);
+
+/// qt(1 - upper, df), upper in (0, 1): Student's t upper quantile, the normal one when df is so
+/// large that Boost's quantile would overflow (df > 1e10, where they agree to 1e-10).
+double t_quantile_upper(double upper, double df);
+
 Eigen::VectorXd numderiv_gradient(const std::function<double(const Eigen::VectorXd&)>& f,
                                   const Eigen::VectorXd& x);
 Eigen::MatrixXd numderiv_hessian(const std::function<double(const Eigen::VectorXd&)>& f,

@@ -166,7 +166,11 @@ ModelAnalysis build_model_analysis(const io::ScoresTable& scores, const ModelOpt
     spec.time_scale =
         options.exposure || options.trend ? models::TimeScale::linear : models::TimeScale::factor;
     spec.random_slope = options.random_slope;
-    mm.fit = models::fit_mixed_model(d, spec, !options.exposure);
+    try {
+      mm.fit = models::fit_mixed_model(d, spec, !options.exposure);
+    } catch (const InvalidData& e) {
+      throw InvalidData(fmt::format("{}: {}", scores.path, e.what()));  // name the file
+    }
     const auto& fit = mm.fit;
     const bool one_group = fit.group_levels.size() < 2;
     const std::string rhs = one_group ? spec.time : fmt::format("{} * {}", spec.group, spec.time);
