@@ -20,6 +20,7 @@ struct AnovaArgs {
   std::vector<std::string> metrics;
   std::string correction = "GG";
   bool apa = false;
+  bool drop_empty_conditions = false;
   io::ScoresOptions columns;  // --participant-column, --iteration-column, --condition-column
   ReportOptions report;
 };
@@ -41,7 +42,7 @@ void run_anova(const AnovaArgs& a) {
     }
   }
   const io::ScoresTable scores = io::load_scores(a.input, so);
-  const report::AnovaReport report = report::build_anova_report(scores, correction);
+  const report::AnovaReport report = report::build_anova_report(scores, correction, a.drop_empty_conditions);
   write_report(r.output, report::render_anova(report, r.format, a.apa, r.presentation));
 }
 
@@ -68,6 +69,9 @@ void add_anova_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--apa", args->apa,
                 "Add an APA string per effect, e.g. 'F(1.93, 112.1) = 4.31, p = .017, ηG² = .031'");
+  cmd->add_flag("--drop-empty-conditions", args->drop_empty_conditions,
+                "When every participant of a condition has a missing value, analyse the other "
+                "condition(s) (one left: the one-way repeated-measures ANOVA) instead of stopping");
   add_scores_column_options(*cmd, args->columns);
   add_report_options(*cmd, args->report, {.tests = false, .presentation = true});
   cmd->callback([args] { run_anova(*args); });

@@ -94,13 +94,15 @@ std::vector<models::Observation> observations(const io::ScoresTable& scores,
 }
 
 AnovaReport build_anova_report(const io::ScoresTable& scores,
-                               models::SphericityCorrection correction) {
+                               models::SphericityCorrection correction,
+                               bool drop_empty_conditions) {
   AnovaReport report;
   report.source = scores.path;
   report.correction = correction;
   for (const auto& metric : scores.metrics) {
     const auto obs = observations(scores, metric);
-    const models::WideDesign d = models::make_wide_design(obs, metric, scores.path);
+    const models::WideDesign d =
+        models::make_wide_design(obs, metric, scores.path, drop_empty_conditions);
     report.analyses.push_back(models::mixed_anova(d, correction));
   }
   return report;
@@ -147,6 +149,9 @@ namespace {
 
 std::string effect_note(const models::MixedAnova& a, const models::AnovaEffect& e) {
   std::vector<std::string> notes;
+  if (!a.dropped_conditions.empty())
+    notes.push_back("condition " + join(a.dropped_conditions, ", ") +
+                    " dropped (every participant had a missing value; --drop-empty-conditions)");
   if (!e.correction_note.empty())
     notes.push_back(e.correction_note + "; df and p assume sphericity");
   if (e.within && a.iterations.size() == 2)
@@ -251,6 +256,12 @@ TextTable people_table(const AnovaReport& r, bool apa) {
       n += fmt::format(" Excluded for a missing value (as afex): {} ({}).", a.excluded.size(),
                        join(a.excluded, ", "));
     }
+    if (!a.dropped_conditions.empty())
+      n += fmt::format(
+          " Dropped on request (--drop-empty-conditions): condition {} (every participant had a "
+          "missing value){}.",
+          join(a.dropped_conditions, ", "),
+          a.one_way() ? "; this is the one-way analysis of the remaining condition" : "");
     if (!a.sphericity_note.empty()) n += " (a) " + a.sphericity_note + ".";
     t.notes.push_back(n);
   }

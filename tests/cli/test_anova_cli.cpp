@@ -226,3 +226,45 @@ TEST(AnovaCli, LatexOfAnovaAndPowerCompilesInAPaper) {
 }
 
 }  // namespace
+
+namespace {
+
+// Issue #18: when every participant of a condition has a missing value, `feint anova` stops
+// (exit 65, as afex) instead of silently running the one-way ANOVA of the other condition;
+// --drop-empty-conditions asks for that analysis and the note says what was dropped.
+TEST(AnovaCli, ConditionWithEveryParticipantExcludedStopsUnlessAsked) {
+  TempDir dir;
+  std::string text = "participant,condition,iteration,error\n";
+  for (int k = 0; k < 8; ++k)
+    for (int j = 1; j <= 3; ++j) {
+      const bool b = k >= 4;
+      const bool missing = b && j == 1 + k % 3;
+      text += "P" + std::to_string(k) + "," + (b ? "b" : "a") + "," + std::to_string(j) + "," +
+              (missing ? "" : std::to_string(0.3 + 0.05 * j + 0.01 * ((k * 5 + j) % 7))) + "\n";
+    }
+  const auto p = dir.path() / "s.csv";
+  write_text(p, text);
+  const RunResult r = run_feint("anova " + shell_quote(p.string()) + " --metric error");
+  EXPECT_EQ(r.exit_code, 65) << r.out;
+  EXPECT_NE(r.err.find("every participant of condition 'b' (P4, P5, P6, P7) lacks a value"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("--drop-empty-conditions"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+
+  const RunResult one =
+      run_feint("anova " + shell_quote(p.string()) + " --metric error --drop-empty-conditions");
+  EXPECT_EQ(one.exit_code, 0) << one.err;
+  std::string flat = one.out;  // the note is wrapped
+  for (char& c : flat)
+    if (c == '\n') c = ' ';
+  EXPECT_NE(flat.find("one-way repeated measures"), std::string::npos) << one.out;
+  EXPECT_NE(flat.find("Dropped on request (--drop-empty-conditions): condition b"),
+            std::string::npos)
+      << one.out;
+  const RunResult csv = run_feint("anova " + shell_quote(p.string()) +
+                                  " --metric error --drop-empty-conditions --format csv");
+  EXPECT_NE(csv.out.find("condition b dropped"), std::string::npos) << csv.out;
+}
+
+}  // namespace

@@ -26,9 +26,11 @@ struct AnovaReport {
 std::vector<models::Observation> observations(const io::ScoresTable& scores,
                                               const std::string& metric);
 
-/// The mixed ANOVA of every metric of `scores` (InvalidData from make_wide_design/mixed_anova).
+/// The mixed ANOVA of every metric of `scores` (InvalidData from make_wide_design/mixed_anova;
+/// a condition left without complete participants stops it unless `drop_empty_conditions`).
 AnovaReport build_anova_report(const io::ScoresTable& scores,
-                               models::SphericityCorrection correction);
+                               models::SphericityCorrection correction,
+                               bool drop_empty_conditions = false);
 
 /// `F(1.93, 112.1) = 4.31, p = .017, ηG² = .031`: df as reported (non-integer df with two
 /// decimals below 100, one above), F two decimals, APA p, ges three decimals without leading zero.
