@@ -23,6 +23,7 @@ struct ModelArgs {
   bool exposure = false;
   io::ScoresOptions columns;  // --participant-column, --iteration-column, --condition-column
   std::string strategy_column = "strategy";
+  std::string ddf = "satterthwaite";
   ReportOptions report;
 };
 
@@ -49,6 +50,13 @@ void run_model(const ModelArgs& a) {
   o.conf_level = r.test.conf_level;
   o.p_adjust = r.p_adjust;
   o.apa = r.apa;
+  if (a.ddf == "satterthwaite") {
+    o.ddf = models::DdfMethod::satterthwaite;
+  } else if (a.ddf == "kenward-roger") {
+    o.ddf = models::DdfMethod::kenward_roger;
+  } else {
+    throw UsageError("--ddf " + a.ddf + ": expected satterthwaite or kenward-roger");
+  }
   if (o.exposure && o.compare) throw UsageError("--compare does not apply to --exposure");
   if (o.random_slope && !o.trend)
     throw UsageError("--random-slope needs --trend (a random slope of the linear trend)");
@@ -93,6 +101,10 @@ void add_model_command(CLI::App& app) {
   cmd->add_flag("--exposure", args->exposure,
                 "Fit metric ~ strategy * exposure + (1 | participant), exposure = earlier trials "
                 "of the same strategy; report the slope per strategy");
+  cmd->add_option("--ddf", args->ddf,
+                  "Denominator df of the F tests and contrasts: satterthwaite (lmerTest's default) "
+                  "or kenward-roger (pbkrtest: adjusted covariance and scaled F)")
+      ->capture_default_str();
   add_scores_column_options(*cmd, args->columns);
   cmd->add_option("--strategy-column", args->strategy_column,
                   "Name of the strategy column (--exposure)")

@@ -234,11 +234,18 @@ Contrast contrast(const MixedModelFit& fit, const Eigen::VectorXd& L, double con
   r.mu = 0.0;
   r.statistic_name = "t";
   const double est = L.dot(fit.beta);
-  const double var = L.dot(fit.vcov_beta * L);
-  Eigen::VectorXd g(static_cast<Eigen::Index>(fit.jac_vcov_beta.size()));
-  for (std::size_t k = 0; k < fit.jac_vcov_beta.size(); ++k)
-    g(static_cast<Eigen::Index>(k)) = L.dot(fit.jac_vcov_beta[k] * L);
-  const double df = 2.0 * var * var / g.dot(fit.vcov_varpar * g);
+  double var = 0, df = 0;
+  if (fit.spec.ddf == DdfMethod::kenward_roger) {
+    r.method = "Linear mixed model contrast (REML, Kenward-Roger df)";
+    var = L.dot(fit.vcov_beta_adj * L);
+    df = kenward_roger_df(fit, L.transpose()).ddf;
+  } else {
+    var = L.dot(fit.vcov_beta * L);
+    Eigen::VectorXd g(static_cast<Eigen::Index>(fit.jac_vcov_beta.size()));
+    for (std::size_t k = 0; k < fit.jac_vcov_beta.size(); ++k)
+      g(static_cast<Eigen::Index>(k)) = L.dot(fit.jac_vcov_beta[k] * L);
+    df = 2.0 * var * var / g.dot(fit.vcov_varpar * g);
+  }
   r.estimate = est;
   if (!(var > 0) || !std::isfinite(df) || !(df > 0)) {
     r.computed = false;
@@ -276,6 +283,23 @@ AnovaTerm contrast_md(const MixedModelFit& fit, const Eigen::MatrixXd& L) {
     out.p = boost::math::cdf(boost::math::complement(dist, F));
     return out;
   };
+  if (fit.spec.ddf == DdfMethod::kenward_roger) {
+    // lmerTest's contestMD with ddf = "Kenward-Roger": pbkrtest::KRmodcomp(model, L)$test; the
+    // table's Mean Sq is the unscaled Wald F (with Phi_A) times sigma^2, F is it times the scaling.
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(L);
+    const double q = static_cast<double>(lu.rank());
+    const Eigen::VectorXd Lb = L * fit.beta;
+    const Eigen::MatrixXd LAL = L * fit.vcov_beta_adj * L.transpose();
+    const double wald = Lb.dot(LAL.ldlt().solve(Lb));
+    const KenwardRogerDf kr = kenward_roger_df(fit, L);
+    const double fu = wald / q;
+    table(fu * kr.f_scaling, q, kr.ddf);
+    if (out.computed) {
+      out.mean_sq = fu * s2;
+      out.sum_sq = fu * s2 * q;
+    }
+    return out;
+  }
   if (L.rows() == 1) {
     const stats::TestResult c = contrast(fit, L.row(0).transpose()).test;
     if (!c.computed) return table(std::nan(""), 1, std::nan(""));
@@ -550,6 +574,18 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
     fit.jac_vcov_beta.push_back(J_u[static_cast<std::size_t>(k)].unaryExpr([&](double v) {
       return up(v, 2);
     }) / D(k));
+
+  if (spec.ddf == DdfMethod::kenward_roger) {
+    // In the units of ys (scale-free), then back: Phi_A scales by 2^(2k), P_r by 2^(-4k) and W by
+    // 2^(4k) (exact).
+    const Eigen::MatrixXd Phi_s =
+        sigma_s * sigma_s * ev.xthx_chol.solve(Eigen::MatrixXd::Identity(p, p));
+    const detail::KenwardRogerParts kr = detail::kenward_roger_parts(
+        problem, sigma_s * sigma_s * Lam * Lam.transpose(), sigma_s * sigma_s, Phi_s);
+    fit.vcov_beta_adj = kr.phi_adj.unaryExpr([&](double v) { return up(v, 2); });
+    for (const auto& P : kr.P) fit.kr_P.push_back(P.unaryExpr([&](double v) { return up(v, -4); }));
+    fit.kr_W = kr.W.unaryExpr([&](double v) { return up(v, 4); });
+  }
 
   // Type-III ANOVA.
   const CompleteDesign cd = complete_design(fit, lay, sgi, sti, time);

@@ -166,6 +166,7 @@ ModelAnalysis build_model_analysis(const io::ScoresTable& scores, const ModelOpt
     spec.time_scale =
         options.exposure || options.trend ? models::TimeScale::linear : models::TimeScale::factor;
     spec.random_slope = options.random_slope;
+    spec.ddf = options.ddf;
     try {
       mm.fit = models::fit_mixed_model(d, spec, !options.exposure);
     } catch (const InvalidData& e) {
@@ -254,9 +255,15 @@ std::vector<std::string> model_notes(const ModelAnalysis& a, const MetricModel& 
       "Linear mixed model {} ({}; R's treatment coding), fitted by REML as lme4::lmer (REML "
       "criterion {:.4f}).",
       m.formula, time_text, fit.reml_criterion));
+  const bool kr = o.ddf == models::DdfMethod::kenward_roger;
   notes.push_back(
-      "Type III F tests with Satterthwaite's denominator degrees of freedom, as "
-      "lmerTest::anova(m) (its type-III hypotheses do not depend on the contrast coding).");
+      kr ? "Type III F tests with Kenward-Roger's adjusted covariance, denominator degrees of "
+           "freedom and F scaling (Kenward & Roger 1997), as lmerTest::anova(m, ddf = "
+           "\"Kenward-Roger\") / pbkrtest::KRmodcomp; Sum Sq and Mean Sq are lmerTest's "
+           "(unscaled Wald F times sigma^2)."
+         : "Type III F tests with Satterthwaite's denominator degrees of freedom, as "
+           "lmerTest::anova(m) (its type-III hypotheses do not depend on the contrast coding).");
+  const std::string df_name = kr ? "Kenward-Roger" : "Satterthwaite";
   if (o.trend && fit.group_levels.size() > 1)
     notes.push_back(
         "With a linear trend, the condition term tests the difference of the lines at iteration 0 "
@@ -303,15 +310,15 @@ std::vector<std::string> model_notes(const ModelAnalysis& a, const MetricModel& 
     if (o.exposure) {
       notes.push_back(fmt::format(
           "Slope of exposure per strategy: the change of {} per earlier exposure to the same "
-          "strategy, with Satterthwaite df and {}% interval (lmerTest::contest); {}.",
-          m.metric, percent(o.conf_level), adj));
+          "strategy, with {} df and {}% interval (lmerTest::contest); {}.",
+          m.metric, df_name, percent(o.conf_level), adj));
     } else {
       notes.push_back(fmt::format(
           "Contrasts A - B at each iteration from the model, as emmeans(m, pairwise ~ condition | "
-          "iteration, lmer.df = \"satterthwaite\"){}; two-sided, {}% intervals; {}. A = {}, B = "
+          "iteration, lmer.df = \"{}\"){}; two-sided, {}% intervals; {}. A = {}, B = "
           "{}. "
           "Labels at alpha = {}: A>B / A<B significant, A\u2248B not significantly different.",
-          o.trend ? " at each observed iteration of the trend" : "", percent(o.conf_level), adj,
+          kr ? "kenward-roger" : "satterthwaite", o.trend ? " at each observed iteration of the trend" : "", percent(o.conf_level), adj,
           m.group1, m.group2, io::format_double(o.alpha)));
     }
   }
@@ -343,7 +350,9 @@ struct Builder {
 TextTable anova_table(const MetricModel& m) {
   Builder b;
   b.table.caption =
-      fmt::format("Linear mixed model of {}: type III ANOVA (Satterthwaite's df)", m.metric);
+      fmt::format("Linear mixed model of {}: type III ANOVA ({}'s df)", m.metric,
+                  m.fit.spec.ddf == models::DdfMethod::kenward_roger ? "Kenward-Roger"
+                                                                    : "Satterthwaite");
   b.table.header = {"Term", "Sum Sq", "Mean Sq", "NumDF", "DenDF", "F", "p"};
   b.table.right_align = {false, true, true, true, true, true, true};
   b.p_columns = {6};

@@ -439,3 +439,42 @@ TEST(ModelCli, DemoIsScaleInvariantFrom1e9To1e6) {
     }
   }
 }
+
+// --ddf kenward-roger: the tidy CSV carries lmerTest::anova(m, ddf = "Kenward-Roger") and
+// emmeans' Kenward-Roger contrasts (kr_emm_golden.R) for the data set with a single-trial
+// participant; --ddf with another value is a usage error.
+TEST(ModelCli, KenwardRogerDdfMatchesPbkrtest) {
+  std::map<std::string, std::map<std::string, double>> g;
+  for (const auto& r : parse_csv(feint::test::read_text(kGolden + "kr_emm_golden.csv")))
+    if (r.size() == 5 && r[0] == "single_trial" && r[1] == "Kenward-Roger") g[r[2]][r[3]] = std::stod(r[4]);
+  const auto r = run_feint("model " + shell_quote(kGolden + "lmm_single_trial.csv") +
+                           " --metric error --ddf kenward-roger --format csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Tidy t = tidy(r.out);
+  int anova = 0, contrasts = 0;
+  for (const auto& row : t.rows) {
+    if (t.str(row, "table") == "anova") {
+      const std::string term = t.str(row, "term");
+      expect_rel(t.num(row, "statistic"), g["F"][term], "F " + term, 1e-6);
+      expect_rel(t.num(row, "DenDF"), g["DenDF"][term], "DenDF " + term, 1e-6);
+      expect_rel(t.num(row, "p.value"), g["p"][term], "p " + term, 1e-6);
+      expect_rel(t.num(row, "sumsq"), g["SumSq"][term], "SumSq " + term, 1e-6);
+      ++anova;
+    } else if (t.str(row, "table") == "contrast") {
+      const std::string name = "adaptive - random|" + t.str(row, "iteration");
+      expect_rel(t.num(row, "df"), g["cond_by_it.df"][name], "df " + name, 1e-6);
+      expect_rel(t.num(row, "std.error"), g["cond_by_it.SE"][name], "SE " + name, 1e-6);
+      expect_rel(t.num(row, "p.value"), g["cond_by_it.p"][name], "p " + name, 1e-6);
+      ++contrasts;
+    }
+  }
+  EXPECT_EQ(anova, 3);
+  EXPECT_EQ(contrasts, 4);
+  const auto text = run_feint("model " + shell_quote(kGolden + "lmm_single_trial.csv") +
+                              " --metric error --ddf kenward-roger");
+  EXPECT_NE(text.out.find("type III ANOVA (Kenward-Roger's df)"), std::string::npos) << text.out;
+  EXPECT_EQ(run_feint("model " + shell_quote(kGolden + "lmm_single_trial.csv") +
+                      " --metric error --ddf kr")
+                .exit_code,
+            64);
+}

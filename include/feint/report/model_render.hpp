@@ -30,6 +30,8 @@ struct ModelOptions {
   double conf_level = 0.95;
   stats::PAdjustMethod p_adjust = stats::PAdjustMethod::none;  ///< over the iterations (strategies)
   bool apa = false;
+  /// Denominator df of the F tests and contrasts: Satterthwaite (default) or Kenward-Roger.
+  models::DdfMethod ddf = models::DdfMethod::satterthwaite;
 };
 
 /// A contrast (or slope) row: what it compares and its test.
