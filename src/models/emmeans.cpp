@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <optional>
 
@@ -78,6 +79,7 @@ EmmRow test_row(const MixedModelFit& fit, const std::string& label, const std::s
   r.df = *c.test.df;
   r.statistic = *c.test.statistic;
   r.p_value = *c.test.p_value;
+  r.p_unadjusted = r.p_value;
   r.conf_low = *c.test.conf_low;
   r.conf_high = *c.test.conf_high;
   return r;
@@ -106,11 +108,17 @@ void adjust_family(std::vector<EmmRow>& rows, std::size_t first, EmmAdjust adjus
     return;
   }
   const double k = static_cast<double>(n_means);
+  // qtukey per (k, df): contrasts of one family share k and nearly share df; df is rounded to 10
+  // significant digits for the cache (its effect on the quantile is below 1e-10).
+  std::map<double, double> q_of_df;
   for (std::size_t i = first; i < rows.size(); ++i) {
     EmmRow& r = rows[i];
     if (!r.computed) continue;
     r.p_value = 1 - ptukey(std::abs(r.statistic) * std::numbers::sqrt2, k, r.df);
-    const double q = qtukey(conf_level, k, r.df) / std::numbers::sqrt2;
+    const double key = std::stod(fmt::format("{:.10g}", r.df));
+    auto it = q_of_df.find(key);
+    if (it == q_of_df.end()) it = q_of_df.emplace(key, qtukey(conf_level, k, key)).first;
+    const double q = it->second / std::numbers::sqrt2;
     r.conf_low = r.estimate - q * r.std_error;
     r.conf_high = r.estimate + q * r.std_error;
   }
@@ -170,6 +178,36 @@ std::vector<std::vector<double>> poly_contrasts(std::size_t k) {
     out.push_back(row);
   }
   return out;
+}
+
+std::string to_string(EmmFamily family) {
+  switch (family) {
+    case EmmFamily::pairwise_condition: return "pairwise ~ condition";
+    case EmmFamily::pairwise_iteration: return "pairwise ~ iteration";
+    case EmmFamily::condition_at_iteration: return "pairwise ~ condition | iteration";
+    case EmmFamily::iteration_in_condition: return "pairwise ~ iteration | condition";
+    case EmmFamily::poly_iteration: return "poly ~ iteration";
+    case EmmFamily::poly_in_condition: return "poly ~ iteration | condition";
+  }
+  return "";
+}
+
+std::string to_string(EmmTerm term) {
+  switch (term) {
+    case EmmTerm::cells: return "condition:iteration";
+    case EmmTerm::condition: return "condition";
+    case EmmTerm::iteration: return "iteration";
+  }
+  return "";
+}
+
+std::string to_string(EmmAdjust adjust) {
+  switch (adjust) {
+    case EmmAdjust::none: return "none";
+    case EmmAdjust::holm: return "holm";
+    case EmmAdjust::tukey: return "tukey";
+  }
+  return "";
 }
 
 EmmAdjust parse_emm_adjust(const std::string& text) {

@@ -478,3 +478,72 @@ TEST(ModelCli, KenwardRogerDdfMatchesPbkrtest) {
                 .exit_code,
             64);
 }
+
+// --emmeans / --contrasts / --adjust: the tidy CSV carries emmeans' numbers (kr_emm_golden.R,
+// the data set with a single-trial participant, Kenward-Roger df), every format renders the
+// tables, and impossible combinations are usage errors.
+TEST(ModelCli, EmmeansAndContrastsMatchEmmeans) {
+  std::map<std::string, std::map<std::string, double>> g;
+  for (const auto& r : parse_csv(feint::test::read_text(kGolden + "kr_emm_golden.csv")))
+    if (r.size() == 5 && r[0] == "single_trial" && r[1] == "Kenward-Roger") g[r[2]][r[3]] = std::stod(r[4]);
+  const std::string in = shell_quote(kGolden + "lmm_single_trial.csv");
+  const auto r = run_feint("model " + in +
+                           " --metric error --ddf kenward-roger --emmeans --contrasts simple "
+                           "--contrasts poly --adjust holm --format csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Tidy t = tidy(r.out);
+  int means = 0, holm = 0, poly = 0;
+  for (const auto& row : t.rows) {
+    const std::string table = t.str(row, "table");
+    if (table == "emmean" && t.str(row, "term") == "condition:iteration") {
+      const std::string name = t.str(row, "level");
+      expect_rel(t.num(row, "estimate"), g["cells.emmean"][name], "emmean " + name, 1e-7);
+      expect_rel(t.num(row, "std.error"), g["cells.SE"][name], "SE " + name, 1e-6);
+      expect_rel(t.num(row, "df"), g["cells.df"][name], "df " + name, 1e-6);
+      expect_rel(t.num(row, "conf.low"), g["cells.lower"][name], "lower " + name, 1e-6);
+      ++means;
+    } else if (table == "emm_contrast" && t.str(row, "term") == "pairwise ~ iteration | condition") {
+      const std::string name = t.str(row, "contrast") + "|" + t.str(row, "group");
+      EXPECT_EQ(t.str(row, "label"), "holm");
+      expect_rel(t.num(row, "p.adjusted"), g["it_by_cond.holm.p"][name], "holm p " + name, 1e-6);
+      expect_rel(t.num(row, "conf.high"), g["it_by_cond.holm.upper"][name], "upper " + name, 1e-6);
+      ++holm;
+    } else if (table == "emm_contrast" && t.str(row, "term") == "poly ~ iteration | condition") {
+      // --adjust holm applies to poly too (emmeans' default for poly would be none).
+      const std::string name = t.str(row, "contrast") + "|" + t.str(row, "group");
+      EXPECT_NEAR(t.num(row, "estimate"), g["poly_by_cond.estimate"][name], 1e-8) << name;
+      expect_rel(t.num(row, "p.value"), g["poly_by_cond.p"][name], "poly p " + name, 1e-6);
+      ++poly;
+    }
+  }
+  EXPECT_EQ(means, 8);
+  EXPECT_EQ(holm, 12);
+  EXPECT_EQ(poly, 6);
+
+  for (const std::string f : {"text", "markdown", "latex", "json"}) {
+    // Tukey (a studentized-range quantile per contrast) only in one format, to keep the test fast.
+    const auto out = run_feint("model " + in + " --metric error --emmeans --contrasts " +
+                               (f == "text" ? "pairwise" : "poly") + " --format " + f);
+    ASSERT_EQ(out.exit_code, 0) << f << out.err;
+    if (f == "json") {
+      EXPECT_NE(out.out.find("\"table\": \"emm_contrast\""), std::string::npos);
+      EXPECT_NE(out.out.find("\"label\": \"none\""), std::string::npos);
+    } else {
+      EXPECT_NE(out.out.find("estimated marginal means"), std::string::npos) << f;
+      if (f == "text") {
+        EXPECT_NE(out.out.find("pairwise ~ iteration (p adjustment: tukey)"), std::string::npos);
+      } else {
+        EXPECT_NE(out.out.find("(p adjustment: none)"), std::string::npos) << f;
+      }
+    }
+    if (f == "latex") {
+      EXPECT_NE(out.out.find("\\label{tab:feint-model-emmeans-error}"), std::string::npos);
+      EXPECT_NE(out.out.find("\\label{tab:feint-model-emm-contrasts-error-2}"), std::string::npos);
+      EXPECT_NE(out.out.find("\\begin{tabular}"), std::string::npos);
+    }
+  }
+  EXPECT_EQ(run_feint("model " + in + " --metric error --emmeans --trend").exit_code, 64);
+  EXPECT_EQ(run_feint("model " + in + " --metric error --contrasts poly --adjust tukey").exit_code, 64);
+  EXPECT_EQ(run_feint("model " + in + " --metric error --contrasts all").exit_code, 64);
+  EXPECT_EQ(run_feint("model " + in + " --metric error --adjust holm").exit_code, 64);
+}

@@ -43,7 +43,9 @@ struct EmmRow {
   std::string label;  ///< "adaptive", "adaptive|3" (cells), "adaptive - random",
                       ///< "iteration1 - iteration2", "linear", ...
   std::string by;
-  double estimate = 0, std_error = 0, df = 0, statistic = 0, p_value = 1;
+  double estimate = 0, std_error = 0, df = 0, statistic = 0;
+  double p_value = 1;       ///< with the family's adjustment (emmeans' p.value)
+  double p_unadjusted = 1;  ///< from Student's t
   double conf_low = 0, conf_high = 0;  ///< with the family's adjustment (contrasts)
   bool computed = true;
   std::string note;
@@ -63,6 +65,12 @@ std::vector<EmmRow> emm_contrasts(const MixedModelFit& fit, EmmFamily family, Em
 /// emmeans' poly.emmc: orthogonal polynomial contrasts of `k` equally spaced levels, each column
 /// scaled to small integers (degree 1 .. min(6, k - 1)); rows = degrees.
 std::vector<std::vector<double>> poly_contrasts(std::size_t k);
+
+/// emmeans-style name of a family, e.g. "pairwise ~ iteration | condition", "poly ~ iteration".
+std::string to_string(EmmFamily family);
+/// Name of a mean term: "condition:iteration", "condition", "iteration".
+std::string to_string(EmmTerm term);
+std::string to_string(EmmAdjust adjust);
 
 /// "none", "holm", "tukey" (UsageError otherwise).
 EmmAdjust parse_emm_adjust(const std::string& text);

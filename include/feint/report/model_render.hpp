@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "feint/io/scores.hpp"
+#include "feint/models/emmeans.hpp"
 #include "feint/models/mixed_model.hpp"
 #include "feint/report/writers.hpp"
 #include "feint/stats/p_adjust.hpp"
@@ -32,6 +33,19 @@ struct ModelOptions {
   bool apa = false;
   /// Denominator df of the F tests and contrasts: Satterthwaite (default) or Kenward-Roger.
   models::DdfMethod ddf = models::DdfMethod::satterthwaite;
+  /// --emmeans: the estimated marginal means (cells, conditions, iterations), as emmeans.
+  bool emmeans = false;
+  /// --contrasts pairwise|simple|poly: emmeans contrast families.
+  std::vector<models::EmmFamily> contrast_families;
+  /// --adjust; empty = emmeans' defaults (tukey for pairwise families, none for polynomials).
+  std::optional<models::EmmAdjust> adjust;
+};
+
+/// A table of estimated marginal means or of one contrast family.
+struct EmmTable {
+  std::string term;  ///< "condition:iteration", ..., or "pairwise ~ iteration | condition"
+  std::string adjust;  ///< contrasts: the adjustment applied
+  std::vector<models::EmmRow> rows;
 };
 
 /// A contrast (or slope) row: what it compares and its test.
@@ -55,6 +69,8 @@ struct MetricModel {
   std::vector<ModelContrast>
       contrasts;               ///< per iteration (A - B), or per strategy (exposure slope)
   std::string group1, group2;  ///< A and B of the contrasts
+  std::vector<EmmTable> emmeans;        ///< --emmeans
+  std::vector<EmmTable> emm_contrasts;  ///< --contrasts
 };
 
 struct ModelAnalysis {
