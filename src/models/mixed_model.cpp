@@ -74,6 +74,15 @@ double t_quantile_upper(double upper, double df) {
   }
 }
 
+double t_two_sided_p(double t, double df) {
+  if (df > 1e10) {
+    const boost::math::normal z;
+    return 2.0 * boost::math::cdf(boost::math::complement(z, std::abs(t)));
+  }
+  const boost::math::students_t dist(df);
+  return 2.0 * boost::math::cdf(boost::math::complement(dist, std::abs(t)));
+}
+
 // ---------------------------------------------------------------------------------------------
 // The REML criterion
 

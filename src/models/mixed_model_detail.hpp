@@ -63,6 +63,9 @@ int response_scale_exponent(const Eigen::VectorXd& y);
 /// large that Boost's quantile would overflow (df > 1e10, where they agree to 1e-10).
 double t_quantile_upper(double upper, double df);
 
+/// 2 P(T_df > |t|) (the normal tail when df > 1e10).
+double t_two_sided_p(double t, double df);
+
 Eigen::VectorXd numderiv_gradient(const std::function<double(const Eigen::VectorXd&)>& f,
                                   const Eigen::VectorXd& x);
 Eigen::MatrixXd numderiv_hessian(const std::function<double(const Eigen::VectorXd&)>& f,

@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "feint/models/design.hpp"
 #include "feint/models/mixed_model.hpp"
 
 namespace feint::models {
@@ -60,6 +61,15 @@ std::vector<EmmRow> estimated_means(const MixedModelFit& fit, EmmTerm term,
 /// The contrasts of `family` with `adjust` applied within each by-group. Tukey needs a pairwise
 /// family (UsageError otherwise, as its distribution is that of the range of the means).
 std::vector<EmmRow> emm_contrasts(const MixedModelFit& fit, EmmFamily family, EmmAdjust adjust,
+                                  double conf_level = 0.95);
+
+/// The same for the repeated-measures ANOVA (complete cases, `feint anova`), as emmeans on an
+/// afex::aov_ez object with its default multivariate model: cell means, each mean or contrast's
+/// variance from the covariance of the iterations pooled within conditions,
+/// var(w) = sum_g w_g' S w_g / n_g with S = E / (N - a), and df = N - a (Student's t).
+std::vector<EmmRow> estimated_means(const WideDesign& design, EmmTerm term,
+                                    double conf_level = 0.95);
+std::vector<EmmRow> emm_contrasts(const WideDesign& design, EmmFamily family, EmmAdjust adjust,
                                   double conf_level = 0.95);
 
 /// emmeans' poly.emmc: orthogonal polynomial contrasts of `k` equally spaced levels, each column
