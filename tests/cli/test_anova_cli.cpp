@@ -268,3 +268,79 @@ TEST(AnovaCli, ConditionWithEveryParticipantExcludedStopsUnlessAsked) {
 }
 
 }  // namespace
+
+namespace {
+
+// feint anova --emmeans / --contrasts / --adjust: emmeans on the afex object (multivariate model,
+// anova_emm_golden.R) through the tidy CSV; the tables in text, Markdown and LaTeX.
+TEST(AnovaCli, EmmeansAndContrastsMatchEmmeansOnAfex) {
+  TempDir dir;
+  const auto p = dir.path() / "s.csv";
+  std::string text = "participant,condition,iteration,error\n";
+  {
+    std::ifstream in(kGolden + "anova_data.csv");
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line)) {
+      const auto f = feint::io::split_csv_line(line);
+      if (f[0] == "unbalanced_nonspherical")
+        text += f[1] + "," + f[2] + "," + f[3] + "," + (f.size() > 4 ? f[4] : "") + "\n";
+    }
+  }
+  write_text(p, text);
+  std::map<std::string, double> g;
+  {
+    std::ifstream in(kGolden + "anova_emm_golden.csv");
+    std::string line;
+    while (std::getline(in, line)) {
+      const auto f = feint::io::split_csv_line(line);
+      if (f.size() == 4 && f[0] == "unbalanced_nonspherical") g[f[1] + "/" + f[2]] = std::stod(f[3]);
+    }
+  }
+  const RunResult r = run_feint("anova " + shell_quote(p.string()) +
+                                " --metric error --emmeans --contrasts simple --adjust holm --format csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::stringstream in(r.out);
+  std::string line;
+  std::getline(in, line);
+  const auto header = feint::io::split_csv_line(line);
+  std::map<std::string, std::size_t> col;
+  for (std::size_t i = 0; i < header.size(); ++i) col.emplace(header[i], i);
+  int means = 0, holm = 0;
+  while (std::getline(in, line)) {
+    const auto f = feint::io::split_csv_line(line);
+    if (f[0] == "emmean" && f[col.at("term")] == "condition:iteration") {
+      const std::string lv = f[col.at("level")];
+      const std::string name = lv.substr(0, lv.find('|')) + "|X" + lv.substr(lv.find('|') + 1);
+      EXPECT_NEAR(std::stod(f[col.at("estimate")]), g.at("cells.estimate/" + name), 1e-9) << name;
+      EXPECT_NEAR(std::stod(f[col.at("std.error")]), g.at("cells.SE/" + name), 1e-9) << name;
+      EXPECT_NEAR(std::stod(f[col.at("conf.low")]), g.at("cells.lower/" + name), 1e-9) << name;
+      ++means;
+    } else if (f[0] == "emm_contrast" && f[col.at("term")] == "pairwise ~ iteration | condition") {
+      std::string c = f[col.at("contrast")];
+      for (std::size_t k; (k = c.find("iteration")) != std::string::npos;) c.replace(k, 9, "X");
+      const std::string name = c + "|" + f[col.at("group")];
+      EXPECT_EQ(f[col.at("adjust")], "holm");
+      EXPECT_NEAR(std::stod(f[col.at("p.adjusted")]), g.at("it_by_cond.holm.p/" + name),
+                  1e-6 * std::max(1e-3, g.at("it_by_cond.holm.p/" + name)))
+          << name;
+      EXPECT_NEAR(std::stod(f[col.at("conf.high")]), g.at("it_by_cond.holm.upper/" + name), 1e-9);
+      ++holm;
+    }
+  }
+  EXPECT_EQ(means, 10);
+  EXPECT_EQ(holm, 20);
+  for (const std::string fmt : {"text", "markdown", "latex"}) {
+    const RunResult t = run_feint("anova " + shell_quote(p.string()) +
+                                  " --metric error --emmeans --contrasts poly --format " + fmt);
+    ASSERT_EQ(t.exit_code, 0) << t.err;
+    EXPECT_NE(t.out.find("estimated marginal means"), std::string::npos) << fmt;
+    EXPECT_NE(t.out.find("(p adjustment: none)"), std::string::npos) << fmt;
+  }
+  EXPECT_EQ(run_feint("anova " + shell_quote(p.string()) + " --metric error --contrasts poly --adjust tukey")
+                .exit_code,
+            64);
+  EXPECT_EQ(run_feint("anova " + shell_quote(p.string()) + " --metric error --adjust none").exit_code, 64);
+}
+
+}  // namespace

@@ -52,6 +52,13 @@ struct EmmRow {
   std::string note;
 };
 
+/// A table of estimated marginal means or of one contrast family (for reports).
+struct EmmTable {
+  std::string term;    ///< "condition:iteration", ..., or "pairwise ~ iteration | condition"
+  std::string adjust;  ///< contrasts: the adjustment applied
+  std::vector<EmmRow> rows;
+};
+
 /// The estimated marginal means of `term` with `conf_level` intervals (t vs 0 and p too, as
 /// emmeans' summary(infer = TRUE)). UsageError unless iteration is a factor and the group is
 /// condition.

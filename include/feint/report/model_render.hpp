@@ -41,12 +41,7 @@ struct ModelOptions {
   std::optional<models::EmmAdjust> adjust;
 };
 
-/// A table of estimated marginal means or of one contrast family.
-struct EmmTable {
-  std::string term;  ///< "condition:iteration", ..., or "pairwise ~ iteration | condition"
-  std::string adjust;  ///< contrasts: the adjustment applied
-  std::vector<models::EmmRow> rows;
-};
+using models::EmmTable;
 
 /// A contrast (or slope) row: what it compares and its test.
 struct ModelContrast {
