@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <map>
+#include <tuple>
 #include <numbers>
 #include <optional>
 
@@ -189,16 +190,18 @@ void adjust_family(std::vector<EmmRow>& rows, std::size_t first, EmmAdjust adjus
     return;
   }
   const double k = static_cast<double>(n_means);
-  // qtukey per (k, df): contrasts of one family share k and nearly share df; df is rounded to 10
+  // Two means: the range of two is sqrt(2) |t|, so Tukey is the t test itself (exactly).
+  if (n_means == 2) return;
+  // qtukey per (conf, k, df): contrasts share k and nearly share df; df is rounded to 10
   // significant digits for the cache (its effect on the quantile is below 1e-10).
-  std::map<double, double> q_of_df;
+  thread_local std::map<std::tuple<double, double, double>, double> q_cache;
   for (std::size_t i = first; i < rows.size(); ++i) {
     EmmRow& r = rows[i];
     if (!r.computed) continue;
     r.p_value = 1 - ptukey(std::abs(r.statistic) * std::numbers::sqrt2, k, r.df);
     const double key = std::stod(fmt::format("{:.10g}", r.df));
-    auto it = q_of_df.find(key);
-    if (it == q_of_df.end()) it = q_of_df.emplace(key, qtukey(conf_level, k, key)).first;
+    auto it = q_cache.find({conf_level, k, key});
+    if (it == q_cache.end()) it = q_cache.emplace(std::make_tuple(conf_level, k, key), qtukey(conf_level, k, key)).first;
     const double q = it->second / std::numbers::sqrt2;
     r.conf_low = r.estimate - q * r.std_error;
     r.conf_high = r.estimate + q * r.std_error;

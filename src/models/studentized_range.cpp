@@ -73,9 +73,12 @@ double ptukey(double q, double nmeans, double df) {
   while (dens(upper) > 1e-30 * std::max(dens(mode), 1e-300)) upper *= 1.5;
   const double a = std::max(0.0, mode - 8 * sd), b = mode + 8 * sd;
   double out = 0;
-  if (a > 0) out += piecewise(f, 0.0, a, 2);
+  // Outside mode -+ 8 sd the density is monotone: skip a tail piece whose inner edge is already
+  // below 1e-25 of the peak (its contribution is below that times its width).
+  const double peak = std::max(dens(mode), 1e-300);
+  if (a > 0 && dens(a) > 1e-25 * peak) out += piecewise(f, 0.0, a, 2);
   out += piecewise(f, a, b, 5);
-  out += piecewise(f, b, upper, 4);
+  if (dens(b) > 1e-25 * peak) out += piecewise(f, b, upper, 4);
   return std::min(1.0, std::max(0.0, out));
 }
 
