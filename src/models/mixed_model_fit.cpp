@@ -429,6 +429,24 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
         fit.time_levels.size() == 1 && spec.time == "iteration"
             ? " (for a single iteration, compare the conditions with `feint table`)"
             : ""));
+  {
+    // No variation within any participant: the residual variance is 0 and REML drives theta to
+    // infinity (lme4 converges to a boundary with meaningless df); refuse, as the ANOVA does.
+    std::map<std::string, std::pair<double, double>> range;
+    for (std::size_t i = 0; i < n; ++i) {
+      auto [it, fresh] = range.try_emplace(data.participant[i], data.y[i], data.y[i]);
+      if (!fresh) {
+        it->second.first = std::min(it->second.first, data.y[i]);
+        it->second.second = std::max(it->second.second, data.y[i]);
+      }
+    }
+    if (std::all_of(range.begin(), range.end(),
+                    [](const auto& r) { return r.second.first == r.second.second; }))
+      throw InvalidData(fmt::format(
+          "metric '{}': no variation within any participant (each participant's trials all "
+          "have the same value): the residual variance is 0 and the mixed model is degenerate",
+          spec.response));
+  }
   if (spec.random_slope && n <= 2 * fit.participants.size())
     throw InvalidData(fmt::format(
         "metric '{}': {} trials of {} participants are not more than the {} random effects of "

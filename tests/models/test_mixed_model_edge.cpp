@@ -220,3 +220,20 @@ TEST(MixedModelEdge, ParticipantWithASingleTrialIsKept) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(MixedModelEdge, NoVariationWithinParticipantsIsAClearError) {
+  LongData d;
+  for (int k = 0; k < 6; ++k)
+    for (int j = 1; j <= 3; ++j) {
+      d.participant.push_back("P" + std::to_string(k));
+      d.group.push_back(k % 2 ? "b" : "a");
+      d.time.push_back(j);
+      d.y.push_back(0.1 * k);
+    }
+  EXPECT_NE(error_of(d).find("no variation within any participant"), std::string::npos)
+      << error_of(d);
+}
+
+}  // namespace
