@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "feint/error.hpp"
+#include "feint/io/csv.hpp"
 #include "feint/io/number.hpp"
 
 namespace feint::cli {
@@ -65,6 +66,34 @@ void add_score_options(CLI::App& cmd, ScoreOptions& o, const std::string& group)
                                  "Unit of the logs' t column: s (default) or ms (converted to "
                                  "seconds; jsPsych and many loggers write ms)")
                       ->check(CLI::IsMember({"s", "ms"}, CLI::ignore_case)));
+  added.push_back(cmd.add_option("--decimal", o.decimal,
+                                 "Decimal mark of the logs' numbers: . or , (default: '.' in a "
+                                 "comma-separated file; otherwise detected from the first time or "
+                                 "pad value holding one)"));
+  added.push_back(cmd.add_flag("--no-header", o.no_header,
+                               "The logs have no header row (MATLAB): name the columns with "
+                               "--columns, or by number with --map FIELD=N (N from 1)"));
+  added.push_back(cmd.add_option("--columns", o.columns,
+                                 "With --no-header: the columns' names in order, comma-separated, "
+                                 "e.g. participant,iteration,target,t,pad (a column not named is "
+                                 "called by its number)"));
+  added.push_back(cmd.add_option("--iteration-base", o.iteration_base,
+                                 "0 = the logs number iterations from 0 (PsychoPy; 1 is added, so "
+                                 "0..19 become 1..20); 1 = from 1 (an iteration 0 is invalid). "
+                                 "Default: as written, with a warning when they start at 0")
+                      ->check(CLI::IsMember({"0", "1"})));
+  added.push_back(cmd.add_option("--participant-from-path", o.participant_from_path,
+                                 "Take the participant id from each log's path instead of a "
+                                 "column: filename (name without extensions), dirname (folder "
+                                 "name), or a regular expression whose first group is the id, "
+                                 "e.g. 'sub-([0-9]+)'"));
+  added.push_back(cmd.add_option("--samples-column", o.samples_column,
+                                 "A column holding each trial's samples as JSON (jsPsych): "
+                                 "[{\"t\":0,\"pad\":0.5},...] or {\"t\":[...],\"pad\":[...]}; "
+                                 "keys follow --map t=KEY / pad=KEY"));
+  added.push_back(cmd.add_flag("--single-condition", o.single_condition,
+                               "Read every trial as one condition although a column looks like "
+                               "a condition (group, cond..., arm, treatment)"));
   if (!group.empty()) {
     for (auto* opt : added) opt->group(group);
   }
@@ -99,6 +128,36 @@ metrics::ScoreSettings score_settings(const ScoreOptions& o) {
   const auto unit = metrics::parse_time_unit(o.time_unit);
   if (!unit) throw UsageError(fmt::format("--time-unit '{}': expected s or ms", o.time_unit));
   s.time_unit = *unit;
+  if (!o.decimal.empty()) {
+    if (o.decimal == "." || io::to_lower(o.decimal) == "point") {
+      s.reading.decimal = '.';
+    } else if (o.decimal == "," || io::to_lower(o.decimal) == "comma") {
+      s.reading.decimal = ',';
+    } else {
+      throw UsageError(fmt::format("--decimal '{}': expected . or ,", o.decimal));
+    }
+    if (s.reading.decimal == ',' && s.delimiter == ',') {
+      throw UsageError("--decimal , with --delimiter , : the comma cannot be both; a European "
+                       "export is read with --delimiter ';' --decimal ,");
+    }
+  }
+  s.reading.no_header = o.no_header;
+  if (!o.columns.empty()) {
+    if (!o.no_header) {
+      throw UsageError("--columns names the columns of a file without a header: give --no-header "
+                       "too (a file with a header is renamed with --map FIELD=COLUMN)");
+    }
+    for (auto& name : io::split_csv_line(o.columns)) s.reading.column_names.emplace_back(io::trim(name));
+  }
+  if (o.no_header && s.reading.column_names.empty() && s.column_map.empty()) {
+    throw UsageError("--no-header needs the columns' names: --columns participant,iteration,"
+                     "target,t,pad (in the file's order) or --map FIELD=N for each field (N = "
+                     "column number from 1)");
+  }
+  if (!o.iteration_base.empty()) s.reading.iteration_base = o.iteration_base == "0" ? 0 : 1;
+  s.reading.participant_from_path = o.participant_from_path;
+  s.reading.samples_column = o.samples_column;
+  s.reading.single_condition = o.single_condition;
   return s;
 }
 

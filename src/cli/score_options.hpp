@@ -20,10 +20,19 @@ struct ScoreOptions {
   std::string delimiter;
   std::string on_error = "strict";
   std::string time_unit = "s";
+  // Other labs' exports (docs/formats.md "Files from other labs").
+  std::string decimal;
+  bool no_header = false;
+  std::string columns;
+  std::string iteration_base;
+  std::string participant_from_path;
+  std::string samples_column;
+  bool single_condition = false;
 };
 
 /// Registers --trim, --trim-start, --trim-end, --deadband, --confusion-norm, --pad-speed, --map,
-/// --delimiter, --on-error and --time-unit on `cmd` (in help group `group`, if not empty), bound to `options`.
+/// --delimiter, --on-error, --time-unit, --decimal, --no-header, --columns, --iteration-base,
+/// --participant-from-path, --samples-column and --single-condition on `cmd` (in help group `group`, if not empty), bound to `options`.
 void add_score_options(CLI::App& cmd, ScoreOptions& options, const std::string& group = "");
 
 /// The settings they stand for (trims, dead band, normalisation, pad speed, column map,
