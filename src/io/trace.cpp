@@ -270,6 +270,7 @@ struct TraceReader::Impl {
     cols = {};
     cols.width = header.size();
     std::vector<std::string> missing;  // every missing column, reported in one message
+    std::vector<std::string> maps;     // the --map that would name each
     bool missing_id = false, missing_samples = false;
     for (int f = 0; f < kFieldCount; ++f) {
       const auto mapped = options.column_map.find(kFieldNames[f]);
@@ -294,10 +295,11 @@ struct TraceReader::Impl {
       if (is_mapped) {
         missing.push_back(fmt::format("'{}' (given by --map {}={})", want, kFieldNames[f], want));
       } else if (kRequired[f]) {
-        missing.push_back(fmt::format("'{}'", want));
+        missing.push_back(fmt::format("'{}' (required)", want));
       } else {
         continue;
       }
+      maps.push_back(fmt::format("--map {}=COLUMN", kFieldNames[f]));
       missing_id = missing_id || f == kParticipant;
       missing_samples = missing_samples || f == kT || f == kPad;
     }
@@ -309,8 +311,9 @@ struct TraceReader::Impl {
       }
     }
     if (!missing.empty()) {
-      std::string fixes = fmt::format("name the study's columns with --map FIELD=COLUMN (e.g. --map {}=...)",
-                                      missing_id ? "participant" : "t");
+      std::string fixes = maps.empty() ? std::string("give --samples-column the JSON column's name")
+                                       : fmt::format("name the study's column{} with {}",
+                                                     maps.size() > 1 ? "s" : "", fmt::join(maps, " "));
       if (missing_id) {
         fixes += "; ids only in the file or folder name: --participant-from-path filename (or "
                  "dirname, or a regular expression whose first group is the id)";

@@ -87,7 +87,8 @@ struct TraceOptions {
 
   // ---- other labs' exports (issue 18; docs/formats.md "Files from other labs") ----
   /// Decimal mark of the numbers (t, pad, target, pad_speed): '.', ',' or 0 = per file: '.' in a
-  /// `,`-delimited file; in any other, the first t/pad value holding a `,` or a `.` decides
+  /// `,`-delimited file; in any other, the first number (target, pad_speed, t, pad) holding a `,`
+  /// or a `.` decides
   /// (`0,033` = decimal comma; a "decimal-comma" diagnostic says so). With a decimal comma, a `.`
   /// in a number is invalid (it would be a thousands separator).
   char decimal = 0;
