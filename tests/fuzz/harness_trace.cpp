@@ -17,7 +17,7 @@ void check_trial(const io::Trial& t) {
   using detail::check;
   check(t.times.size() >= 2, "trial with fewer than 2 samples");
   check(t.times.size() == t.pads.size(), "times and pads differ in length");
-  check(t.rows == t.times.size(), "rows != samples in a valid trial");
+  check(t.rows == t.times.size() + t.padding_rows, "rows != samples + padding in a valid trial");
   check(!t.participant.empty(), "empty participant");
   check(t.target >= 0 && t.target <= 1, "target outside [0, 1]");
   for (std::size_t i = 0; i < t.times.size(); ++i) {
