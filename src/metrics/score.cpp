@@ -192,7 +192,7 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
     summary.median_duration = median;
     summary.max_duration = *std::max_element(durations.begin(), durations.end());
     const auto t_column = settings.column_map.count("t") != 0 ? settings.column_map.at("t") : "t";
-    if (settings.time_unit == TimeUnit::s && median > kMedianDurationRefuseS) {
+    if (settings.check_durations && settings.time_unit == TimeUnit::s && median > kMedianDurationRefuseS) {
       throw InvalidData(fmt::format(
           "{}: column '{}': the median trial lasts {:.4g} s ({} trials; the longest, trial {}, "
           "{:.4g} s): these times cannot be seconds (a trial lasting more than {:.0f} s = 20 "
@@ -201,7 +201,9 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
           kMedianDurationRefuseS));
     }
     std::string warning, code;
-    if (settings.time_unit == TimeUnit::s && median > kMedianDurationHighS) {
+    if (!settings.check_durations) {
+      // No plausibility rule asked for.
+    } else if (settings.time_unit == TimeUnit::s && median > kMedianDurationHighS) {
       code = "time-unit-ms-suspected";
       warning = fmt::format(
           "the median trial lasts {:.4g} s ({} trials, longest {:.4g} s): implausible for seconds; "

@@ -57,6 +57,9 @@ struct ScoreSettings {
   /// JSON samples, expected conditions (io::TraceOptions' fields of those names; the fields set
   /// above and below take precedence over the copies here).
   io::TraceOptions reading;
+  /// Apply the time-unit plausibility rule (kMedianDuration*): warn, or refuse above 20 minutes.
+  /// Off only for a library caller whose trials are not rounds of the game (e.g. numerical tests).
+  bool check_durations = true;
   /// Called with each warning (e.g. trial durations implausible for the time unit); when empty,
   /// warnings go to standard error as `feint: warning: ...`.
   std::function<void(const std::string&)> on_warning;
