@@ -92,10 +92,17 @@ ScoresTable load_scores(const std::string& path, const ScoresOptions& options) {
   table.has_condition = ic >= 0;
   std::vector<int> im;
   for (const auto& m : options.metrics) im.push_back(find(m, "metric", "--metric"));
+  if (missing.size() == 1) {
+    const bool metric = missing[0].ends_with("(metric)");
+    const std::string name = missing[0].substr(0, missing[0].rfind(" ("));
+    throw InvalidData(metric ? fmt::format("{}:1: metric column {} is missing; the header has: {}",
+                                           path, name, header_list(reader))
+                             : fmt::format("{}:1: column {} is missing; the header has: {}", path,
+                                           missing[0], header_list(reader)));
+  }
   if (!missing.empty()) {
-    throw InvalidData(fmt::format("{}:1: missing column{} {}; the header has: {}", path,
-                                  missing.size() > 1 ? "s" : "", fmt::join(missing, ", "),
-                                  header_list(reader)));
+    throw InvalidData(fmt::format("{}:1: columns {} are missing; the header has: {}", path,
+                                  fmt::join(missing, ", "), header_list(reader)));
   }
   if (!table.has_condition && options.expected_conditions.size() >= 2) {
     throw InvalidData(fmt::format(

@@ -429,9 +429,9 @@ TEST(OtherLabs, AllMissingColumnsInOneMessage) {
     feint::io::load_scores(s);
     FAIL();
   } catch (const feint::InvalidData& e) {
-    EXPECT_NE(std::string(e.what()).find(":1: missing columns 'participant' (participant), "
-                                         "'iteration' (iteration), 'confusion' (metric); the "
-                                         "header has: id, error"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(":1: columns 'participant' (participant), "
+                                         "'iteration' (iteration), 'confusion' (metric) are "
+                                         "missing; the header has: id, error"), std::string::npos) << e.what();
   }
 }
 

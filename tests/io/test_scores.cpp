@@ -85,14 +85,14 @@ TEST_F(ScoresFile, AnyNumericColumnCanBeAMetric) {
 TEST_F(ScoresFile, MissingRequiredColumn) {
   const auto p = write("s.csv", "participant,condition,error,confusion\nP1,a,0.5,0.5\n");
   const auto msg = invalid_message([&] { load_scores(p); });
-  EXPECT_EQ(msg, p + ":1: missing column 'iteration' (iteration); the header has: "
+  EXPECT_EQ(msg, p + ":1: column 'iteration' (iteration) is missing; the header has: "
                      "participant, condition, error, confusion");
 }
 
 TEST_F(ScoresFile, MissingMetricColumn) {
   const auto p = write("s.csv", "participant,iteration,error\nP1,1,0.5\n");
   const auto msg = invalid_message([&] { load_scores(p); });
-  EXPECT_EQ(msg, p + ":1: missing column 'confusion' (metric); the header has: "
+  EXPECT_EQ(msg, p + ":1: metric column 'confusion' is missing; the header has: "
                      "participant, iteration, error");
 }
 
