@@ -12,6 +12,7 @@
 #include "feint/error.hpp"
 #include "feint/io/csv.hpp"
 #include "feint/io/participants.hpp"
+#include "feint/io/questionnaire.hpp"
 #include "feint/io/scores.hpp"
 #include "feint/io/trace.hpp"
 
@@ -449,4 +450,21 @@ TEST(OtherLabs, CompareParticipantsListsMissingOnEitherSide) {
   const auto same = feint::io::compare_participants({"A", "B"}, {"B", "A"});
   EXPECT_TRUE(same.matches());
   EXPECT_EQ(same.message(), "");
+}
+
+TEST(OtherLabs, QuestionnaireColumnsDifferingOnlyInCase) {
+  // Exact case wins; two case-variants without an exact match are refused, naming both.
+  const auto ok = write("q_exact.csv", "participant,PARTICIPANT,q1,q2\nP1,1,3,4\nP2,2,5,6\n");
+  const auto q = feint::io::load_questionnaire(ok);
+  ASSERT_EQ(q.participants.size(), 2U);
+  EXPECT_EQ(q.participants[0], "P1");
+  const auto bad = write("q_case.csv", "Participant,PARTICIPANT,q1,q2\nP1,1,3,4\nP2,2,5,6\n");
+  try {
+    feint::io::load_questionnaire(bad);
+    FAIL();
+  } catch (const feint::InvalidData& e) {
+    EXPECT_NE(std::string(e.what()).find("q_case.csv:1: columns 'Participant' (column 1) and "
+                                         "'PARTICIPANT' (column 2) differ only in case"),
+              std::string::npos) << e.what();
+  }
 }
