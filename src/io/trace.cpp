@@ -263,6 +263,19 @@ struct TraceReader::Impl {
     reader = std::make_unique<CsvReader>(files[file_index], copt);
     row = &reader->fields();
     const std::string& name = names[file_index];
+    if (options.no_header) {
+      // A header read as data would fail later on its iteration; say what happened instead.
+      // (Before the first next(), fields() holds the first row, which next() hands out again.)
+      for (const auto f : reader->fields()) {
+        const std::string cell = to_lower(trim(f));
+        if (std::find(kFieldNames.begin(), kFieldNames.end(), cell) != kFieldNames.end()) {
+          throw InvalidData(fmt::format("{}:{}: --no-header, but the first row holds the column "
+                                        "name '{}': the file has a header; drop --no-header "
+                                        "(and --columns) and name its columns with --map",
+                                        name, reader->line(), trim(f)));
+        }
+      }
+    }
     const auto& header = reader->header();
     mark = options.decimal != 0 ? options.decimal : reader->delimiter() == ',' ? '.' : 0;
     if (!options.participant_from_path.empty()) file_participant = participant_from(files[file_index]);
@@ -419,7 +432,7 @@ struct TraceReader::Impl {
     if (s.find('.') != std::string_view::npos) return std::nullopt;
     comma_scratch.assign(s);
     std::replace(comma_scratch.begin(), comma_scratch.end(), ',', '.');
-    return parse_double(comma_scratch);
+    return parse_number(comma_scratch);  // the same exact fast path as a decimal point
   }
   // Why a number cell was not read, when the decimal mark may be the reason.
   std::string mark_hint(std::string_view s) const {

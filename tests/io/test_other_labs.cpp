@@ -175,6 +175,11 @@ TEST(OtherLabs, HeaderlessFileReadWithColumnNamesOrPositions) {
   EXPECT_EQ(r2.trials[0].times, r.trials[0].times);
   EXPECT_EQ(r2.trials[1].pads, r.trials[1].pads);
 
+  // --no-header on a file that has one: said, not read as data.
+  const auto msg = error_of({lab("fixed_length_nan.csv")}, named);
+  EXPECT_NE(msg.find("fixed_length_nan.csv:1: --no-header, but the first row holds the column name "
+                     "'participant': the file has a header; drop --no-header"), std::string::npos) << msg;
+
   TraceOptions nothing;
   nothing.no_header = true;
   EXPECT_THROW(TraceReader({lab("matlab_noheader.csv")}, nothing), feint::UsageError);

@@ -53,7 +53,8 @@ class CsvReader {
   /// Reads the next non-empty record; false at end of input. Throws InvalidData on an unterminated
   /// quote, text after a closing quote, a stray quote, or (by default) a wrong field count.
   bool next();
-  /// Fields of the current record; views into the reader's buffer, valid until next().
+  /// Fields of the current record; views into the reader's buffer, valid until next(). With
+  /// no_header, before the first next() they are the first row (which next() then hands out).
   const std::vector<std::string_view>& fields() const noexcept;
   std::string_view field(std::size_t i) const noexcept;
 
