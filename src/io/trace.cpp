@@ -854,6 +854,10 @@ TraceReader::TraceReader(std::vector<std::string> files, TraceOptions options)
                      "--map FIELD=N (N = column number from 1)");
   }
   const auto& rule = options.participant_from_path;
+  if (!rule.empty() && std::find(files.begin(), files.end(), "-") != files.end()) {
+    throw UsageError("--participant-from-path cannot name the participant of standard input "
+                     "(give the files by name)");
+  }
   if (!rule.empty() && rule != "filename" && rule != "dirname") {
     try {
       impl_->path_regex = std::regex(rule, std::regex::ECMAScript);

@@ -473,3 +473,9 @@ TEST(OtherLabs, QuestionnaireColumnsDifferingOnlyInCase) {
               std::string::npos) << e.what();
   }
 }
+
+TEST(OtherLabs, ParticipantFromPathCannotNameStandardInput) {
+  TraceOptions opt;
+  opt.participant_from_path = "filename";
+  EXPECT_THROW(TraceReader({"-"}, opt), feint::UsageError);
+}
