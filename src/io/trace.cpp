@@ -494,7 +494,8 @@ struct TraceReader::Impl {
       invalid(b, line, fmt::format("column '{}': empty (expected the condition's name)",
                                    cols.name[kCondition]));
     }
-    if (const auto i = parse_integer(it); i && *i >= 0 && *i <= kMaxIteration) {
+    if (const auto i = parse_integer(it);
+        i && *i >= 0 && *i <= kMaxIteration - (options.iteration_base == 0 ? 1 : 0)) {
       t.iteration = options.iteration_base == 0 ? *i + 1 : *i;
       if (*i < min_iteration) {
         min_iteration = *i;
