@@ -362,6 +362,8 @@ struct StudyOptions {
   std::uint64_t seed = 1;
   double sample_rate = 25.0;
   double pad_speed = 0.8;
+  std::string participant_model = "goal-inference";
+  std::vector<std::string> observer;  // KEY=VALUE
 };
 
 void run_study(const StudyOptions& o) {
@@ -371,7 +373,11 @@ void run_study(const StudyOptions& o) {
   s.lambda = o.lambda;
   s.seed = o.seed;
   s.geometry.sample_rate = o.sample_rate;
+  if (sim::parse_participant_model(o.participant_model) == sim::ParticipantModel::heuristic) {
+    s.observer = sim::ObserverParams{};  // feint 0.1's participant, with its own defaults
+  }
   s.observer.pad_speed = o.pad_speed;
+  for (const auto& kv : o.observer) sim::set_parameter(s.observer, kv);
   sim::validate(s.geometry);
   sim::validate(s.observer);
   const auto people = sim::write_study(s, o.out);
@@ -419,6 +425,13 @@ void add_study_command(CLI::App& parent) {
   cmd->add_option("--pad-speed", opts->pad_speed, "pad speed (pad units per second)")
       ->check(CLI::Range(0.01, 100.0))
       ->capture_default_str();
+  cmd->add_option("--participant-model", opts->participant_model,
+                  "how simulated people infer the goal: heuristic (tanh of the robot's x) or "
+                  "goal-inference (Bayesian observer; docs/simulation.md)")
+      ->capture_default_str();
+  cmd->add_option("--observer", opts->observer,
+                  "NAME=VALUE: set a parameter of the simulated observer (repeatable), e.g. beta=1.5 "
+                  "noise_sd=0.1; the names and defaults are in docs/simulation.md");
   cmd->callback([opts] { run_study(*opts); });
 }
 

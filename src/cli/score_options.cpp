@@ -39,6 +39,10 @@ void add_score_options(CLI::App& cmd, ScoreOptions& o, const std::string& group)
   added.push_back(cmd.add_option("--deadband", o.deadband,
                                  "Dead band eps in pad units: a segment moving <= eps has no "
                                  "direction for the reversal rule (default 1e-9)"));
+  added.push_back(cmd.add_option("--belief-deadband", o.belief_deadband,
+                                 "Dead band delta in pad units of the belief-trace measures: flips "
+                                 "smaller than delta are ignored, and the pad is on a side of 0.5 "
+                                 "only beyond delta (default 0.05)"));
   added.push_back(cmd.add_option("--confusion-norm", o.norm,
                                  "Confusion normalisation: 'speed' = moving fraction at the pad "
                                  "speed, in [0, 1] (default); 'raw' = the paper's eq. 4 as printed "
@@ -105,6 +109,7 @@ metrics::ScoreSettings score_settings(const ScoreOptions& o) {
   if (o.trim_start) s.metrics.trim_start = *o.trim_start;
   if (o.trim_end) s.metrics.trim_end = *o.trim_end;
   s.metrics.deadband = o.deadband;
+  s.metrics.belief_deadband = o.belief_deadband;
   const auto norm = metrics::parse_confusion_norm(o.norm);
   if (!norm) throw UsageError(fmt::format("--confusion-norm '{}': expected speed or raw", o.norm));
   s.metrics.norm = *norm;

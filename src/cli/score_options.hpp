@@ -14,6 +14,7 @@ namespace feint::cli {
 struct ScoreOptions {
   std::optional<double> trim, trim_start, trim_end;
   double deadband = 1e-9;
+  double belief_deadband = 0.05;
   std::string norm = "speed";
   std::optional<double> pad_speed;
   std::vector<std::string> maps;

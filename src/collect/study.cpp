@@ -13,6 +13,7 @@
 #include "feint/io/csv.hpp"
 #include "feint/io/number.hpp"
 #include "feint/rng.hpp"
+#include "feint/sim/robot_path.hpp"
 
 namespace feint::collect {
 
@@ -22,7 +23,12 @@ using detail::csv_field;
 
 namespace {
 
+// Rows carry the robot's position at each sample (robot_x, robot_y: metres), computed here from
+// the round's plan, not taken from the page. A log begun before these columns existed keeps its
+// layout (kLegacyLogHeader) when its study is resumed, so that no file mixes the two.
 constexpr std::string_view kLogHeader =
+    "participant,condition,iteration,strategy,variant,target,t,pad,pad_speed,robot_x,robot_y\n";
+constexpr std::string_view kLegacyLogHeader =
     "participant,condition,iteration,strategy,variant,target,t,pad,pad_speed\n";
 constexpr std::string_view kAssignmentHeader = "participant,index,condition,assigned_utc\n";
 constexpr std::string_view kEventsHeader = "time_utc,participant,event,detail\n";
@@ -119,6 +125,7 @@ struct Study::Participant {
   std::vector<sim::Iteration> run;  // the planned analysed rounds
   int saved[2] = {0, 0};            // practice, main
   std::uint64_t log_size[2] = {0, 0};
+  bool legacy_log[2] = {false, false};  // the log has no robot_x/robot_y (written by an older feint)
   bool questionnaire_done = false;
   bool yes_no_done = false;
   std::int64_t last_seen = 0;
@@ -197,6 +204,7 @@ void Study::recover_log(Participant& p, RoundKind kind) {
   const int k = static_cast<int>(kind);
   p.saved[k] = 0;
   p.log_size[k] = 0;
+  p.legacy_log[k] = false;
   if (content.empty()) return;
   const std::string where = path.string();
   std::size_t good_end = 0;
@@ -212,7 +220,9 @@ void Study::recover_log(Participant& p, RoundKind kind) {
     std::string_view line(content.data() + pos, nl - pos);
     const std::size_t next = nl + 1;
     if (!header) {
-      if (std::string(line) + "\n" != kLogHeader) {
+      if (std::string(line) + "\n" == kLegacyLogHeader) {
+        p.legacy_log[k] = true;
+      } else if (std::string(line) + "\n" != kLogHeader) {
         throw InvalidData(fmt::format("{}:1: not a feint collect log (unexpected header)", where));
       }
       header = true;
@@ -221,7 +231,7 @@ void Study::recover_log(Participant& p, RoundKind kind) {
       continue;
     }
     const auto f = io::split_csv_line(std::string(line), ',');
-    if (f.size() != 9 || f[0] != p.id) {
+    if (f.size() != (p.legacy_log[k] ? 9U : 11U) || f[0] != p.id) {
       throw InvalidData(
           fmt::format("{}: a row that feint collect did not write: '{}'", where, line));
     }
@@ -259,6 +269,8 @@ void Study::recover_log(Participant& p, RoundKind kind) {
   }
   p.saved[k] = complete;
   p.log_size[k] = good_end;
+  // Nothing kept (not even the header): the next round starts the log anew, in the new layout.
+  if (good_end == 0) p.legacy_log[k] = false;
 }
 
 void Study::rebuild() {
@@ -523,15 +535,27 @@ ParticipantStatus Study::submit_round(const std::string& id, RoundKind kind, int
       fmt::format("{},{},{},{},{},{},", id, settings_.conditions[p->condition].name, iteration,
                   sim::to_string(r.strategy), sim::to_string(r.variant), sim::to_string(r.target));
   const std::string speed = io::format_double(settings_.pad_speed);
+  std::vector<double> times;
+  times.reserve(s.size());
+  for (const auto& x : s) times.push_back(x.t);
+  const auto robot =
+      sim::robot_positions(r.strategy, r.variant, r.target, settings_.geometry, times);
   std::string block;
-  block.reserve(s.size() * (key.size() + 32));
-  for (const auto& x : s) {
+  block.reserve(s.size() * (key.size() + 48));
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const auto& x = s[i];
     block += key;
     block += io::format_double(x.t);
     block += ',';
     block += io::format_double(x.pad);
     block += ',';
     block += speed;
+    if (!p->legacy_log[k]) {
+      block += ',';
+      block += sim::format_metres(robot[i].x);
+      block += ',';
+      block += sim::format_metres(robot[i].y);
+    }
     block += '\n';
   }
   const fs::path path = log_path(id, kind);
@@ -540,7 +564,8 @@ ParticipantStatus Study::submit_round(const std::string& id, RoundKind kind, int
     if (iteration != p->saved[k] + 1)
       throw Rejection(409, "out_of_order", name + ": state changed");
   }
-  p->log_size[k] = append_durably(path, kLogHeader, block);
+  p->log_size[k] =
+      append_durably(path, p->legacy_log[k] ? kLegacyLogHeader : kLogHeader, block);
   p->saved[k] = iteration;
   p->shown.reset();
   record_event(id, "saved", fmt::format("{} ({} samples)", name, s.size()));

@@ -39,15 +39,17 @@ enum Field : int {
   kT,
   kPad,
   kPadSpeed,
+  kRobotX,  // optional per-sample robot position (m), read only together
+  kRobotY,
   kFieldCount
 };
 
 const std::array<const char*, kFieldCount> kFieldNames = {
     "participant", "condition", "iteration", "strategy", "variant", "target", "t", "pad",
-    "pad_speed"};
+    "pad_speed", "robot_x", "robot_y"};
 
-constexpr std::array<bool, kFieldCount> kRequired = {true, false, true, false, false,
-                                                     true, true,  true, false};
+constexpr std::array<bool, kFieldCount> kRequired = {true, false, true, false, false, true,
+                                                     true, true,  false, false, false};
 
 constexpr long long kMaxIteration = 1000000000;  // as io::load_scores
 
@@ -373,6 +375,15 @@ struct TraceReader::Impl {
           "pad_speed=COLUMN, or use --confusion-norm raw",
           name));
     }
+    if (!options.read_robot_path || json) {  // a JSON cell holds a whole trial, not one sample
+      cols.index[kRobotX] = cols.index[kRobotY] = -1;
+    } else if ((cols.index[kRobotX] >= 0) != (cols.index[kRobotY] >= 0)) {
+      const Field has = cols.index[kRobotX] >= 0 ? kRobotX : kRobotY;
+      const Field lacks = has == kRobotX ? kRobotY : kRobotX;
+      throw InvalidData(fmt::format("{}:1: column '{}' without '{}' (the robot's position needs "
+                                    "both; name it with --map {}=COLUMN)", name, cols.name[has],
+                                    cols.name[lacks], kFieldNames[lacks]));
+    }
     return true;
   }
 
@@ -471,6 +482,8 @@ struct TraceReader::Impl {
     t.padding_rows = 0;
     t.times.clear();
     t.pads.clear();
+    t.robot_x.clear();
+    t.robot_y.clear();
     t.rows = 0;
     t.line = reader->line();
     t.file = names[file_index];
@@ -644,6 +657,7 @@ struct TraceReader::Impl {
                                    b.last_line));
       return;
     }
+    if (cols.index[kRobotX] >= 0 && !read_robot(b, line)) return;
     t.times.push_back(seconds);
     t.pads.push_back(pv);
     b.last_line = line;
@@ -674,6 +688,23 @@ struct TraceReader::Impl {
       }
       add_sample(b, line, ts, tv, ps, pv);
     }
+  }
+
+  // The robot's position on this row (both columns present): finite numbers in metres.
+  bool read_robot(Builder& b, std::uint64_t line) {
+    for (const Field f : {kRobotX, kRobotY}) {
+      const std::string_view s = get(f);
+      const auto v = num(s);  // the file's decimal mark
+      if (!v) {
+        invalid(b, line, s.empty() ? fmt::format("column '{}': empty (expected the robot's "
+                                                 "position in metres on every row)", cols.name[f])
+                                   : fmt::format("column '{}': '{}' is not a number (expected the "
+                                                 "robot's position in metres)", cols.name[f], s));
+        return false;
+      }
+      (f == kRobotX ? b.trial.robot_x : b.trial.robot_y).push_back(*v);
+    }
+    return true;
   }
 
   // Ends a trial: true when it is valid (then it is in b.trial), false when rejected.
