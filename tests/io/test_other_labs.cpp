@@ -479,3 +479,14 @@ TEST(OtherLabs, ParticipantFromPathCannotNameStandardInput) {
   opt.participant_from_path = "filename";
   EXPECT_THROW(TraceReader({"-"}, opt), feint::UsageError);
 }
+
+TEST(OtherLabs, RobotColumnsUseTheFilesDecimalMark) {
+  const auto p = write("eu_robot.csv", "participant;iteration;target;t;pad;robot_x;robot_y\n"
+                                       "P1;1;left;0,0;0,5;0,0;0,0\nP1;1;left;0,5;0,4;-0,0179;0,0358\n");
+  TraceOptions opt;
+  opt.read_robot_path = true;
+  const auto r = read_all({p}, opt);
+  ASSERT_EQ(r.trials.size(), 1U);
+  EXPECT_EQ(r.trials[0].robot_x, (std::vector<double>{0, -0.0179}));
+  EXPECT_EQ(r.trials[0].robot_y, (std::vector<double>{0, 0.0358}));
+}
