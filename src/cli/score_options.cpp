@@ -72,8 +72,8 @@ void add_score_options(CLI::App& cmd, ScoreOptions& o, const std::string& group)
                       ->check(CLI::IsMember({"s", "ms"}, CLI::ignore_case)));
   added.push_back(cmd.add_option("--decimal", o.decimal,
                                  "Decimal mark of the logs' numbers: . or , (default: '.' in a "
-                                 "comma-separated file; otherwise detected from the first time or "
-                                 "pad value holding one)"));
+                                 "comma-separated file; otherwise detected from the first number "
+                                 "holding one)"));
   added.push_back(cmd.add_flag("--no-header", o.no_header,
                                "The logs have no header row (MATLAB): name the columns with "
                                "--columns, or by number with --map FIELD=N (N from 1)"));
