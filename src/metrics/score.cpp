@@ -121,7 +121,8 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
                         const std::function<void(const io::Rejection&)>& on_reject) {
   settings.metrics.validate();
   const auto files = io::expand_inputs(inputs);
-  io::TraceOptions opt;
+  io::TraceOptions opt = settings.reading;
+  opt.on_reject = {};
   opt.column_map = settings.column_map;
   opt.delimiter = settings.delimiter;
   opt.pad_speed = settings.metrics.pad_speed;
@@ -131,6 +132,8 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
   opt.time_divisor = settings.time_unit == TimeUnit::ms ? 1000 : 1;
   ScoreSummary summary;
   std::vector<double> durations;  // 8 bytes per trial: the median for the time-unit check
+  double longest = 0;
+  std::string longest_at, longest_label;  // the longest trial, named when the unit is refused
   ScoreProgress progress;
   if (settings.on_error == OnError::skip) {
     opt.on_reject = [&](const io::Rejection& r) {
@@ -163,6 +166,11 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
       continue;
     }
     if (s.overspeed_segments > 0) ++summary.overspeed_trials;
+    if (durations.empty() || s.duration > longest) {
+      longest = s.duration;
+      longest_at = fmt::format("{}:{}", trial.file, trial.line);
+      longest_label = trial.label();
+    }
     durations.push_back(s.duration);
     on_trial(trial, s);
     ++progress.trials_scored;
@@ -191,20 +199,43 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
     if (durations.size() % 2 == 0) median = 0.5 * (median + *std::max_element(durations.begin(), mid));
     summary.median_duration = median;
     summary.max_duration = *std::max_element(durations.begin(), durations.end());
-    std::string warning;
-    if (settings.time_unit == TimeUnit::s && median > kMedianDurationHighS) {
+    const auto t_column = settings.column_map.count("t") != 0 ? settings.column_map.at("t") : "t";
+    if (settings.check_durations && settings.time_unit == TimeUnit::s && median > kMedianDurationRefuseS) {
+      throw InvalidData(fmt::format(
+          "{}: column '{}': the median trial lasts {:.4g} s ({} trials; the longest, trial {}, "
+          "{:.4g} s): these times cannot be seconds (a trial lasting more than {:.0f} s = 20 "
+          "minutes is not a round of the game); if they are milliseconds, give --time-unit ms",
+          longest_at, t_column, median, durations.size(), longest_label, summary.max_duration,
+          kMedianDurationRefuseS));
+    }
+    std::string warning, code;
+    if (!settings.check_durations) {
+      // No plausibility rule asked for.
+    } else if (settings.time_unit == TimeUnit::s && median > kMedianDurationHighS) {
+      code = "time-unit-ms-suspected";
       warning = fmt::format(
           "the median trial lasts {:.4g} s ({} trials, longest {:.4g} s): implausible for seconds; "
           "if the logs' times are in milliseconds, give --time-unit ms (every confusion and "
           "duration would otherwise be off by a factor of 1000)",
           median, durations.size(), summary.max_duration);
     } else if (settings.time_unit == TimeUnit::ms && median < kMedianDurationLowMs) {
+      code = "time-unit-s-suspected";
       warning = fmt::format(
           "with --time-unit ms the median trial lasts {:.4g} s ({} trials, longest {:.4g} s): "
           "implausibly short; are the logs' times in seconds already?",
           median, durations.size(), summary.max_duration);
     }
-    if (!warning.empty()) {
+    if (!warning.empty()) summary.diagnostics.push_back({code, "", 0, t_column, warning});
+  }
+  {
+    // The reader's notes first (how the files were read), then the time-unit check's.
+    auto notes = reader.diagnostics();
+    notes.insert(notes.end(), summary.diagnostics.begin(), summary.diagnostics.end());
+    summary.diagnostics = std::move(notes);
+  }
+  for (const auto& d : summary.diagnostics) {
+    const std::string& warning = d.message;
+    {
       summary.warnings.push_back(warning);
       if (settings.on_warning) {
         settings.on_warning(warning);

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "feint/error.hpp"
 #include "feint/io/trace.hpp"
@@ -17,7 +19,7 @@ void check_trial(const io::Trial& t) {
   using detail::check;
   check(t.times.size() >= 2, "trial with fewer than 2 samples");
   check(t.times.size() == t.pads.size(), "times and pads differ in length");
-  check(t.rows == t.times.size(), "rows != samples in a valid trial");
+  check(t.rows == t.times.size() + t.padding_rows, "rows != samples + padding in a valid trial");
   check(!t.participant.empty(), "empty participant");
   check(t.target >= 0 && t.target <= 1, "target outside [0, 1]");
   for (std::size_t i = 0; i < t.times.size(); ++i) {
@@ -94,8 +96,23 @@ void run(const std::string& path, bool lenient, bool unsorted) {
 
 }  // namespace
 
+// The JSON samples cell (--samples-column, jsPsych): any text is read or refused with a reason,
+// never a crash; a read cell gives as many times as pads.
+void json_cell(const std::uint8_t* data, std::size_t size) {
+  const std::string_view cell(reinterpret_cast<const char*>(data), size);
+  std::vector<double> times, pads;
+  std::string error;
+  if (io::detail::parse_json_samples(cell, "t", "pad", times, pads, error)) {
+    detail::check(times.size() == pads.size(), "JSON samples: times and pads differ in length");
+    detail::check(error.empty(), "JSON samples: an error with success");
+  } else {
+    detail::check(!error.empty(), "JSON samples refused without a reason");
+  }
+}
+
 int trace(const std::uint8_t* data, std::size_t size) {
   if (size > 1 << 16) return 0;
+  json_cell(data, size);
   const std::string path = detail::as_file(data, size);
   run(path, false, false);
   run(path, true, false);
