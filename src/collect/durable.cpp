@@ -58,20 +58,39 @@ std::uint64_t append_durably(const fs::path& path, std::string_view header, std:
     created = f.fd >= 0;
   }
   if (f.fd < 0) fail(path, "cannot open for appending");
-  if (created) {
-    // Header and first data in one write: a file is never left with a header alone.
-    std::string first;
-    first.reserve(header.size() + data.size());
-    first.append(header).append(data);
-    write_all(f.fd, first, path);
-  } else {
-    write_all(f.fd, data, path);
-  }
-  if (::fdatasync(f.fd) != 0) fail(path, "cannot sync");
   struct stat st {};
   if (::fstat(f.fd, &st) != 0) fail(path, "cannot stat");
+  const auto before = static_cast<std::uint64_t>(st.st_size);
+  // An empty file (new, or left empty by a crash between its creation and its first write) gets
+  // the header, in the same write as the first data: a file never holds rows without a header.
+  std::string first;
+  if (before == 0) {
+    first.reserve(header.size() + data.size());
+    first.append(header).append(data);
+    data = first;
+  }
+  try {
+    write_all(f.fd, data, path);
+    if (::fdatasync(f.fd) != 0) fail(path, "cannot sync");
+  } catch (const IoError&) {
+    // Disk full, file too large, I/O error: this append is not acknowledged. Its own partial
+    // bytes (never acknowledged; the page still has them and retries) are cut back at once, so
+    // that the file ends with the last acknowledged line. If even that fails, the restart
+    // recovery (or the next append's size check) sets the tail aside.
+    const int saved = errno;
+    if (::ftruncate(f.fd, static_cast<off_t>(before)) == 0) (void)::fdatasync(f.fd);
+    errno = saved;
+    throw;
+  }
   if (created) sync_directory(path.parent_path());
-  return static_cast<std::uint64_t>(st.st_size);
+  return before + data.size();
+}
+
+fs::path unique_aside(const fs::path& dir, const std::string& name) {
+  std::error_code ec;
+  fs::path p = dir / name;
+  for (int i = 1; fs::exists(p, ec); ++i) p = dir / fmt::format("{}.{}", name, i);
+  return p;
 }
 
 std::string read_all(const fs::path& path) {

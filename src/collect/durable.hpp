@@ -8,9 +8,10 @@
 
 namespace feint::collect::detail {
 
-/// Appends `data` to `path` with one write() loop and fdatasync() before returning; creates the
-/// file with `header` first when it does not exist (and syncs its folder). Returns the file size
-/// after the append. Throws IoError.
+/// Appends `data` to `path` with one write() loop and fdatasync() before returning; writes
+/// `header` first (in the same write) when the file does not exist or is empty, and syncs the
+/// folder of a new file. Returns the file size after the append. Throws IoError; a failed append
+/// cuts its own partial bytes back, so the file still ends with the last acknowledged line.
 std::uint64_t append_durably(const std::filesystem::path& path, std::string_view header,
                              std::string_view data);
 
@@ -19,6 +20,9 @@ std::string read_all(const std::filesystem::path& path);
 
 /// Size of a file (0 when it does not exist).
 std::uint64_t file_size_or_zero(const std::filesystem::path& path);
+
+/// `dir/name`, or `dir/name.1`, `.2`... when taken: a file set aside never replaces another.
+std::filesystem::path unique_aside(const std::filesystem::path& dir, const std::string& name);
 
 /// Keeps only the first `keep` bytes of `path` without truncating anything: the prefix is written
 /// to a new file that is synced and renamed into place; the original is moved to `aside`.

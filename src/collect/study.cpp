@@ -182,13 +182,22 @@ void Study::record_event(const std::string& participant, const std::string& even
   append_durably(dir_ / "collect" / "events.csv", kEventsHeader, line);
 }
 
-// Moves a damaged shared file's incomplete last line aside (see replace_with_prefix).
+// Repairs a shared file after a crash, whatever state it was left in: empty, header only, cut in
+// the header, cut mid-line. A file with no complete row after its header is set aside whole (the
+// next append creates it anew with its header); otherwise only an incomplete last line is set
+// aside (see replace_with_prefix). The original always goes whole to collect/damaged/.
 static void keep_complete_lines(const fs::path& path, const fs::path& damaged_dir) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return;
   const std::string content = detail::read_all(path);
-  const std::size_t keep = complete_prefix(content);
-  if (keep == content.size()) return;
+  std::size_t keep = complete_prefix(content);
+  const auto header_end = content.find('\n');
+  if (header_end == std::string::npos || keep <= header_end + 1) keep = 0;  // no complete row
+  if (keep == content.size() && keep > 0) return;
   detail::replace_with_prefix(
-      path, keep, damaged_dir / fmt::format("{}.{}", path.filename().string(), detail::unix_now()));
+      path, keep,
+      detail::unique_aside(damaged_dir, fmt::format("{}.{}", path.filename().string(),
+                                                    detail::unix_now())));
 }
 
 void Study::recover_log(Participant& p, RoundKind kind) {
@@ -197,7 +206,8 @@ void Study::recover_log(Participant& p, RoundKind kind) {
   const int k = static_cast<int>(kind);
   p.saved[k] = 0;
   p.log_size[k] = 0;
-  if (content.empty()) return;
+  std::error_code ec;
+  if (content.empty() && !fs::is_regular_file(path, ec)) return;
   const std::string where = path.string();
   std::size_t good_end = 0;
   std::size_t pos = 0;
@@ -247,9 +257,14 @@ void Study::recover_log(Participant& p, RoundKind kind) {
     }
     pos = next;
   }
-  if (good_end < content.size()) {
-    const fs::path aside = dir_ / "collect" / "damaged" /
-                           fmt::format("{}-{}-{}.csv", p.id, to_string(kind), detail::unix_now());
+  // A log without a complete round (empty, header only, cut in its header or in its first
+  // round) is set aside whole: `feint analyze` never sees a log without rows, and the next round
+  // creates it anew with its header.
+  if (complete == 0) good_end = 0;
+  if (good_end < content.size() || content.empty()) {
+    const fs::path aside = detail::unique_aside(
+        dir_ / "collect" / "damaged",
+        fmt::format("{}-{}-{}.csv", p.id, to_string(kind), detail::unix_now()));
     detail::replace_with_prefix(path, good_end, aside);
     record_event(
         p.id, "recovered",
