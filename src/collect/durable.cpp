@@ -148,6 +148,22 @@ std::string utc_now() {
 
 std::int64_t unix_now() { return static_cast<std::int64_t>(std::time(nullptr)); }
 
+std::string bounded_detail(std::string_view text) {
+  std::string out;
+  const std::string suffix = text.size() > kMaxDetail
+                                 ? fmt::format("... [{} bytes in all]", text.size())
+                                 : std::string();
+  std::size_t keep = suffix.empty() ? text.size() : kMaxDetail - suffix.size();
+  while (keep > 0 && keep < text.size() && (static_cast<unsigned char>(text[keep]) & 0xC0) == 0x80)
+    --keep;  // not inside a UTF-8 character
+  out.reserve(keep + suffix.size());
+  for (std::size_t i = 0; i < keep; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    out += c < 0x20 || c == 0x7F ? '?' : c == '"' ? '\'' : text[i];
+  }
+  return out + suffix;
+}
+
 std::string csv_field(std::string_view text) {
   if (text.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(text);
   std::string out = "\"";

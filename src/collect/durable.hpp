@@ -36,6 +36,13 @@ void sync_directory(const std::filesystem::path& dir);
 std::string utc_now();
 std::int64_t unix_now();
 
+/// An events-log detail of at most kMaxDetail bytes, so that an events line stays under 512 bytes
+/// whatever a client sends: control characters become '?', double quotes become single ones (no
+/// CSV quote doubling), and a longer text is cut (at a UTF-8 character boundary) and ends with
+/// "... [N bytes in all]".
+inline constexpr std::size_t kMaxDetail = 380;
+std::string bounded_detail(std::string_view text);
+
 /// A CSV field, quoted when it holds a comma, quote or line break (RFC 4180).
 std::string csv_field(std::string_view text);
 

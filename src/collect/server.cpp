@@ -3,6 +3,7 @@
 #include "feint/collect/server.hpp"
 
 #include <fmt/format.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <atomic>
@@ -11,8 +12,11 @@
 #include <boost/asio/strand.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <csignal>
+#include <cstdio>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <random>
 #include <thread>
@@ -141,7 +145,8 @@ std::string age(std::int64_t last_seen) {
   return fmt::format("{} h ago", d / 3600);
 }
 
-Response admin_page(const Study& study, const std::string& token) {
+Response admin_page(const Study& study, const std::string& token,
+                    const std::optional<ServerState::WriteFailure>& failure) {
   const auto all = study.overview();
   const Settings& s = study.settings();
   std::map<std::string, int> per_condition;
@@ -181,11 +186,26 @@ Response admin_page(const Study& study, const std::string& token) {
   put("{{rows}}", rows.empty() ? "<tr><td colspan=\"7\">nobody has joined yet</td></tr>" : rows);
   put("{{token}}", html_escape(token));
   put("{{time}}", detail::utc_now());
+  put("{{banner}}",
+      failure ? fmt::format("<p id=\"write-failure\" class=\"alarm\" role=\"alert\"><b>Saving "
+                            "fails</b> since {} ({} attempt{}): {}. Participants see &ldquo;could "
+                            "not save, please wait&rdquo; and their pages retry; nothing they were "
+                            "told is saved is lost. Free disk space (or fix the folder) and the "
+                            "study carries on by itself.</p>",
+                            failure->since_utc, failure->attempts, failure->attempts == 1 ? "" : "s",
+                            html_escape(failure->what))
+              : std::string());
   return {200, "text/html; charset=utf-8", page};
 }
 
-Response admin_json(const Study& study) {
-  std::string body = "{\"participants\":[";
+Response admin_json(const Study& study,
+                    const std::optional<ServerState::WriteFailure>& failure) {
+  std::string body = fmt::format(
+      "{{\"write_failure\":{},\"participants\":[",
+      failure ? fmt::format("{{\"since\":{},\"attempts\":{},\"what\":{}}}",
+                            io::json_quote(failure->since_utc), failure->attempts,
+                            io::json_quote(failure->what))
+              : std::string("null"));
   bool first = true;
   for (const auto& p : study.overview()) {
     if (!first) body += ',';
@@ -229,10 +249,142 @@ bool constant_time_equal(const std::string& a, const std::string& b) {
   return d == 0;
 }
 
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (auto& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+/// NAME and PORT of a Host header value or an allowed-host entry ("[::1]:8080" -> "[::1]", "8080").
+std::pair<std::string, std::string> split_host(std::string_view h) {
+  std::string_view name = h, port;
+  if (!h.empty() && h.front() == '[') {
+    const auto close = h.find(']');
+    if (close != std::string_view::npos) {
+      name = h.substr(0, close + 1);
+      if (close + 1 < h.size() && h[close + 1] == ':') port = h.substr(close + 2);
+    }
+  } else if (const auto colon = h.rfind(':'); colon != std::string_view::npos &&
+                                               h.find(':') == colon) {
+    name = h.substr(0, colon);
+    port = h.substr(colon + 1);
+  }
+  return {lower(name), std::string(port)};
+}
+
 }  // namespace
 
+bool host_allowed(const std::vector<std::string>& allowed, std::string_view host) {
+  const auto [name, port] = split_host(host);
+  if (name.empty()) return false;
+  for (const auto& a : allowed) {
+    const auto [an, ap] = split_host(a);
+    if (an == name && (ap.empty() || port.empty() || ap == port)) return true;
+  }
+  return false;
+}
+
+std::string client_address(const std::string& peer, std::string_view forwarded_for,
+                           const std::vector<std::string>& trusted) {
+  auto is_trusted = [&](std::string_view a) {
+    return std::find(trusted.begin(), trusted.end(), a) != trusted.end();
+  };
+  if (!is_trusted(peer) || forwarded_for.empty()) return peer;
+  std::string_view rest = forwarded_for;
+  while (!rest.empty()) {
+    const auto comma = rest.rfind(',');
+    std::string_view a = comma == std::string_view::npos ? rest : rest.substr(comma + 1);
+    rest = comma == std::string_view::npos ? std::string_view() : rest.substr(0, comma);
+    while (!a.empty() && (a.front() == ' ' || a.front() == '\t')) a.remove_prefix(1);
+    while (!a.empty() && (a.back() == ' ' || a.back() == '\t')) a.remove_suffix(1);
+    if (a.empty() || is_trusted(a)) continue;
+    beast::error_code ec;
+    const auto ip = net::ip::make_address(std::string(a), ec);
+    return ec ? peer : ip.to_string();  // a forged, non-address entry is not believed
+  }
+  return peer;
+}
+
+std::size_t reserved_descriptors(unsigned threads) noexcept { return 32 + 4 * std::size_t{threads}; }
+
+struct ServerState::Impl {
+  int per_minute;
+  struct Client {
+    std::int64_t minute = 0;
+    long count = 0;
+  };
+  std::mutex mu;
+  std::map<std::string, Client> clients;
+  mutable std::mutex health_mu;
+  std::optional<WriteFailure> failure;
+};
+
+ServerState::ServerState(int per_minute) : impl_(std::make_unique<Impl>()) {
+  impl_->per_minute = std::max(1, per_minute);
+}
+ServerState::~ServerState() = default;
+
+void ServerState::record_rejection(Study& study, const std::string& client,
+                                   const std::string& participant, const std::string& detail) {
+  constexpr std::size_t kMaxClients = 4096;  // beyond, the clients share one count
+  const std::int64_t minute = detail::unix_now() / 60;
+  long count = 0, not_logged = 0;
+  {
+    std::lock_guard lock(impl_->mu);
+    if (impl_->clients.size() >= kMaxClients) {
+      for (auto it = impl_->clients.begin(); it != impl_->clients.end();)
+        it = it->second.minute == minute ? std::next(it) : impl_->clients.erase(it);
+    }
+    const std::string key = impl_->clients.size() >= kMaxClients && !impl_->clients.count(client)
+                                ? std::string("(other clients)")
+                                : client;
+    auto& c = impl_->clients[key];
+    if (c.minute != minute) {
+      not_logged = std::max(0L, c.count - impl_->per_minute - 1);
+      c = {minute, 0};
+    }
+    count = ++c.count;
+  }
+  const std::string from = client.empty() ? "" : "from " + client + ": ";
+  try {
+    if (not_logged > 0) {
+      study.record_event(participant, "rate_limited",
+                         fmt::format("{}{} more rejections in an earlier minute were not logged",
+                                     from, not_logged));
+    }
+    if (count <= impl_->per_minute) {
+      study.record_event(participant, "rejected", from + detail);
+    } else if (count == impl_->per_minute + 1) {
+      study.record_event(participant, "rate_limited",
+                         fmt::format("{}more than {} rejections this minute; the rest of the minute "
+                                     "is counted, not logged",
+                                     from, impl_->per_minute));
+    }
+  } catch (const std::exception&) {
+    // The events log could not be written: the client still gets its answer.
+  }
+}
+
+void ServerState::write_failed(const std::string& what) {
+  std::lock_guard lock(impl_->health_mu);
+  if (!impl_->failure) impl_->failure = WriteFailure{what, detail::utc_now(), 0};
+  impl_->failure->what = what;
+  ++impl_->failure->attempts;
+}
+
+void ServerState::write_succeeded() {
+  std::lock_guard lock(impl_->health_mu);
+  impl_->failure.reset();
+}
+
+std::optional<ServerState::WriteFailure> ServerState::write_failure() const {
+  std::lock_guard lock(impl_->health_mu);
+  return impl_->failure;
+}
+
 Response handle_request(Study& study, const std::string& admin_token, const std::string& method,
-                        const std::string& target, const std::string& body) {
+                        const std::string& target, const std::string& body,
+                        const RequestInfo& info) {
   const auto q = target.find('?');
   const std::string path = target.substr(0, q);
   std::string participant;
@@ -256,7 +408,9 @@ Response handle_request(Study& study, const std::string& admin_token, const std:
         if (!constant_time_equal(arg("token"), admin_token)) {
           throw Rejection(403, "forbidden", "the admin page needs the token printed at start-up");
         }
-        return path == "/admin" ? admin_page(study, admin_token) : admin_json(study);
+        const auto failure = info.state ? info.state->write_failure() : std::nullopt;
+        return path == "/admin" ? admin_page(study, admin_token, failure)
+                                : admin_json(study, failure);
       }
       if (path.rfind("/api/", 0) == 0) throw Rejection(405, "method", "use POST for " + path);
       throw Rejection(404, "not_found", "no such page");
@@ -266,6 +420,8 @@ Response handle_request(Study& study, const std::string& admin_token, const std:
       if (participant.empty()) participant = arg("PROLIFIC_PID");
       const auto st = study.join(participant);
       participant = st.id;
+      if (!info.client.empty()) study.record_event(st.id, "joined", "from " + info.client);
+      if (info.state) info.state->write_succeeded();
       return {200, "application/json", status_json(study, st)};
     }
     if (path == "/api/round/start") {
@@ -295,36 +451,45 @@ Response handle_request(Study& study, const std::string& admin_token, const std:
       const auto st = study.submit_round(participant,
                                          kind == "practice" ? RoundKind::practice : RoundKind::main,
                                          static_cast<int>(*it), samples);
+      if (info.state) info.state->write_succeeded();
       return {200, "application/json", status_json(study, st)};
     }
     if (path == "/api/questionnaire") {
       const auto st = study.submit_questionnaire(participant, parse_form(body));
+      if (info.state) info.state->write_succeeded();
       return {200, "application/json", status_json(study, st)};
     }
     throw Rejection(404, "not_found", "no such page");
   } catch (const Rejection& r) {
-    try {
-      const std::string who = valid_participant_id(participant) ? participant : "";
-      if (r.status() != 404 || path.rfind("/api/", 0) == 0) {
-        study.record_event(
-            who, "rejected",
-            fmt::format("{} {} {} {}: {}", method, path, r.status(), r.code(), r.what()));
+    const std::string who = valid_participant_id(participant) ? participant : "";
+    if (r.status() != 404 || path.rfind("/api/", 0) == 0) {
+      const std::string detail =
+          fmt::format("{} {} {} {}: {}", method, path, r.status(), r.code(), r.what());
+      if (info.state) {
+        info.state->record_rejection(study, info.client, who, detail);
+      } else {
+        try {
+          study.record_event(who, "rejected", detail);
+        } catch (const std::exception&) {
+          // The events log could not be written: the client still gets its answer.
+        }
       }
-    } catch (const std::exception&) {
-      // The events log could not be written: the client still gets its answer.
     }
     return {r.status(), "application/json",
             fmt::format("{{\"error\":{},\"message\":{}}}", io::json_quote(r.code()),
                         io::json_quote(r.what()))};
   } catch (const std::exception& e) {
-    // A file could not be written (disk full...): the round is NOT saved, the page retries.
+    // A file could not be written (disk full...): nothing was acknowledged, the page retries.
+    // The participant is told to wait (the reason, with server paths, is for the admin only).
+    if (info.state) info.state->write_failed(e.what());
     try {
       study.record_event(valid_participant_id(participant) ? participant : "", "server_error",
                          e.what());
     } catch (const std::exception&) {
     }
     return {503, "application/json",
-            fmt::format("{{\"error\":\"server_error\",\"message\":{}}}", io::json_quote(e.what()))};
+            "{\"error\":\"could_not_save\",\"message\":\"could not save, please wait: the "
+            "page tries again by itself\"}"};
   }
 }
 
@@ -332,10 +497,26 @@ Response handle_request(Study& study, const std::string& admin_token, const std:
 
 namespace {
 
+/// What the sessions share with the server: options, the study, the state, the connection count.
+struct Shared {
+  Study& study;
+  ServerOptions opt;
+  ServerState state;
+  std::atomic<std::size_t> connections{0};
+  std::size_t max_connections = 0;
+  std::vector<std::string> allowed_hosts;  // empty: no Host check
+  Shared(Study& s, ServerOptions o)
+      : study(s), opt(std::move(o)), state(opt.rejections_per_minute) {}
+};
+
 class Session : public std::enable_shared_from_this<Session> {
  public:
-  Session(tcp::socket&& socket, Study& study, const ServerOptions& opt)
-      : stream_(std::move(socket)), study_(study), opt_(opt) {}
+  Session(tcp::socket&& socket, Shared& shared) : stream_(std::move(socket)), sh_(shared) {
+    beast::error_code ec;
+    const auto ep = stream_.socket().remote_endpoint(ec);
+    peer_ = ec ? std::string() : ep.address().to_string();
+  }
+  ~Session() { --sh_.connections; }
 
   void run() {
     net::dispatch(stream_.get_executor(),
@@ -345,9 +526,12 @@ class Session : public std::enable_shared_from_this<Session> {
  private:
   void read() {
     parser_.emplace();
-    parser_->body_limit(opt_.body_limit);
+    parser_->body_limit(sh_.opt.body_limit);
     parser_->header_limit(16 * 1024);
-    stream_.expires_after(opt_.timeout);
+    // The first request has the full timeout; a kept-alive connection waiting for its next one
+    // is closed after the (shorter) idle timeout, so idle connections do not hold descriptors.
+    stream_.expires_after(first_ ? sh_.opt.timeout : std::min(sh_.opt.timeout, sh_.opt.idle_timeout));
+    first_ = false;
     http::async_read(stream_, buffer_, *parser_,
                      beast::bind_front_handler(&Session::on_read, shared_from_this()));
   }
@@ -362,11 +546,9 @@ class Session : public std::enable_shared_from_this<Session> {
       if (ec == http::error::body_limit || ec == http::error::header_limit) {
         r = {413, "application/json",
              fmt::format("{{\"error\":\"too_large\",\"message\":\"request larger than {} bytes\"}}",
-                         opt_.body_limit)};
-        try {
-          study_.record_event("", "rejected", fmt::format("413 too_large: {}", ec.message()));
-        } catch (const std::exception&) {
-        }
+                         sh_.opt.body_limit)};
+        sh_.state.record_rejection(sh_.study, peer_, "",
+                                   fmt::format("413 too_large: {}", ec.message()));
       } else {
         r = {400, "application/json",
              "{\"error\":\"malformed\",\"message\":\"not an HTTP request\"}"};
@@ -374,8 +556,29 @@ class Session : public std::enable_shared_from_this<Session> {
       return send(r, false, 11);
     }
     auto req = parser_->release();
-    const Response r = handle_request(study_, opt_.admin_token, std::string(req.method_string()),
-                                      std::string(req.target()), req.body());
+    const std::string client =
+        client_address(peer_, std::string(req["X-Forwarded-For"]), sh_.opt.trusted_proxies);
+    const std::string host(req[http::field::host]);
+    if (!sh_.allowed_hosts.empty() && !host_allowed(sh_.allowed_hosts, host)) {
+      // DNS rebinding: a page of another site whose name now points here. Refused before
+      // anything is read or written for it.
+      sh_.state.record_rejection(
+          sh_.study, client, "",
+          fmt::format("{} {} 421 bad_host: Host '{}'", std::string(req.method_string()),
+                      std::string(req.target().substr(0, req.target().find('?'))), host));
+      const Response r{
+          421, "application/json",
+          fmt::format("{{\"error\":\"bad_host\",\"message\":{}}}",
+                      io::json_quote(fmt::format(
+                          "this server does not answer to the host name '{}' (a protection "
+                          "against DNS rebinding); open it as http://127.0.0.1:PORT/, or start "
+                          "feint collect with --allowed-host NAME for your proxy's name",
+                          host.substr(0, 200))))};
+      return send(r, false, req.version());
+    }
+    const Response r =
+        handle_request(sh_.study, sh_.opt.admin_token, std::string(req.method_string()),
+                       std::string(req.target()), req.body(), RequestInfo{client, &sh_.state});
     send(r, req.keep_alive(), req.version(), req.method() == http::verb::head);
   }
 
@@ -389,11 +592,12 @@ class Session : public std::enable_shared_from_this<Session> {
     res->set("Content-Security-Policy",
              "default-src 'self'; img-src 'self' data:; style-src 'self'; script-src 'self'; "
              "frame-ancestors 'none'");
+    if (r.status == 503) res->set(http::field::retry_after, "2");
     res->keep_alive(keep_alive);
     if (!head) res->body() = r.body;
     res->prepare_payload();
     if (head) res->body().clear();
-    stream_.expires_after(opt_.timeout);
+    stream_.expires_after(sh_.opt.timeout);
     http::async_write(
         stream_, *res,
         [self = shared_from_this(), res, keep_alive](beast::error_code ec, std::size_t) {
@@ -410,34 +614,86 @@ class Session : public std::enable_shared_from_this<Session> {
   beast::tcp_stream stream_;
   beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::string_body>> parser_;
-  Study& study_;
-  const ServerOptions& opt_;
+  Shared& sh_;
+  std::string peer_;
+  bool first_ = true;
 };
+
+bool is_loopback(const net::ip::address& a) {
+  return a.is_loopback() || (a.is_v4() && (a.to_v4().to_uint() >> 24) == 127);
+}
 
 }  // namespace
 
 struct Server::Impl {
-  Study& study;
-  ServerOptions opt;
+  Shared sh;
   net::io_context ioc;
   tcp::acceptor acceptor;
+  net::steady_timer backoff;
+  bool warned_cap = false;   // the conditions are logged once per episode
+  bool warned_fds = false;
+  std::chrono::milliseconds delay{10};
   Impl(Study& s, ServerOptions o)
-      : study(s),
-        opt(std::move(o)),
-        ioc(static_cast<int>(std::max(1u, opt.threads))),
-        acceptor(net::make_strand(ioc)) {}
+      : sh(s, std::move(o)),
+        ioc(static_cast<int>(std::max(1u, sh.opt.threads))),
+        acceptor(net::make_strand(ioc)),
+        backoff(acceptor.get_executor()) {}
+
+  void note(bool& warned, const std::string& event, const std::string& text) {
+    if (warned) return;
+    warned = true;
+    std::fprintf(stderr, "feint collect: %s\n", text.c_str());
+    try {
+      sh.study.record_event("", event, text);
+    } catch (const std::exception&) {
+    }
+  }
+
+  void wait_then_accept() {
+    backoff.expires_after(delay);
+    backoff.async_wait([this](beast::error_code ec) {
+      if (!ec && acceptor.is_open()) accept();
+    });
+  }
 
   void accept() {
+    if (sh.connections.load() >= sh.max_connections) {
+      // At the cap: leave new connections in the listen queue (no descriptor is spent on them)
+      // and look again shortly; the open connections are served meanwhile.
+      note(warned_cap, "connections_capped",
+           fmt::format("{} simultaneous connections (the cap): new connections wait until one "
+                       "closes; idle ones close after {} s",
+                       sh.max_connections, sh.opt.idle_timeout.count()));
+      delay = std::chrono::milliseconds(50);
+      return wait_then_accept();
+    }
     acceptor.async_accept(net::make_strand(ioc), [this](beast::error_code ec, tcp::socket socket) {
-      if (!ec) std::make_shared<Session>(std::move(socket), study, opt)->run();
-      if (acceptor.is_open()) accept();
+      if (!ec) {
+        ++sh.connections;
+        std::make_shared<Session>(std::move(socket), sh)->run();
+        if (sh.connections.load() < sh.max_connections * 9 / 10) warned_cap = false;
+        warned_fds = false;
+        delay = std::chrono::milliseconds(10);
+        if (acceptor.is_open()) accept();
+        return;
+      }
+      if (!acceptor.is_open() || ec == net::error::operation_aborted) return;
+      if (ec == net::error::no_descriptors || ec.value() == ENFILE || ec == net::error::no_memory ||
+          ec == net::error::no_buffer_space) {
+        // Out of descriptors (more than the cap allowed for, or the whole system): back off
+        // instead of retrying at once (which would spin on the same error), up to 1 s.
+        note(warned_fds, "descriptors_exhausted",
+             fmt::format("cannot accept a connection: {}; retrying with back-off", ec.message()));
+        delay = std::min(std::chrono::milliseconds(1000), delay * 2);
+      }
+      wait_then_accept();
     });
   }
 };
 
 Server::Server(Study& study, ServerOptions options)
     : impl_(std::make_unique<Impl>(study, std::move(options))) {
-  auto& o = impl_->opt;
+  auto& o = impl_->sh.opt;
   if (o.admin_token.empty()) {
     std::random_device rd;  // the kernel's generator (getrandom / /dev/urandom): 4 x 32 bits
     o.admin_token = fmt::format("{:08x}{:08x}{:08x}{:08x}", rd(), rd(), rd(), rd());
@@ -445,6 +701,10 @@ Server::Server(Study& study, ServerOptions options)
   beast::error_code ec;
   const auto address = net::ip::make_address(o.host, ec);
   if (ec) throw UsageError(fmt::format("--host '{}': not an IP address", o.host));
+  for (const auto& p : o.trusted_proxies) {
+    net::ip::make_address(p, ec);
+    if (ec) throw UsageError(fmt::format("--trusted-proxy '{}': not an IP address", p));
+  }
   const tcp::endpoint ep(address, o.port);
   auto& a = impl_->acceptor;
   a.open(ep.protocol(), ec);
@@ -452,22 +712,48 @@ Server::Server(Study& study, ServerOptions options)
   if (!ec) a.bind(ep, ec);
   if (!ec) a.listen(net::socket_base::max_listen_connections, ec);
   if (ec) throw IoError(fmt::format("cannot listen on {}:{}: {}", o.host, o.port, ec.message()));
+  auto& sh = impl_->sh;
+  sh.max_connections = o.max_connections;
+  if (sh.max_connections == 0) {
+    rlimit rl{};
+    const std::size_t reserve = reserved_descriptors(o.threads);
+    const std::size_t limit =
+        ::getrlimit(RLIMIT_NOFILE, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY
+            ? static_cast<std::size_t>(rl.rlim_cur)
+            : std::size_t{1} << 20;
+    sh.max_connections = limit > reserve + 8 ? limit - reserve : 8;
+  }
+  if (is_loopback(address) || !o.allowed_hosts.empty()) {
+    sh.allowed_hosts = o.allowed_hosts;
+    if (is_loopback(address)) {
+      const std::string port = std::to_string(port_of());
+      for (const char* h : {"localhost", "127.0.0.1", "[::1]"}) {
+        sh.allowed_hosts.emplace_back(h);  // the Host header without a port
+        sh.allowed_hosts.push_back(std::string(h) + ":" + port);
+      }
+    }
+  }
+  // A file-size limit (ulimit -f) makes a write fail with EFBIG instead of killing the server.
+  std::signal(SIGXFSZ, SIG_IGN);
 }
 
 Server::~Server() = default;
 
-unsigned short Server::port() const noexcept { return impl_->acceptor.local_endpoint().port(); }
-const std::string& Server::admin_token() const noexcept { return impl_->opt.admin_token; }
+unsigned short Server::port_of() const noexcept { return impl_->acceptor.local_endpoint().port(); }
+unsigned short Server::port() const noexcept { return port_of(); }
+const std::string& Server::admin_token() const noexcept { return impl_->sh.opt.admin_token; }
+std::size_t Server::max_connections() const noexcept { return impl_->sh.max_connections; }
+ServerState& Server::state() noexcept { return impl_->sh.state; }
 
 void Server::run() {
   impl_->accept();
   std::optional<net::signal_set> signals;
-  if (impl_->opt.stop_on_signals) {
+  if (impl_->sh.opt.stop_on_signals) {
     signals.emplace(impl_->ioc, SIGINT, SIGTERM);
     signals->async_wait([this](beast::error_code, int) { impl_->ioc.stop(); });
   }
   std::vector<std::thread> pool;
-  for (unsigned i = 1; i < std::max(1u, impl_->opt.threads); ++i)
+  for (unsigned i = 1; i < std::max(1u, impl_->sh.opt.threads); ++i)
     pool.emplace_back([this] { impl_->ioc.run(); });
   impl_->ioc.run();
   for (auto& t : pool) t.join();

@@ -176,8 +176,9 @@ Round Study::plan_round(std::size_t index, std::size_t condition, RoundKind kind
 
 void Study::record_event(const std::string& participant, const std::string& event,
                          const std::string& detail) {
-  const std::string line = fmt::format("{},{},{},{}\n", detail::utc_now(), csv_field(participant),
-                                       csv_field(event), csv_field(detail));
+  const std::string line =
+      fmt::format("{},{},{},{}\n", detail::utc_now(), csv_field(participant.substr(0, 64)),
+                  csv_field(event.substr(0, 32)), csv_field(detail::bounded_detail(detail)));
   std::lock_guard lock(events_mu_);
   append_durably(dir_ / "collect" / "events.csv", kEventsHeader, line);
 }
