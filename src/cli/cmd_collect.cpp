@@ -43,7 +43,7 @@ struct CollectArgs {
   std::string consent_file;
   std::string completion_url;
   std::string admin_token;
-  unsigned threads = 4;
+  unsigned threads = 16;
   std::vector<std::string> allowed_hosts;
   std::vector<std::string> trusted_proxies;
   std::size_t max_connections = 0;
@@ -201,7 +201,7 @@ void add_collect_command(CLI::App& app) {
                   "Where the completion page sends participants (e.g. Prolific's)");
   cmd->add_option("--admin-token", args->admin_token,
                   "Token of the admin page (default: random, printed at start)");
-  cmd->add_option("--threads", args->threads, "Server threads (default 4)")
+  cmd->add_option("--threads", args->threads, "Server threads (default 16; each waits for its group's sync, so more threads make bigger commit groups)")
       ->check(CLI::Range(1u, 64u));
   cmd->add_option("--allowed-host", args->allowed_hosts,
                   "Accepted Host header, NAME or NAME:PORT (repeatable). On 127.0.0.1/::1, "

@@ -17,7 +17,6 @@
 namespace feint::collect {
 
 namespace fs = std::filesystem;
-using detail::append_durably;
 using detail::csv_field;
 
 namespace {
@@ -127,7 +126,9 @@ struct Study::Participant {
 };
 
 Study::Study(fs::path dir, Settings settings)
-    : dir_(std::move(dir)), settings_(std::move(settings)) {
+    : dir_(std::move(dir)),
+      settings_(std::move(settings)),
+      committer_(std::make_unique<detail::GroupCommitter>()) {
   validate(settings_);
   std::error_code ec;
   for (const auto& sub : {fs::path("logs"), fs::path("practice"), fs::path("collect")}) {
@@ -179,8 +180,7 @@ void Study::record_event(const std::string& participant, const std::string& even
   const std::string line =
       fmt::format("{},{},{},{}\n", detail::utc_now(), csv_field(participant.substr(0, 64)),
                   csv_field(event.substr(0, 32)), csv_field(detail::bounded_detail(detail)));
-  std::lock_guard lock(events_mu_);
-  append_durably(dir_ / "collect" / "events.csv", kEventsHeader, line);
+  committer_->append(dir_ / "collect" / "events.csv", kEventsHeader, line);
 }
 
 // Repairs a shared file after a crash, whatever state it was left in: empty, header only, cut in
@@ -434,7 +434,7 @@ ParticipantStatus Study::join(const std::string& requested) {
       Rng rng = Rng::stream(settings_.seed, block);
       sim::shuffle(perm, rng);
       p->condition = perm[p->index % c];
-      append_durably(dir_ / "collect" / "assignment.csv", kAssignmentHeader,
+      committer_->append(dir_ / "collect" / "assignment.csv", kAssignmentHeader,
                      fmt::format("{},{},{},{}\n", id, p->index,
                                  settings_.conditions[p->condition].name, detail::utc_now()));
       participants_[id] = p;
@@ -556,10 +556,19 @@ ParticipantStatus Study::submit_round(const std::string& id, RoundKind kind, int
     if (iteration != p->saved[k] + 1)
       throw Rejection(409, "out_of_order", name + ": state changed");
   }
-  p->log_size[k] = append_durably(path, kLogHeader, block);
+  // The round and its `saved` event in one commit: synced together with whatever other rounds
+  // arrived meanwhile (group commit); the event is written only when the round was.
+  std::vector<detail::GroupCommitter::Append> commit;
+  commit.push_back({path, std::string(kLogHeader), std::move(block)});
+  commit.push_back({dir_ / "collect" / "events.csv", std::string(kEventsHeader),
+                    fmt::format("{},{},saved,{}\n", detail::utc_now(), id,
+                                csv_field(fmt::format("{} ({} samples)", name, s.size())))});
+  const auto done = committer_->commit(std::move(commit));
+  if (!done[0].error.empty()) throw IoError(done[0].error);
+  p->log_size[k] = done[0].size;
   p->saved[k] = iteration;
   p->shown.reset();
-  record_event(id, "saved", fmt::format("{} ({} samples)", name, s.size()));
+  if (!done[1].error.empty()) throw IoError(done[1].error);  // saved; the page hears "duplicate"
   return make_status(*p, settings_);
 }
 
@@ -601,16 +610,20 @@ ParticipantStatus Study::submit_questionnaire(const std::string& id,
   }
   std::lock_guard qlock(questionnaire_mu_);
   if (!yes_no.empty() && !p->yes_no_done) {
-    append_durably(dir_ / "questionnaire_yesno.csv",
+    committer_->append(dir_ / "questionnaire_yesno.csv",
                    "participant,condition," + settings_.yes_no_item + "\n", yes_no);
     p->yes_no_done = true;
   }
   std::string header = "participant,condition";
   for (const auto& i : settings_.items) header += "," + i;
-  append_durably(dir_ / "questionnaire.csv", header + "\n", row);
+  committer_->append(dir_ / "questionnaire.csv", header + "\n", row);
   p->questionnaire_done = true;
   record_event(id, "questionnaire", "saved");
   return make_status(*p, settings_);
+}
+
+Study::CommitStats Study::commit_stats() const {
+  return {committer_->groups(), committer_->appends()};
 }
 
 std::optional<ParticipantStatus> Study::status(const std::string& id) const {

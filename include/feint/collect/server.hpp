@@ -29,7 +29,7 @@ struct ServerOptions {
   std::string host = "127.0.0.1";
   unsigned short port = 8080;  // 0: an ephemeral port (see Server::port())
   std::string admin_token;     // empty: a random one
-  unsigned threads = 4;
+  unsigned threads = 16;  // requests waiting for a sync at once: the size of a commit group
   std::size_t body_limit = 2 * 1024 * 1024;  // bytes per request body
   std::chrono::seconds timeout{30};          // to read one request
   std::chrono::seconds idle_timeout{10};     // a kept-alive connection waiting for its next request

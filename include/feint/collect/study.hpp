@@ -35,6 +35,10 @@
 
 namespace feint::collect {
 
+namespace detail {
+class GroupCommitter;
+}
+
 /// One experimental condition: its name in the logs and the selection algorithm behind it.
 struct Condition {
   std::string name;  // e.g. "adaptive", "random", "adaptive-0.3"
@@ -151,6 +155,14 @@ class Study {
   void record_event(const std::string& participant, const std::string& event,
                     const std::string& detail);
 
+  /// Syncs so far and the appends they covered (group commit: several appends per sync when
+  /// requests arrive together).
+  struct CommitStats {
+    std::uint64_t syncs = 0;
+    std::uint64_t appends = 0;
+  };
+  CommitStats commit_stats() const;
+
   std::optional<ParticipantStatus> status(const std::string& id) const;
   std::vector<ParticipantStatus> overview() const;
   Stage stage(const ParticipantStatus& s) const noexcept;
@@ -171,6 +183,7 @@ class Study {
   std::mutex events_mu_;
   std::mutex questionnaire_mu_;
   std::uint64_t generated_ = 0;
+  std::unique_ptr<detail::GroupCommitter> committer_;  // every durable append goes through it
 };
 
 }  // namespace feint::collect
