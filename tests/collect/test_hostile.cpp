@@ -242,7 +242,8 @@ Child launch_limited(const fs::path& dir, rlim_t nofile) {
     ::dup2(o, 1);
     ::dup2(e, 2);
     ::execl(FEINT_EXE, FEINT_EXE, "collect", dir.c_str(), "--port", "0", "--admin-token", "tok",
-            "--robot-speed", "8", "--iterations", "6", static_cast<char*>(nullptr));
+            "--robot-speed", "8", "--iterations", "6", "--threads", "4",
+            static_cast<char*>(nullptr));
     ::_exit(127);
   }
   for (int i = 0; i < 200 && c.port == 0; ++i) {
