@@ -243,8 +243,10 @@ int main(int argc, char** argv) {
         cv.notify_all();
       });
     }
+    for (auto& t : clients) t.join();  // before jobs and cv go out of scope
   }
-  for (auto& t : clients) t.join();
+  for (auto& t : clients)
+    if (t.joinable()) t.join();
   const double secs = std::chrono::duration<double>(Clock::now() - t0).count();
   server.stop();
   srv.join();

@@ -402,14 +402,12 @@ ParticipantStatus make_status(const P& p, const Settings& s) {
 
 ParticipantStatus Study::join(const std::string& requested) {
   std::string id = requested;
-  std::shared_ptr<Participant> p;
-  {
+  auto existing = [&]() -> std::shared_ptr<Participant> {
     std::lock_guard lock(mu_);
     if (id.empty()) {
       // A generated ID: random-looking, from the seed and a counter, never an existing one.
-      Rng rng =
-          Rng::stream(settings_.seed ^ static_cast<std::uint64_t>(detail::unix_now()),
-                           participants_.size() + generated_);
+      Rng rng = Rng::stream(settings_.seed ^ static_cast<std::uint64_t>(detail::unix_now()),
+                            participants_.size() + generated_);
       do {
         id = fmt::format("G{:010x}", rng() & 0xFFFFFFFFFFULL);
         ++generated_;
@@ -421,12 +419,21 @@ ParticipantStatus Study::join(const std::string& requested) {
           "participant IDs are 1-64 letters, digits, '_' or '-' (not starting with '-')");
     }
     auto it = participants_.find(id);
-    if (it != participants_.end()) {
-      p = it->second;
-    } else {
+    return it == participants_.end() ? nullptr : it->second;
+  };
+  std::shared_ptr<Participant> p = existing();
+  if (!p) {
+    // New participants are assigned one at a time (the rows are numbered in order of arrival),
+    // but mu_ is not held during the sync: the participants already playing are not held up.
+    std::lock_guard assign(assignment_mu_);
+    p = existing();  // joined meanwhile (a double click)
+    if (!p) {
       p = std::make_shared<Participant>();
       p->id = id;
-      p->index = participants_.size();
+      {
+        std::lock_guard lock(mu_);
+        p->index = participants_.size();
+      }
       const std::size_t c = settings_.conditions.size();
       const std::uint64_t block = p->index / c;
       std::vector<std::size_t> perm(c);
@@ -434,11 +441,22 @@ ParticipantStatus Study::join(const std::string& requested) {
       Rng rng = Rng::stream(settings_.seed, block);
       sim::shuffle(perm, rng);
       p->condition = perm[p->index % c];
-      committer_->append(dir_ / "collect" / "assignment.csv", kAssignmentHeader,
-                     fmt::format("{},{},{},{}\n", id, p->index,
-                                 settings_.conditions[p->condition].name, detail::utc_now()));
-      participants_[id] = p;
-      record_event(id, "assigned", settings_.conditions[p->condition].name);
+      const std::string& condition = settings_.conditions[p->condition].name;
+      // The assignment row and its event in one commit; the participant exists (in memory too)
+      // only once the row is on disk.
+      std::vector<detail::GroupCommitter::Append> commit;
+      commit.push_back({dir_ / "collect" / "assignment.csv", std::string(kAssignmentHeader),
+                        fmt::format("{},{},{},{}\n", id, p->index, condition, detail::utc_now())});
+      commit.push_back({dir_ / "collect" / "events.csv", std::string(kEventsHeader),
+                        fmt::format("{},{},assigned,{}\n", detail::utc_now(), id,
+                                    csv_field(condition))});
+      const auto done = committer_->commit(std::move(commit));
+      if (!done[0].error.empty()) throw IoError(done[0].error);
+      {
+        std::lock_guard lock(mu_);
+        participants_[id] = p;
+      }
+      if (!done[1].error.empty()) throw IoError(done[1].error);
     }
   }
   std::lock_guard lock(p->mu);

@@ -180,6 +180,7 @@ class Study {
   Settings settings_;
   mutable std::mutex mu_;  // participants_, assignment file, id generation
   std::map<std::string, std::shared_ptr<Participant>> participants_;
+  std::mutex assignment_mu_;  // new participants are assigned (and their rows written) in turn
   std::mutex events_mu_;
   std::mutex questionnaire_mu_;
   std::uint64_t generated_ = 0;
