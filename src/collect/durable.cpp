@@ -122,6 +122,15 @@ std::vector<GroupCommitter::Result> GroupCommitter::commit(std::vector<Append> i
   return std::move(g->results);
 }
 
+void GroupCommitter::enqueue(std::vector<Append> items) {
+  auto g = std::make_shared<Group>();
+  g->items = std::move(items);
+  g->results.resize(g->items.size());
+  std::lock_guard lock(mu_);
+  queue_.push_back(std::move(g));
+  work_.notify_one();
+}
+
 std::uint64_t GroupCommitter::append(const fs::path& path, std::string_view header,
                                      std::string data) {
   std::vector<Append> one;

@@ -46,6 +46,9 @@ class GroupCommitter {
   /// Appends every item, in order, durably; an item after a failed one is not written (its
   /// error says so). Blocks until synced. Never throws for I/O errors (see Result::error).
   std::vector<Result> commit(std::vector<Append> items);
+  /// Queues appends for the next group without waiting for their sync (for audit lines that
+  /// acknowledge nothing); an error is ignored.
+  void enqueue(std::vector<Append> items);
   /// One append; throws IoError when it fails.
   std::uint64_t append(const std::filesystem::path& path, std::string_view header,
                        std::string data);

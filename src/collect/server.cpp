@@ -420,7 +420,7 @@ Response handle_request(Study& study, const std::string& admin_token, const std:
       if (participant.empty()) participant = arg("PROLIFIC_PID");
       const auto st = study.join(participant);
       participant = st.id;
-      if (!info.client.empty()) study.record_event(st.id, "joined", "from " + info.client);
+      if (!info.client.empty()) study.note_event(st.id, "joined", "from " + info.client);
       if (info.state) info.state->write_succeeded();
       return {200, "application/json", status_json(study, st)};
     }

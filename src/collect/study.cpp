@@ -183,6 +183,16 @@ void Study::record_event(const std::string& participant, const std::string& even
   committer_->append(dir_ / "collect" / "events.csv", kEventsHeader, line);
 }
 
+void Study::note_event(const std::string& participant, const std::string& event,
+                       const std::string& detail) {
+  std::vector<detail::GroupCommitter::Append> one;
+  one.push_back({dir_ / "collect" / "events.csv", std::string(kEventsHeader),
+                 fmt::format("{},{},{},{}\n", detail::utc_now(), csv_field(participant.substr(0, 64)),
+                             csv_field(event.substr(0, 32)),
+                             csv_field(detail::bounded_detail(detail)))});
+  committer_->enqueue(std::move(one));
+}
+
 // Repairs a shared file after a crash, whatever state it was left in: empty, header only, cut in
 // the header, cut mid-line. A file with no complete row after its header is set aside whole (the
 // next append creates it anew with its header); otherwise only an incomplete last line is set
@@ -494,7 +504,7 @@ Round Study::start_round(const std::string& id) {
                  name + " was shown before and not saved; shown again from its start");
   }
   p->shown = std::make_pair(kind, iteration);
-  record_event(id, "round_shown", name);
+  note_event(id, "round_shown", name);  // acknowledges nothing: not waited for
   return r;
 }
 

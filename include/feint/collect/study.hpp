@@ -154,6 +154,10 @@ class Study {
   /// Records a rejected request or any other event (append + fdatasync).
   void record_event(const std::string& participant, const std::string& event,
                     const std::string& detail);
+  /// The same, written and synced with the next group but not waited for: for audit lines that
+  /// acknowledge nothing (a round shown, a client's address). A crash may lose the last of them.
+  void note_event(const std::string& participant, const std::string& event,
+                  const std::string& detail);
 
   /// Syncs so far and the appends they covered (group commit: several appends per sync when
   /// requests arrive together).
