@@ -318,6 +318,10 @@ std::uint64_t file_size_or_zero(const fs::path& path) {
 
 void replace_with_prefix(const fs::path& path, std::uint64_t keep, const fs::path& aside) {
   const std::string content = read_all(path);
+  replace_with_content(path, std::string_view(content).substr(0, keep), aside);
+}
+
+void replace_with_content(const fs::path& path, std::string_view content, const fs::path& aside) {
   const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".recovering");
   std::error_code ec;
   fs::create_directories(aside.parent_path(), ec);
@@ -325,17 +329,18 @@ void replace_with_prefix(const fs::path& path, std::uint64_t keep, const fs::pat
     throw IoError(
         fmt::format("{}: cannot create folder: {}", aside.parent_path().string(), ec.message()));
   fs::remove(tmp, ec);
-  if (keep > 0) {
+  const bool keep = !content.empty();
+  if (keep) {
     Fd f{::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644)};
     if (f.fd < 0) fail(tmp, "cannot create");
-    write_all(f.fd, std::string_view(content).substr(0, keep), tmp);
+    write_all(f.fd, content, tmp);
     if (::fsync(f.fd) != 0) fail(tmp, "cannot sync");
   }
   fs::rename(path, aside, ec);
   if (ec)
     throw IoError(fmt::format("{}: cannot move aside to {}: {}", path.string(), aside.string(),
                               ec.message()));
-  if (keep > 0) {
+  if (keep) {
     fs::rename(tmp, path, ec);
     if (ec)
       throw IoError(fmt::format("{}: cannot rename into place: {}", path.string(), ec.message()));

@@ -82,6 +82,11 @@ std::filesystem::path unique_aside(const std::filesystem::path& dir, const std::
 void replace_with_prefix(const std::filesystem::path& path, std::uint64_t keep,
                          const std::filesystem::path& aside);
 
+/// Replaces `path` by `content` the same way: written to a new file, synced, renamed into place;
+/// the original is moved whole to `aside`.
+void replace_with_content(const std::filesystem::path& path, std::string_view content,
+                          const std::filesystem::path& aside);
+
 /// fsync() of a folder, so that a created or renamed entry survives a crash.
 void sync_directory(const std::filesystem::path& dir);
 

@@ -226,6 +226,7 @@ void Study::recover_log(Participant& p, RoundKind kind) {
   bool current_done = true;
   double duration = 0;
   bool header = false;
+  bool headerless = false;
   int complete = 0;
   while (pos < content.size()) {
     const auto nl = content.find('\n', pos);
@@ -233,13 +234,19 @@ void Study::recover_log(Participant& p, RoundKind kind) {
     std::string_view line(content.data() + pos, nl - pos);
     const std::size_t next = nl + 1;
     if (!header) {
-      if (std::string(line) + "\n" != kLogHeader) {
+      header = true;
+      if (std::string(line) + "\n" == kLogHeader) {
+        good_end = next;
+        pos = next;
+        continue;
+      }
+      const auto f0 = io::split_csv_line(std::string(line), ',');
+      if (f0.size() != 9 || f0[0] != p.id) {
         throw InvalidData(fmt::format("{}:1: not a feint collect log (unexpected header)", where));
       }
-      header = true;
-      good_end = next;
-      pos = next;
-      continue;
+      // Rows without a header: an earlier feint collect appended to a log that a crash had left
+      // empty. The rows are kept and the header is put back (below); this line is a row.
+      headerless = true;
     }
     const auto f = io::split_csv_line(std::string(line), ',');
     if (f.size() != 9 || f[0] != p.id) {
@@ -272,6 +279,20 @@ void Study::recover_log(Participant& p, RoundKind kind) {
   // round) is set aside whole: `feint analyze` never sees a log without rows, and the next round
   // creates it anew with its header.
   if (complete == 0) good_end = 0;
+  if (headerless && good_end > 0) {
+    const fs::path aside = detail::unique_aside(
+        dir_ / "collect" / "damaged",
+        fmt::format("{}-{}-{}.csv", p.id, to_string(kind), detail::unix_now()));
+    detail::replace_with_content(path, std::string(kLogHeader) + content.substr(0, good_end),
+                                 aside);
+    record_event(p.id, "recovered",
+                 fmt::format("{}: the log had no header; it was put back before the {} complete "
+                             "rounds; the original ({} bytes) is in {}",
+                             where, complete, content.size(), aside.string()));
+    p.saved[k] = complete;
+    p.log_size[k] = kLogHeader.size() + good_end;
+    return;
+  }
   if (good_end < content.size() || content.empty()) {
     const fs::path aside = detail::unique_aside(
         dir_ / "collect" / "damaged",

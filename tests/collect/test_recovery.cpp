@@ -174,5 +174,36 @@ TEST(CollectCrashStates, EveryAppendedFileInEveryStateIsRepairedAndNothingIsLost
   EXPECT_EQ(analyzed, 12);
 }
 
+TEST(CollectCrashStates, ALogLeftWithoutAHeaderByAnEarlierVersionIsRepaired) {
+  // The study: a crash left logs/P1.csv empty, the old server then appended rounds to it
+  // without a header, and every restart refused the file. Now the header is put back.
+  const fs::path dir = fresh_dir("headerless");
+  {
+    Study s(dir, fast_settings());
+    s.join("P1");
+    for (int i = 0; i < 5; ++i) {
+      const Round r = s.start_round("P1");
+      s.submit_round("P1", r.kind, r.iteration, valid_trace(r, 0.8, r.iteration % 2));
+    }
+  }
+  const fs::path log = dir / "logs" / "P1.csv";
+  const std::string good = slurp(log);
+  const std::string header = good.substr(0, good.find('\n') + 1);
+  const std::string broken = good.substr(header.size()) + "P1,adaptive,4,x";  // and a cut tail
+  { std::ofstream(log, std::ios::binary | std::ios::trunc) << broken; }
+  {
+    Study s(dir, fast_settings());
+    EXPECT_EQ(s.status("P1")->rounds_saved, 3);
+    EXPECT_EQ(slurp(log), good);
+    bool kept = false;
+    for (const auto& e : fs::directory_iterator(dir / "collect" / "damaged"))
+      kept = kept || slurp(e.path()) == broken;
+    EXPECT_TRUE(kept);
+    finish_everyone(s, "P2");
+  }
+  EXPECT_NO_THROW(Study(dir, fast_settings()));
+  EXPECT_EQ(run_analyze(dir), 0) << slurp(dir.string() + "-out.log");
+}
+
 }  // namespace
 }  // namespace feint::collect
