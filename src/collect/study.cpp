@@ -13,6 +13,7 @@
 #include "feint/io/csv.hpp"
 #include "feint/io/number.hpp"
 #include "feint/rng.hpp"
+#include "feint/sim/robot_path.hpp"
 
 namespace feint::collect {
 
@@ -21,7 +22,12 @@ using detail::csv_field;
 
 namespace {
 
+// Rows carry the robot's position at each sample (robot_x, robot_y: metres), computed here from
+// the round's plan, not taken from the page. A log begun before these columns existed keeps its
+// layout (kLegacyLogHeader) when its study is resumed, so that no file mixes the two.
 constexpr std::string_view kLogHeader =
+    "participant,condition,iteration,strategy,variant,target,t,pad,pad_speed,robot_x,robot_y\n";
+constexpr std::string_view kLegacyLogHeader =
     "participant,condition,iteration,strategy,variant,target,t,pad,pad_speed\n";
 constexpr std::string_view kAssignmentHeader = "participant,index,condition,assigned_utc\n";
 constexpr std::string_view kEventsHeader = "time_utc,participant,event,detail\n";
@@ -118,6 +124,7 @@ struct Study::Participant {
   std::vector<sim::Iteration> run;  // the planned analysed rounds
   int saved[2] = {0, 0};            // practice, main
   std::uint64_t log_size[2] = {0, 0};
+  bool legacy_log[2] = {false, false};  // the log has no robot_x/robot_y (written by an older feint)
   bool questionnaire_done = false;
   bool yes_no_done = false;
   std::int64_t last_seen = 0;
@@ -217,6 +224,7 @@ void Study::recover_log(Participant& p, RoundKind kind) {
   const int k = static_cast<int>(kind);
   p.saved[k] = 0;
   p.log_size[k] = 0;
+  p.legacy_log[k] = false;
   std::error_code ec;
   if (content.empty() && !fs::is_regular_file(path, ec)) return;
   const std::string where = path.string();
@@ -235,21 +243,24 @@ void Study::recover_log(Participant& p, RoundKind kind) {
     const std::size_t next = nl + 1;
     if (!header) {
       header = true;
-      if (std::string(line) + "\n" == kLogHeader) {
+      if (std::string(line) + "\n" == kLogHeader ||
+          std::string(line) + "\n" == kLegacyLogHeader) {
+        p.legacy_log[k] = std::string(line) + "\n" == kLegacyLogHeader;
         good_end = next;
         pos = next;
         continue;
       }
       const auto f0 = io::split_csv_line(std::string(line), ',');
-      if (f0.size() != 9 || f0[0] != p.id) {
+      if ((f0.size() != 9 && f0.size() != 11) || f0[0] != p.id) {
         throw InvalidData(fmt::format("{}:1: not a feint collect log (unexpected header)", where));
       }
       // Rows without a header: an earlier feint collect appended to a log that a crash had left
       // empty. The rows are kept and the header is put back (below); this line is a row.
+      p.legacy_log[k] = f0.size() == 9;
       headerless = true;
     }
     const auto f = io::split_csv_line(std::string(line), ',');
-    if (f.size() != 9 || f[0] != p.id) {
+    if (f.size() != (p.legacy_log[k] ? 9U : 11U) || f[0] != p.id) {
       throw InvalidData(
           fmt::format("{}: a row that feint collect did not write: '{}'", where, line));
     }
@@ -283,14 +294,15 @@ void Study::recover_log(Participant& p, RoundKind kind) {
     const fs::path aside = detail::unique_aside(
         dir_ / "collect" / "damaged",
         fmt::format("{}-{}-{}.csv", p.id, to_string(kind), detail::unix_now()));
-    detail::replace_with_content(path, std::string(kLogHeader) + content.substr(0, good_end),
+    const std::string_view log_header = p.legacy_log[k] ? kLegacyLogHeader : kLogHeader;
+    detail::replace_with_content(path, std::string(log_header) + content.substr(0, good_end),
                                  aside);
     record_event(p.id, "recovered",
                  fmt::format("{}: the log had no header; it was put back before the {} complete "
                              "rounds; the original ({} bytes) is in {}",
                              where, complete, content.size(), aside.string()));
     p.saved[k] = complete;
-    p.log_size[k] = kLogHeader.size() + good_end;
+    p.log_size[k] = log_header.size() + good_end;
     return;
   }
   if (good_end < content.size() || content.empty()) {
@@ -306,6 +318,8 @@ void Study::recover_log(Participant& p, RoundKind kind) {
   }
   p.saved[k] = complete;
   p.log_size[k] = good_end;
+  // Nothing kept (not even the header): the next round starts the log anew, in the new layout.
+  if (good_end == 0) p.legacy_log[k] = false;
 }
 
 void Study::rebuild() {
@@ -588,15 +602,27 @@ ParticipantStatus Study::submit_round(const std::string& id, RoundKind kind, int
       fmt::format("{},{},{},{},{},{},", id, settings_.conditions[p->condition].name, iteration,
                   sim::to_string(r.strategy), sim::to_string(r.variant), sim::to_string(r.target));
   const std::string speed = io::format_double(settings_.pad_speed);
+  std::vector<double> times;
+  times.reserve(s.size());
+  for (const auto& x : s) times.push_back(x.t);
+  const auto robot =
+      sim::robot_positions(r.strategy, r.variant, r.target, settings_.geometry, times);
   std::string block;
-  block.reserve(s.size() * (key.size() + 32));
-  for (const auto& x : s) {
+  block.reserve(s.size() * (key.size() + 48));
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const auto& x = s[i];
     block += key;
     block += io::format_double(x.t);
     block += ',';
     block += io::format_double(x.pad);
     block += ',';
     block += speed;
+    if (!p->legacy_log[k]) {
+      block += ',';
+      block += sim::format_metres(robot[i].x);
+      block += ',';
+      block += sim::format_metres(robot[i].y);
+    }
     block += '\n';
   }
   const fs::path path = log_path(id, kind);
@@ -608,7 +634,8 @@ ParticipantStatus Study::submit_round(const std::string& id, RoundKind kind, int
   // The round and its `saved` event in one commit: synced together with whatever other rounds
   // arrived meanwhile (group commit); the event is written only when the round was.
   std::vector<detail::GroupCommitter::Append> commit;
-  commit.push_back({path, std::string(kLogHeader), std::move(block)});
+  commit.push_back(
+      {path, std::string(p->legacy_log[k] ? kLegacyLogHeader : kLogHeader), std::move(block)});
   commit.push_back({dir_ / "collect" / "events.csv", std::string(kEventsHeader),
                     fmt::format("{},{},saved,{}\n", detail::utc_now(), id,
                                 csv_field(fmt::format("{} ({} samples)", name, s.size())))});

@@ -37,15 +37,17 @@ enum Field : int {
   kT,
   kPad,
   kPadSpeed,
+  kRobotX,  // optional per-sample robot position (m), read only together
+  kRobotY,
   kFieldCount
 };
 
 const std::array<const char*, kFieldCount> kFieldNames = {
     "participant", "condition", "iteration", "strategy", "variant", "target", "t", "pad",
-    "pad_speed"};
+    "pad_speed", "robot_x", "robot_y"};
 
-constexpr std::array<bool, kFieldCount> kRequired = {true, false, true, false, false,
-                                                     true, true,  true, false};
+constexpr std::array<bool, kFieldCount> kRequired = {true, false, true, false, false, true,
+                                                     true, true,  false, false, false};
 
 constexpr long long kMaxIteration = 1000000000;  // as io::load_scores
 
@@ -260,6 +262,15 @@ struct TraceReader::Impl {
             name));
       }
     }
+    if (!options.read_robot_path) {
+      cols.index[kRobotX] = cols.index[kRobotY] = -1;
+    } else if ((cols.index[kRobotX] >= 0) != (cols.index[kRobotY] >= 0)) {
+      const Field has = cols.index[kRobotX] >= 0 ? kRobotX : kRobotY;
+      const Field lacks = has == kRobotX ? kRobotY : kRobotX;
+      throw InvalidData(fmt::format("{}:1: column '{}' without '{}' (the robot's position needs "
+                                    "both; name it with --map {}=COLUMN)", name, cols.name[has],
+                                    cols.name[lacks], kFieldNames[lacks]));
+    }
     return true;
   }
 
@@ -283,6 +294,8 @@ struct TraceReader::Impl {
     Trial& t = b.trial;
     t.times.clear();
     t.pads.clear();
+    t.robot_x.clear();
+    t.robot_y.clear();
     t.rows = 0;
     t.line = reader->line();
     t.file = names[file_index];
@@ -419,9 +432,27 @@ struct TraceReader::Impl {
                                    b.last_line));
       return;
     }
+    if (cols.index[kRobotX] >= 0 && !read_robot(b, line)) return;
     t.times.push_back(seconds);
     t.pads.push_back(*pv);
     b.last_line = line;
+  }
+
+  // The robot's position on this row (both columns present): finite numbers in metres.
+  bool read_robot(Builder& b, std::uint64_t line) {
+    for (const Field f : {kRobotX, kRobotY}) {
+      const std::string_view s = get(f);
+      const auto v = parse_number(s);
+      if (!v) {
+        invalid(b, line, s.empty() ? fmt::format("column '{}': empty (expected the robot's "
+                                                 "position in metres on every row)", cols.name[f])
+                                   : fmt::format("column '{}': '{}' is not a number (expected the "
+                                                 "robot's position in metres)", cols.name[f], s));
+        return false;
+      }
+      (f == kRobotX ? b.trial.robot_x : b.trial.robot_y).push_back(*v);
+    }
+    return true;
   }
 
   // Ends a trial: true when it is valid (then it is in b.trial), false when rejected.

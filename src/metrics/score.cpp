@@ -69,6 +69,12 @@ void append_row(std::string& buf, const io::Trial& t, const TrialScore& s) {
   fmt::format_to(std::back_inserter(buf), "{},", s.reversals);
   num(s.final_pad);
   if (s.overspeed_segments >= 0) fmt::format_to(std::back_inserter(buf), "{}", s.overspeed_segments);
+  buf.push_back(',');
+  num(s.signed_area);
+  num(s.max_deviation);
+  fmt::format_to(std::back_inserter(buf), "{},", s.flips);
+  num(s.time_deceived);
+  if (!std::isnan(s.final_belief_time)) fmt::format_to(std::back_inserter(buf), "{}", s.final_belief_time);
   buf.push_back('\n');
 }
 
@@ -87,7 +93,9 @@ const std::vector<std::string>& score_columns() {
   static const std::vector<std::string> cols = {
       "participant", "condition", "iteration",     "strategy", "variant",
       "target",      "n_samples", "duration",      "error",    "confusion",
-      "reversal_time", "reversals", "final_pad", "overspeed_segments"};
+      "reversal_time", "reversals", "final_pad", "overspeed_segments",
+      // belief-trace measures (issue 16), appended so that existing readers keep their columns
+      "signed_area", "max_deviation", "flips", "time_deceived", "final_belief_time"};
   return cols;
 }
 
@@ -308,6 +316,7 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
     j += fmt::format("    \"trim_start\": {},\n    \"trim_end\": {},\n", io::json_number(m.trim_start),
                      io::json_number(m.trim_end));
     j += fmt::format("    \"deadband\": {},\n", io::json_number(m.deadband));
+    j += fmt::format("    \"belief_deadband\": {},\n", io::json_number(m.belief_deadband));
     j += fmt::format("    \"confusion_norm\": {},\n", io::json_quote(to_string(m.norm)));
     if (m.pad_speed) {
       j += fmt::format("    \"pad_speed\": {{\"source\": \"option\", \"value\": {}}},\n",
@@ -357,7 +366,12 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
          "\"error\": \"pad units, [0, 1]\", \"confusion\": ";
     j += m.norm == ConfusionNorm::speed ? "\"fraction of full-speed movement, [0, 1]\""
                                         : "\"pad units (paper's eq. 4, unnormalised)\"";
-    j += ", \"target\": \"pad coordinate (0 = left, 1 = right)\"}\n}\n";
+    j += ", \"target\": \"pad coordinate (0 = left, 1 = right)\", "
+         "\"signed_area\": \"pad units toward the false side, mean over the window, [-1, 1]\", "
+         "\"max_deviation\": \"pad units past 0.5 toward the false target, [-0.5, 0.5]\", "
+         "\"flips\": \"count (belief dead band)\", "
+         "\"time_deceived\": \"share of the window, [0, 1]\", "
+         "\"final_belief_time\": \"s since the trial's first sample; empty if never\"}\n}\n";
     sidecar_out = std::make_unique<io::AtomicOutput>(sidecar);
     sidecar_out->stream() << j;
   }

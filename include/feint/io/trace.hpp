@@ -38,6 +38,10 @@ struct Trial {
   std::optional<double> pad_speed;  // pad units per second; the --pad-speed override if given
   std::vector<double> times;        // t_i in seconds, strictly increasing, size >= 2
   std::vector<double> pads;         // mu_i in [0, 1], same size as times
+  /// The robot's position (m, the study's geometry) at each sample, from the optional robot_x and
+  /// robot_y columns; empty when the log has neither (then sim::robot_path rebuilds the path).
+  std::vector<double> robot_x;
+  std::vector<double> robot_y;
   std::string file;                 // file of the trial's first row (`<stdin>` for `-`)
   std::uint64_t line = 0;           // physical line of its first row (header = line 1)
   std::uint64_t rows = 0;           // rows read for this trial (== times.size() when valid)
@@ -59,7 +63,8 @@ struct Rejection {
 };
 
 /// The column names the loader looks for (formats.md), matched case-insensitively.
-/// Keys: participant, condition, iteration, strategy, variant, target, t, pad, pad_speed.
+/// Keys: participant, condition, iteration, strategy, variant, target, t, pad, pad_speed, robot_x,
+/// robot_y (the last two optional, read together).
 const std::vector<std::string>& trace_field_names();
 
 struct TraceOptions {
@@ -78,6 +83,10 @@ struct TraceOptions {
   /// The unit of the `t` column: times are divided by this to give seconds (1 = seconds, 1000 =
   /// milliseconds; `--time-unit`). Messages quote the times as written.
   double time_divisor = 1;
+  /// Read the optional robot_x / robot_y columns into Trial::robot_x / robot_y (both or neither;
+  /// every row a finite number). Off by default: scoring and the figures do not use the robot's
+  /// path, so for them the columns are ignored like any extra column and cost nothing.
+  bool read_robot_path = false;
   /// Lenient mode: called for each invalid trial instead of throwing.
   std::function<void(const Rejection&)> on_reject;
 };
