@@ -18,7 +18,6 @@
 namespace feint::collect {
 
 namespace fs = std::filesystem;
-using detail::append_durably;
 using detail::csv_field;
 
 namespace {
@@ -134,7 +133,9 @@ struct Study::Participant {
 };
 
 Study::Study(fs::path dir, Settings settings)
-    : dir_(std::move(dir)), settings_(std::move(settings)) {
+    : dir_(std::move(dir)),
+      settings_(std::move(settings)),
+      committer_(std::make_unique<detail::GroupCommitter>()) {
   validate(settings_);
   std::error_code ec;
   for (const auto& sub : {fs::path("logs"), fs::path("practice"), fs::path("collect")}) {
@@ -183,19 +184,38 @@ Round Study::plan_round(std::size_t index, std::size_t condition, RoundKind kind
 
 void Study::record_event(const std::string& participant, const std::string& event,
                          const std::string& detail) {
-  const std::string line = fmt::format("{},{},{},{}\n", detail::utc_now(), csv_field(participant),
-                                       csv_field(event), csv_field(detail));
-  std::lock_guard lock(events_mu_);
-  append_durably(dir_ / "collect" / "events.csv", kEventsHeader, line);
+  const std::string line =
+      fmt::format("{},{},{},{}\n", detail::utc_now(), csv_field(participant.substr(0, 64)),
+                  csv_field(event.substr(0, 32)), csv_field(detail::bounded_detail(detail)));
+  committer_->append(dir_ / "collect" / "events.csv", kEventsHeader, line);
 }
 
-// Moves a damaged shared file's incomplete last line aside (see replace_with_prefix).
+void Study::note_event(const std::string& participant, const std::string& event,
+                       const std::string& detail) {
+  std::vector<detail::GroupCommitter::Append> one;
+  one.push_back({dir_ / "collect" / "events.csv", std::string(kEventsHeader),
+                 fmt::format("{},{},{},{}\n", detail::utc_now(), csv_field(participant.substr(0, 64)),
+                             csv_field(event.substr(0, 32)),
+                             csv_field(detail::bounded_detail(detail)))});
+  committer_->enqueue(std::move(one));
+}
+
+// Repairs a shared file after a crash, whatever state it was left in: empty, header only, cut in
+// the header, cut mid-line. A file with no complete row after its header is set aside whole (the
+// next append creates it anew with its header); otherwise only an incomplete last line is set
+// aside (see replace_with_prefix). The original always goes whole to collect/damaged/.
 static void keep_complete_lines(const fs::path& path, const fs::path& damaged_dir) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return;
   const std::string content = detail::read_all(path);
-  const std::size_t keep = complete_prefix(content);
-  if (keep == content.size()) return;
+  std::size_t keep = complete_prefix(content);
+  const auto header_end = content.find('\n');
+  if (header_end == std::string::npos || keep <= header_end + 1) keep = 0;  // no complete row
+  if (keep == content.size() && keep > 0) return;
   detail::replace_with_prefix(
-      path, keep, damaged_dir / fmt::format("{}.{}", path.filename().string(), detail::unix_now()));
+      path, keep,
+      detail::unique_aside(damaged_dir, fmt::format("{}.{}", path.filename().string(),
+                                                    detail::unix_now())));
 }
 
 void Study::recover_log(Participant& p, RoundKind kind) {
@@ -205,7 +225,8 @@ void Study::recover_log(Participant& p, RoundKind kind) {
   p.saved[k] = 0;
   p.log_size[k] = 0;
   p.legacy_log[k] = false;
-  if (content.empty()) return;
+  std::error_code ec;
+  if (content.empty() && !fs::is_regular_file(path, ec)) return;
   const std::string where = path.string();
   std::size_t good_end = 0;
   std::size_t pos = 0;
@@ -213,6 +234,7 @@ void Study::recover_log(Participant& p, RoundKind kind) {
   bool current_done = true;
   double duration = 0;
   bool header = false;
+  bool headerless = false;
   int complete = 0;
   while (pos < content.size()) {
     const auto nl = content.find('\n', pos);
@@ -220,15 +242,22 @@ void Study::recover_log(Participant& p, RoundKind kind) {
     std::string_view line(content.data() + pos, nl - pos);
     const std::size_t next = nl + 1;
     if (!header) {
-      if (std::string(line) + "\n" == kLegacyLogHeader) {
-        p.legacy_log[k] = true;
-      } else if (std::string(line) + "\n" != kLogHeader) {
+      header = true;
+      if (std::string(line) + "\n" == kLogHeader ||
+          std::string(line) + "\n" == kLegacyLogHeader) {
+        p.legacy_log[k] = std::string(line) + "\n" == kLegacyLogHeader;
+        good_end = next;
+        pos = next;
+        continue;
+      }
+      const auto f0 = io::split_csv_line(std::string(line), ',');
+      if ((f0.size() != 9 && f0.size() != 11) || f0[0] != p.id) {
         throw InvalidData(fmt::format("{}:1: not a feint collect log (unexpected header)", where));
       }
-      header = true;
-      good_end = next;
-      pos = next;
-      continue;
+      // Rows without a header: an earlier feint collect appended to a log that a crash had left
+      // empty. The rows are kept and the header is put back (below); this line is a row.
+      p.legacy_log[k] = f0.size() == 9;
+      headerless = true;
     }
     const auto f = io::split_csv_line(std::string(line), ',');
     if (f.size() != (p.legacy_log[k] ? 9U : 11U) || f[0] != p.id) {
@@ -257,9 +286,29 @@ void Study::recover_log(Participant& p, RoundKind kind) {
     }
     pos = next;
   }
-  if (good_end < content.size()) {
-    const fs::path aside = dir_ / "collect" / "damaged" /
-                           fmt::format("{}-{}-{}.csv", p.id, to_string(kind), detail::unix_now());
+  // A log without a complete round (empty, header only, cut in its header or in its first
+  // round) is set aside whole: `feint analyze` never sees a log without rows, and the next round
+  // creates it anew with its header.
+  if (complete == 0) good_end = 0;
+  if (headerless && good_end > 0) {
+    const fs::path aside = detail::unique_aside(
+        dir_ / "collect" / "damaged",
+        fmt::format("{}-{}-{}.csv", p.id, to_string(kind), detail::unix_now()));
+    const std::string_view log_header = p.legacy_log[k] ? kLegacyLogHeader : kLogHeader;
+    detail::replace_with_content(path, std::string(log_header) + content.substr(0, good_end),
+                                 aside);
+    record_event(p.id, "recovered",
+                 fmt::format("{}: the log had no header; it was put back before the {} complete "
+                             "rounds; the original ({} bytes) is in {}",
+                             where, complete, content.size(), aside.string()));
+    p.saved[k] = complete;
+    p.log_size[k] = log_header.size() + good_end;
+    return;
+  }
+  if (good_end < content.size() || content.empty()) {
+    const fs::path aside = detail::unique_aside(
+        dir_ / "collect" / "damaged",
+        fmt::format("{}-{}-{}.csv", p.id, to_string(kind), detail::unix_now()));
     detail::replace_with_prefix(path, good_end, aside);
     record_event(
         p.id, "recovered",
@@ -398,14 +447,12 @@ ParticipantStatus make_status(const P& p, const Settings& s) {
 
 ParticipantStatus Study::join(const std::string& requested) {
   std::string id = requested;
-  std::shared_ptr<Participant> p;
-  {
+  auto existing = [&]() -> std::shared_ptr<Participant> {
     std::lock_guard lock(mu_);
     if (id.empty()) {
       // A generated ID: random-looking, from the seed and a counter, never an existing one.
-      Rng rng =
-          Rng::stream(settings_.seed ^ static_cast<std::uint64_t>(detail::unix_now()),
-                           participants_.size() + generated_);
+      Rng rng = Rng::stream(settings_.seed ^ static_cast<std::uint64_t>(detail::unix_now()),
+                            participants_.size() + generated_);
       do {
         id = fmt::format("G{:010x}", rng() & 0xFFFFFFFFFFULL);
         ++generated_;
@@ -417,12 +464,21 @@ ParticipantStatus Study::join(const std::string& requested) {
           "participant IDs are 1-64 letters, digits, '_' or '-' (not starting with '-')");
     }
     auto it = participants_.find(id);
-    if (it != participants_.end()) {
-      p = it->second;
-    } else {
+    return it == participants_.end() ? nullptr : it->second;
+  };
+  std::shared_ptr<Participant> p = existing();
+  if (!p) {
+    // New participants are assigned one at a time (the rows are numbered in order of arrival),
+    // but mu_ is not held during the sync: the participants already playing are not held up.
+    std::lock_guard assign(assignment_mu_);
+    p = existing();  // joined meanwhile (a double click)
+    if (!p) {
       p = std::make_shared<Participant>();
       p->id = id;
-      p->index = participants_.size();
+      {
+        std::lock_guard lock(mu_);
+        p->index = participants_.size();
+      }
       const std::size_t c = settings_.conditions.size();
       const std::uint64_t block = p->index / c;
       std::vector<std::size_t> perm(c);
@@ -430,11 +486,22 @@ ParticipantStatus Study::join(const std::string& requested) {
       Rng rng = Rng::stream(settings_.seed, block);
       sim::shuffle(perm, rng);
       p->condition = perm[p->index % c];
-      append_durably(dir_ / "collect" / "assignment.csv", kAssignmentHeader,
-                     fmt::format("{},{},{},{}\n", id, p->index,
-                                 settings_.conditions[p->condition].name, detail::utc_now()));
-      participants_[id] = p;
-      record_event(id, "assigned", settings_.conditions[p->condition].name);
+      const std::string& condition = settings_.conditions[p->condition].name;
+      // The assignment row and its event in one commit; the participant exists (in memory too)
+      // only once the row is on disk.
+      std::vector<detail::GroupCommitter::Append> commit;
+      commit.push_back({dir_ / "collect" / "assignment.csv", std::string(kAssignmentHeader),
+                        fmt::format("{},{},{},{}\n", id, p->index, condition, detail::utc_now())});
+      commit.push_back({dir_ / "collect" / "events.csv", std::string(kEventsHeader),
+                        fmt::format("{},{},assigned,{}\n", detail::utc_now(), id,
+                                    csv_field(condition))});
+      const auto done = committer_->commit(std::move(commit));
+      if (!done[0].error.empty()) throw IoError(done[0].error);
+      {
+        std::lock_guard lock(mu_);
+        participants_[id] = p;
+      }
+      if (!done[1].error.empty()) throw IoError(done[1].error);
     }
   }
   std::lock_guard lock(p->mu);
@@ -472,7 +539,7 @@ Round Study::start_round(const std::string& id) {
                  name + " was shown before and not saved; shown again from its start");
   }
   p->shown = std::make_pair(kind, iteration);
-  record_event(id, "round_shown", name);
+  note_event(id, "round_shown", name);  // acknowledges nothing: not waited for
   return r;
 }
 
@@ -564,11 +631,20 @@ ParticipantStatus Study::submit_round(const std::string& id, RoundKind kind, int
     if (iteration != p->saved[k] + 1)
       throw Rejection(409, "out_of_order", name + ": state changed");
   }
-  p->log_size[k] =
-      append_durably(path, p->legacy_log[k] ? kLegacyLogHeader : kLogHeader, block);
+  // The round and its `saved` event in one commit: synced together with whatever other rounds
+  // arrived meanwhile (group commit); the event is written only when the round was.
+  std::vector<detail::GroupCommitter::Append> commit;
+  commit.push_back(
+      {path, std::string(p->legacy_log[k] ? kLegacyLogHeader : kLogHeader), std::move(block)});
+  commit.push_back({dir_ / "collect" / "events.csv", std::string(kEventsHeader),
+                    fmt::format("{},{},saved,{}\n", detail::utc_now(), id,
+                                csv_field(fmt::format("{} ({} samples)", name, s.size())))});
+  const auto done = committer_->commit(std::move(commit));
+  if (!done[0].error.empty()) throw IoError(done[0].error);
+  p->log_size[k] = done[0].size;
   p->saved[k] = iteration;
   p->shown.reset();
-  record_event(id, "saved", fmt::format("{} ({} samples)", name, s.size()));
+  if (!done[1].error.empty()) throw IoError(done[1].error);  // saved; the page hears "duplicate"
   return make_status(*p, settings_);
 }
 
@@ -610,16 +686,20 @@ ParticipantStatus Study::submit_questionnaire(const std::string& id,
   }
   std::lock_guard qlock(questionnaire_mu_);
   if (!yes_no.empty() && !p->yes_no_done) {
-    append_durably(dir_ / "questionnaire_yesno.csv",
+    committer_->append(dir_ / "questionnaire_yesno.csv",
                    "participant,condition," + settings_.yes_no_item + "\n", yes_no);
     p->yes_no_done = true;
   }
   std::string header = "participant,condition";
   for (const auto& i : settings_.items) header += "," + i;
-  append_durably(dir_ / "questionnaire.csv", header + "\n", row);
+  committer_->append(dir_ / "questionnaire.csv", header + "\n", row);
   p->questionnaire_done = true;
   record_event(id, "questionnaire", "saved");
   return make_status(*p, settings_);
+}
+
+Study::CommitStats Study::commit_stats() const {
+  return {committer_->groups(), committer_->appends()};
 }
 
 std::optional<ParticipantStatus> Study::status(const std::string& id) const {
