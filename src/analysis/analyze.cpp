@@ -213,7 +213,7 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   try {
     r.anova = report::build_anova_report(r.scores, models::SphericityCorrection::GG);
   } catch (const InvalidData& e) {
-    note_left_out(d, "anova", fmt::format("no mixed ANOVA: {}", e.what()));
+    note_left_out(d, "anova", fmt::format("no mixed ANOVA: {}", without_prefix(e.what(), prefix)));
   }
   // The model of condition x iteration needs two of each (and models::fit_mixed_model does not
   // yet refuse fewer cleanly).
@@ -235,7 +235,7 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
       o.trend = true;
       r.trend_model = report::build_model_analysis(r.scores, o);
     } catch (const InvalidData& e) {
-      note_left_out(d, "model", fmt::format("no mixed model: {}", e.what()));
+      note_left_out(d, "model", fmt::format("no mixed model: {}", without_prefix(e.what(), prefix)));
     }
   }
 

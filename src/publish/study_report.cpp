@@ -128,7 +128,7 @@ std::string exclusion_text(const analysis::Exclusion& e) {
                               : fmt::format("{}: {}", e.stage, e.reason);
   if (!e.examples.empty()) {
     // A full list is a list; a partial one gives examples.
-    const bool all = e.count > 0 && e.examples.size() >= e.count;
+    const bool all = e.count == 0 || e.examples.size() >= e.count;
     s += fmt::format(" ({}{})", all ? "" : "e.g. ", fmt::join(e.examples, ", "));
   }
   if (!e.code.empty()) s += fmt::format(" [{}]", e.code);
