@@ -336,7 +336,19 @@ std::string study_results_json(const analysis::StudyResults& r) {
                      i ? ", " : "", q(e.stage), q(e.what), e.count, q(e.reason), q(e.code),
                      examples);
   }
-  o += "]},\n  \"findings\": [";
+  o += "]";
+  if (r.diagnostics.participants_compared) {
+    const auto& c = *r.diagnostics.participants_compared;
+    auto list = [&](const std::vector<std::string>& v) {
+      std::string l;
+      for (std::size_t i = 0; i < v.size(); ++i) l += (i ? ", " : "") + q(v[i]);
+      return l;
+    };
+    o += fmt::format(", \"participants_compared\": {{\"in_both\": {}, \"only_in_logs\": [{}], "
+                     "\"only_in_questionnaire\": [{}]}}",
+                     c.in_both, list(c.only_in_logs), list(c.only_in_questionnaire));
+  }
+  o += "},\n  \"findings\": [";
   for (std::size_t i = 0; i < r.findings.size(); ++i) {
     const auto& f = r.findings[i];
     o += fmt::format("{}{{\"id\": {}, \"question\": {}, \"sentence\": {}, \"evidence\": {}, "

@@ -115,6 +115,10 @@ TEST(AnalyzePipeline, QuestionnaireIdsMissingOnEitherSideAreListed) {
             std::string::npos);
   const std::string json = read_text(dir / "out" / "results.json");
   EXPECT_NE(json.find("\"examples\": [\"P9\"]"), std::string::npos);
+  EXPECT_NE(json.find("\"participants_compared\": {\"in_both\": 3, \"only_in_logs\": [\"P4\"], "
+                      "\"only_in_questionnaire\": [\"P9\"]}"),
+            std::string::npos)
+      << json;
 }
 
 TEST(AnalyzePipeline, MillisecondTimesAreWarnedInTheReport) {
