@@ -241,3 +241,19 @@ TEST(PlotCli, HelpStatesTrueDefaultsAndApaIsRefused) {
   EXPECT_NE(apa.err.find("--apa: a figure has no APA strings"), std::string::npos) << apa.err;
   EXPECT_FALSE(fs::exists("/tmp/never-written.svg"));
 }
+
+TEST(PlotCli, CompareRefusesAScoresFileWithoutTheConditionColumn) {
+  TempDir dir;
+  feint::test::write_text(dir / "scores.csv",
+                          "participant,iteration,error,confusion\nP1,1,0.4,0.5\nP2,1,0.5,0.6\n"
+                          "P1,2,0.3,0.5\nP2,2,0.6,0.7\n");
+  const auto r = run_feint("plot " + shell_quote((dir / "scores.csv").string()) +
+                           " --figure error --compare a,b -o " +
+                           shell_quote((dir / "e.svg").string()));
+  EXPECT_EQ(r.exit_code, 65) << r.err;
+  EXPECT_NE(r.err.find("scores.csv:1: no condition column 'condition', but the study has 2 "
+                       "conditions (a, b)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir / "e.svg"));
+}
