@@ -108,8 +108,18 @@ std::set<std::string> count_rejections(const fs::path& rejects, Diagnostics& d) 
 
 // A scoring diagnostic as an entry of the accounting: where it applies is added as an example
 // unless the message names it already.
-Exclusion scoring_note(const io::Diagnostic& n, const std::string& prefix) {
-  Exclusion e{"scoring", "warning", 0, without_prefix(n.message, prefix), {}, n.code};
+Exclusion scoring_note(const io::Diagnostic& n, const std::string& prefix,
+                       const std::string& study_folder) {
+  std::string message = without_prefix(n.message, prefix);
+  if (!n.file.empty() && n.file != "-") {
+    // The file as the report names every path: relative to the study, never absolute.
+    const std::string shown = display_path(n.file, study_folder);
+    for (auto pos = message.find(n.file); pos != std::string::npos;
+         pos = message.find(n.file, pos + shown.size())) {
+      message.replace(pos, n.file.size(), shown);
+    }
+  }
+  Exclusion e{"scoring", "warning", 0, message, {}, n.code};
   const std::string file = n.file.empty() ? "" : fs::path(n.file).filename().string();
   if (!file.empty() && e.reason.find(file) == std::string::npos) {
     e.examples.push_back(n.line > 0 ? fmt::format("{}:{}", file, n.line) : file);
@@ -165,7 +175,7 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   }
   // The reader's and the time-unit check's notes, structured (code, file, line, column): one
   // entry each (their messages are also in d.warnings, through on_warning).
-  for (const auto& n : d.scoring.diagnostics) d.exclusions.push_back(scoring_note(n, prefix));
+  for (const auto& n : d.scoring.diagnostics) d.exclusions.push_back(scoring_note(n, prefix, study.folder));
 
   // 2. Table 1: one-sample per condition, and A against B when asked.
   report::Table1Options t;

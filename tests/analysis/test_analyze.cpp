@@ -275,3 +275,32 @@ TEST(Analyze, TwoConditionsAndALogWithoutTheConditionColumnIsRefused) {
   EXPECT_NO_THROW(analysis::analyze(analysis::load_study(study.string(), {}), "test"));
   fs::remove_all(study);
 }
+
+TEST(Analyze, ReadingNotesNameTheFileRelativeToTheStudy) {
+  // Other labs' exports (tests/data/labs): a European CSV and fixed-length NaN padding. The study
+  // is named by an absolute path; the notes name the log relative to it.
+  for (const std::string name : {"european.csv", "fixed_length_nan.csv"}) {
+    const fs::path study = fs::temp_directory_path() / ("feint-test-notes-" + name);
+    fs::remove_all(study);
+    fs::create_directories(study / "logs");
+    fs::copy_file(std::string(FEINT_SOURCE_DIR) + "/tests/data/labs/" + name, study / "logs" / name);
+    analysis::AnalysisSettings s;
+    s.scoring.norm = "raw";  // the padded file has no pad_speed column
+    const auto r = analysis::analyze(analysis::load_study(study.string(), s), "test");
+    const std::string code = name == "european.csv" ? "decimal-comma" : "nan-padding";
+    int notes = 0;
+    for (const auto& e : r.diagnostics.exclusions) {
+      if (e.code != code) continue;
+      ++notes;
+      EXPECT_EQ(e.reason.find(study.string()), std::string::npos) << e.reason;
+      if (code == "decimal-comma") {
+        EXPECT_EQ(e.reason.rfind("logs/european.csv:2: numbers read with a decimal comma", 0), 0u)
+            << e.reason;
+      } else {
+        EXPECT_NE(e.reason.find("dropped"), std::string::npos) << e.reason;
+      }
+    }
+    EXPECT_EQ(notes, 1) << name;
+    fs::remove_all(study);
+  }
+}
