@@ -31,7 +31,8 @@ ObserverPowerPlan observer_power_plan(const ObserverPowerOptions& a, double alph
   for (const auto& kv : a.observer) sim::set_parameter(s.study.observer, kv);
   std::string& source = plan.source;
   source = a.observer_file.empty() ? std::string() : "from " + a.observer_file;
-  if (!a.observer.empty()) source += std::string(source.empty() ? "" : ", ") + "set on the command line";
+  if (!a.observer.empty())
+    source += std::string(source.empty() ? "" : ", ") + "set on the command line";
   if (!a.pilot.empty()) {
     // beta and recognition_logodds fitted to the pilot's error by simulated moments.
     io::ScoresOptions so;
@@ -44,9 +45,10 @@ ObserverPowerPlan observer_power_plan(const ObserverPowerOptions& a, double alph
     search.seed = a.seed ^ 0x5049'4C4F'54ULL;  // "PILOT": not the power studies' streams
     const auto fit = sim::fit_pilot(moments, search, a.from_iteration);
     s.study.observer = fit.observer;
-    source += fmt::format("{}fitted to pilot {} ({} + {} participants): beta {:.3f}, recognition {:.2f}",
-                          source.empty() ? "" : "; ", a.pilot, moments.adaptive, moments.random,
-                          fit.observer.beta, fit.observer.recognition_logodds);
+    source +=
+        fmt::format("{}fitted to pilot {} ({} + {} participants): beta {:.3f}, recognition {:.2f}",
+                    source.empty() ? "" : "; ", a.pilot, moments.adaptive, moments.random,
+                    fit.observer.beta, fit.observer.recognition_logodds);
   }
   return plan;
 }

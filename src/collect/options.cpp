@@ -101,9 +101,9 @@ std::string start_message(const fs::path& study, const Settings& s, const std::s
   const std::string shown_host = host.find(':') != std::string::npos ? "[" + host + "]" : host;
   std::string conditions;
   for (const auto& x : s.conditions) conditions += (conditions.empty() ? "" : ", ") + x.name;
-  std::string out =
-      fmt::format("feint collect: study {} ({}; {} practice + {} rounds; pad speed {}/s)\n",
-                  study.string(), conditions, s.practice, s.iterations, io::format_double(s.pad_speed));
+  std::string out = fmt::format(
+      "feint collect: study {} ({}; {} practice + {} rounds; pad speed {}/s)\n", study.string(),
+      conditions, s.practice, s.iterations, io::format_double(s.pad_speed));
   out += fmt::format("port: {}\n", server.port());
   out += fmt::format("participants: http://{}:{}/\n", shown_host, server.port());
   out += fmt::format("admin:        http://{}:{}/admin?token={}\n", shown_host, server.port(),

@@ -36,18 +36,22 @@ models::ObserverFitSettings observer_fit_settings(const ObserverFitOptions& a) {
 
 std::string ObservedLogs::path_source() const {
   if (paths_rebuilt == 0) return "robot path from the logs' robot_x, robot_y";
-  if (paths_logged == 0) return "path rebuilt from strategy, variant, target and the default geometry";
-  return fmt::format("robot path from the logs for {} trials, rebuilt from strategy, variant, "
-                     "target and the default geometry for {}",
-                     paths_logged, paths_rebuilt);
+  if (paths_logged == 0)
+    return "path rebuilt from strategy, variant, target and the default geometry";
+  return fmt::format(
+      "robot path from the logs for {} trials, rebuilt from strategy, variant, "
+      "target and the default geometry for {}",
+      paths_logged, paths_rebuilt);
 }
 
-ObservedLogs read_observed_trials(const std::vector<std::string>& inputs, const Geometry& geometry) {
+ObservedLogs read_observed_trials(const std::vector<std::string>& inputs,
+                                  const Geometry& geometry) {
   ObservedLogs logs;
   io::TraceOptions opts;
   opts.read_robot_path = true;  // robot_x, robot_y when the logs have them
   opts.on_reject = [&](const io::Rejection& r) {
-    logs.rejected.push_back({fmt::format("{}/{}/{}", r.participant, r.condition, r.iteration), r.reason});
+    logs.rejected.push_back(
+        {fmt::format("{}/{}/{}", r.participant, r.condition, r.iteration), r.reason});
   };
   io::TraceReader reader(io::expand_inputs(inputs), opts);
   io::Trial t;
@@ -69,7 +73,8 @@ ObservedLogs read_observed_trials(const std::vector<std::string>& inputs, const 
       o.path.clear();
       for (const auto& p : path.samples) o.path.push_back({p.t + t.times.front(), p.x, p.y});
     } catch (const Error& e) {
-      logs.rejected.push_back({o.label, fmt::format("{}:{}: {}; the trial is left out", t.file, t.line, e.what())});
+      logs.rejected.push_back(
+          {o.label, fmt::format("{}:{}: {}; the trial is left out", t.file, t.line, e.what())});
       continue;
     }
     logs.trials.push_back(std::move(o));

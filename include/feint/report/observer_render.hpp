@@ -15,7 +15,8 @@ namespace feint::report {
 std::string render_observer_fit_text(const sim::ObserverLogFit& fit,
                                      const models::ObserverFitSettings& settings);
 
-/// One JSON object: method, path, conf.level, participants, conditions, learning, agreement, issues.
+/// One JSON object: method, path, conf.level, participants, conditions, learning, agreement,
+/// issues.
 std::string render_observer_fit_json(const sim::ObserverLogFit& fit,
                                      const models::ObserverFitSettings& settings);
 
