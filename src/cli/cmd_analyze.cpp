@@ -8,22 +8,15 @@
 #include <fmt/format.h>
 
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <memory>
 #include <string>
 
 #include "commands.hpp"
 #include "feint/analysis/analyze.hpp"
+#include "feint/analysis/command_line.hpp"
 #include "feint/error.hpp"
 #include "feint/publish/study_report.hpp"
-#include "report_options.hpp"
-#include "score_options.hpp"
-#include "study_config.hpp"
-
-#ifndef FEINT_VERSION
-#define FEINT_VERSION "dev"
-#endif
+#include "options.hpp"
 
 namespace feint::cli {
 
@@ -38,31 +31,6 @@ struct AnalyzeArgs {
   analysis::AnalysisSettings s;
 };
 
-// The command line that ran (Linux: as the kernel recorded it), with paths that exist shown
-// relative to the current folder, so that the report names no absolute path.
-std::string command_line() {
-  std::ifstream in("/proc/self/cmdline", std::ios::binary);
-  const std::string raw{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  std::string out;
-  std::size_t start = 0;
-  while (start < raw.size()) {
-    std::size_t end = raw.find('\0', start);
-    if (end == std::string::npos) end = raw.size();
-    std::string arg = raw.substr(start, end - start);
-    if (start == 0) {
-      arg = fs::path(arg).filename().string();
-    } else if (fs::path(arg).is_absolute()) {
-      arg = analysis::display_path(arg, ".");
-    }
-    const bool plain =
-        !arg.empty() && arg.find_first_of(" \t\"'$\\;&|<>*?()[]{}`") == std::string::npos;
-    if (!out.empty()) out += ' ';
-    out += plain ? arg : "'" + arg + "'";
-    start = end + 1;
-  }
-  return out;
-}
-
 void run(CLI::App& cmd, AnalyzeArgs& a) {
   if (!fs::is_directory(a.study)) {
     throw IoError(fmt::format("study folder '{}' does not exist or is not a folder", a.study));
@@ -73,27 +41,14 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
   const std::string out = a.out.empty() ? std::string("feint-analysis") : a.out;
   const analysis::StudyResults results = analysis::analyze(study, FEINT_VERSION);
   for (const auto& w : results.diagnostics.warnings) fmt::print(stderr, "feint: warning: {}\n", w);
-  const publish::WrittenStudy written = publish::write_study(study, results, out, command_line());
-  const auto& d = results.diagnostics.scoring;
-  fmt::print(stderr,
-             "feint analyze: {} rows read, {} trials scored, {} rejected; {} files written to {}{}\n",
-             d.rows_read, d.trials_scored, d.trials_rejected, written.files.size(), written.folder,
-             a.out.empty() ? " (the default; choose another with -o)" : "");
-  if (!study.settings.no_report) {
-    fmt::print(stderr, "feint analyze: open {}\n",
-               (fs::path(written.folder) / "report.html").string());
-  }
+  const publish::WrittenStudy written =
+      publish::write_study(study, results, out, analysis::command_line());
+  fmt::print(
+      stderr, "{}",
+      analysis::run_summary(study, results, written.files.size(), written.folder, a.out.empty()));
 }
 
 }  // namespace
-
-// CLI11 2.1: a list option otherwise swallows the positional STUDY that follows it
-// (`--metric error=0.5 data/demo`); each occurrence takes one value (or one comma list).
-CLI::Option* one_per_use(CLI::Option* opt) {
-  return opt->expected(1)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-      ->allow_extra_args(false);
-}
 
 void add_analyze_command(CLI::App& app) {
   auto args = std::make_shared<AnalyzeArgs>();
@@ -111,66 +66,51 @@ void add_analyze_command(CLI::App& app) {
                   "feint-analysis in the current folder)");
   cmd->add_option("--config", args->config,
                   "Settings file (TOML/INI; default STUDY/feint.toml when present)");
-  auto* score = "Scoring (see feint score)";
-  one_per_use(
-      cmd->add_option(
-          "--logs", args->s.logs,
-          "Pad-trace logs: files, folders or globs, relative to STUDY (default: STUDY/logs)"))
-      ->group(score);
-  add_score_options(*cmd, args->s.scoring, score);
-  auto* tables = "Tables (see feint table)";
+  // Each block's options are shown under its heading in --help.
+  cmd->option_defaults()->group("Scoring (see feint score)");
+  one_per_use(cmd->add_option(
+      "--logs", args->s.logs,
+      "Pad-trace logs: files, folders or globs, relative to STUDY (default: STUDY/logs)"));
+  add_score_options(*cmd, args->s.scoring, "Scoring (see feint score)");
+  cmd->option_defaults()->group("Tables (see feint table)");
   one_per_use(cmd->add_option("--metric", args->s.metrics,
                               "NAME=REF: metric column and reference mean "
-                              "(default error=0.5 confusion=0.95)"))
-      ->group(tables);
+                              "(default error=0.5 confusion=0.95)"));
   cmd->add_option("--compare", args->s.compare,
                   "A,B: also compare condition A with B (tables and "
-                  "questionnaire), e.g. adaptive,random")
-      ->group(tables);
-  cmd->add_flag("--var-equal", args->s.var_equal, "Student's t instead of Welch's")->group(tables);
-  cmd->add_flag("--paired", args->s.paired, "Paired t (same participants in both)")->group(tables);
-  cmd->add_option("--equivalence", args->s.equivalence, "TOST margin: '≈' must be earned")
-      ->group(tables);
-  auto* likert = "Questionnaire (see feint likert)";
+                  "questionnaire), e.g. adaptive,random");
+  cmd->add_flag("--var-equal", args->s.var_equal, "Student's t instead of Welch's");
+  cmd->add_flag("--paired", args->s.paired, "Paired t (same participants in both)");
+  cmd->add_option("--equivalence", args->s.equivalence, "TOST margin: '≈' must be earned");
+  cmd->option_defaults()->group("Questionnaire (see feint likert)");
   cmd->add_option("--questionnaire", args->s.questionnaire,
                   "Likert file, relative to STUDY "
-                  "(default STUDY/questionnaire.csv when present)")
-      ->group(likert);
-  add_questionnaire_options(*cmd, args->s.likert, true, likert);
-  auto* out = "Output";
+                  "(default STUDY/questionnaire.csv when present)");
+  add_questionnaire_options(*cmd, args->s.likert, true, "Questionnaire (see feint likert)");
+  cmd->option_defaults()->group("Output");
   one_per_use(cmd->add_option("--formats", args->s.formats, "Formats written for every table")
-                  ->delimiter(',')
-                  ->capture_default_str())
-      ->group(out);
+                  ->capture_default_str()
+                  ->delimiter(','));
   cmd->add_flag("--no-figures", args->s.no_figures,
-                "Do not draw the figures (OUT/figures/); report.html then has tables only")
-      ->group(out);
-  cmd->add_flag("--no-report", args->s.no_report, "Do not write OUT/report.html and report.md")
-      ->group(out);
+                "Do not draw the figures (OUT/figures/); report.html then has tables only");
+  cmd->add_flag("--no-report", args->s.no_report, "Do not write OUT/report.html and report.md");
   one_per_use(cmd->add_option("--figure-formats", args->s.figure_formats,
                               "Figure file formats: pdf (for LaTeX), svg (web), png (300 dpi)")
-                  ->delimiter(',')
-                  ->capture_default_str())
-      ->group(out);
-  cmd->add_flag("--apa", args->s.report.apa, "Add APA-style strings")->group(out);
+                  ->capture_default_str()
+                  ->delimiter(','));
+  cmd->add_flag("--apa", args->s.report.apa, "Add APA-style strings");
   cmd->add_flag("--latex-wide", args->s.report.latex_wide,
                 "LaTeX table* (both columns of a two-column paper); each table has its own "
-                "label, e.g. tab:feint-table1-adaptive-vs-random")
-      ->group(out);
-  cmd->add_option("--alpha", args->s.report.alpha, "Significance level")
-      ->capture_default_str()
-      ->group(out);
+                "label, e.g. tab:feint-table1-adaptive-vs-random");
+  cmd->add_option("--alpha", args->s.report.alpha, "Significance level")->capture_default_str();
   cmd->add_option("--alternative", args->s.report.alternative, "two.sided, greater or less")
-      ->capture_default_str()
-      ->group(out);
+      ->capture_default_str();
   cmd->add_option("--conf-level", args->s.report.conf_level, "Confidence level")
-      ->capture_default_str()
-      ->group(out);
+      ->capture_default_str();
   cmd->add_option("--p-adjust", args->s.report.p_adjust,
                   "none, bonferroni, holm, hochberg, hommel, "
                   "BH or BY (family: one metric column / the items)")
-      ->capture_default_str()
-      ->group(out);
+      ->capture_default_str();
   cmd->callback([cmd, args] { run(*cmd, *args); });
 }
 

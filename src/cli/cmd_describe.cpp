@@ -1,11 +1,10 @@
 // feint describe FILE.csv --column NAME [--by GROUP]: descriptive statistics (docs/tables.md).
 #include <memory>
-#include <string>
 
 #include "commands.hpp"
 #include "feint/io/scores.hpp"
 #include "feint/report/describe.hpp"
-#include "report_options.hpp"
+#include "options.hpp"
 
 namespace feint::cli {
 
@@ -27,12 +26,13 @@ void add_describe_command(CLI::App& app) {
       "describe",
       "Descriptive statistics of a numeric column, optionally by group: n, mean, sd, se, min, "
       "quartiles, max, CI of the mean, lag-1 autocorrelation.");
+  cmd->option_defaults()->always_capture_default();  // each option shows its default
   cmd->add_option("FILE", args->input, "Any CSV (gzip, ; and TAB too; - = standard input)")
       ->required();
   cmd->add_option("--column", args->column, "The numeric column to describe")->required();
   cmd->add_option("--by", args->by, "Grouping column: one row per group");
-  cmd->add_option("--conf-level", args->conf_level, "Confidence level of the mean's interval, in (0, 1)")
-      ->capture_default_str();
+  cmd->add_option("--conf-level", args->conf_level,
+                  "Confidence level of the mean's interval, in (0, 1)");
   add_report_options(*cmd, args->report, ReportOptionSet{false});
   cmd->callback([args] {
     ReportOptions ro = args->report;

@@ -1,22 +1,14 @@
 // feint plot INPUT --figure NAME -o FILE.pdf|.svg|.png: one of the study's figures from a scores
 // file (or a questionnaire), for users who run `feint table` on its own (docs/figures.md).
-#include <fmt/format.h>
 
 #include <memory>
-#include <optional>
-#include <string>
-#include <vector>
 
 #include "commands.hpp"
 #include "feint/error.hpp"
-#include "feint/io/questionnaire.hpp"
-#include "feint/io/scores.hpp"
 #include "feint/plot/canvas.hpp"
 #include "feint/plot/figures.hpp"
 #include "feint/publish/figure_files.hpp"
-#include "feint/report/likert.hpp"
-#include "feint/report/table1.hpp"
-#include "report_options.hpp"
+#include "options.hpp"
 
 namespace feint::cli {
 
@@ -30,8 +22,9 @@ struct PlotArgs {
 
 void run(const PlotArgs& a) {
   if (a.report.apa) {
-    throw UsageError("--apa: a figure has no APA strings; use feint table --apa (or feint "
-                     "analyze --apa) for the numbers");
+    throw UsageError(
+        "--apa: a figure has no APA strings; use feint table --apa (or feint "
+        "analyze --apa) for the numbers");
   }
   const ResolvedReportOptions r = resolve_report_options(a.report);
   if (r.output == "-") throw UsageError("-o FILE.pdf|.svg|.png is required (the figure's file)");
@@ -62,37 +55,25 @@ void add_plot_command(CLI::App& app) {
                   "one (one-column paper, 3.5 in) or two (two-column, 7.16 in); text is 8 pt in "
                   "both")
       ->capture_default_str();
-  auto* scores = "Scores figures (as feint table)";
-  cmd->add_option("--metric", args->request.metrics,
-                  "NAME=REF: metric column and reference mean (repeatable; default error=0.5 "
-                  "confusion=0.95)")
-      ->expected(1)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-      ->allow_extra_args(false)
-      ->group(scores);
+  cmd->option_defaults()->group("Scores figures (as feint table)");
+  one_per_use(cmd->add_option("--metric", args->request.metrics,
+                              "NAME=REF: metric column and reference mean (repeatable; default "
+                              "error=0.5 confusion=0.95)"));
   cmd->add_option("--compare", args->request.compare,
-                  "A,B: mark the iterations where condition A differs from B")
-      ->group(scores);
-  cmd->add_flag("--var-equal", args->request.var_equal, "Student's t instead of Welch's (--compare)")
-      ->group(scores);
-  cmd->add_flag("--paired", args->request.paired, "Paired t, pairs matched by participant (--compare)")
-      ->group(scores);
-  cmd->add_option("--logs", args->request.logs,
-                  "Pad-trace logs (files, folders, globs) for --figure traces")
-      ->expected(1)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-      ->allow_extra_args(false)
-      ->group(scores);
-  auto* likert = "Questionnaire figures (as feint likert)";
-  cmd->add_option("--scale", args->request.scale, "Scale bounds MIN-MAX")
-      ->capture_default_str()
-      ->group(likert);
+                  "A,B: mark the iterations where condition A differs from B");
+  cmd->add_flag("--var-equal", args->request.var_equal,
+                "Student's t instead of Welch's (--compare)");
+  cmd->add_flag("--paired", args->request.paired,
+                "Paired t, pairs matched by participant (--compare)");
+  one_per_use(cmd->add_option("--logs", args->request.logs,
+                              "Pad-trace logs (files, folders, globs) for --figure traces"));
+  cmd->option_defaults()->group("Questionnaire figures (as feint likert)");
+  cmd->add_option("--scale", args->request.scale, "Scale bounds MIN-MAX")->capture_default_str();
   cmd->add_option("--reference", args->request.reference,
-                  "Reference of the one-sample tests (default: the scale midpoint)")
-      ->group(likert);
+                  "Reference of the one-sample tests (default: the scale midpoint)");
   cmd->add_option("--items", args->request.items, "Item columns (default: every other column)")
-      ->delimiter(',')
-      ->group(likert);
+      ->delimiter(',');
+  cmd->option_defaults()->group("Options");
   add_report_options(*cmd, args->report);
   // The figure's format comes from the output's extension; --format is the tables' option.
   cmd->remove_option(cmd->get_option("--format"));

@@ -1,23 +1,16 @@
 // `feint score`: pad-trace logs -> one row of metrics per trial (a thin layer over
 // feint/metrics/score.hpp; see docs/scoring.md).
+#include <fmt/format.h>
+
 #include <cstdio>
 #include <memory>
-#include <optional>
 #include <string>
 #include <vector>
 
-#include <fmt/format.h>
-
 #include "commands.hpp"
-#include "feint/error.hpp"
-#include "feint/io/number.hpp"
+#include "feint/io/progress.hpp"
 #include "feint/metrics/score.hpp"
-#include "progress.hpp"
-#include "score_options.hpp"
-
-#ifndef FEINT_VERSION
-#define FEINT_VERSION "dev"
-#endif
+#include "options.hpp"
 
 namespace feint::cli {
 
@@ -39,7 +32,7 @@ void run(const ScoreArgs& a) {
   s.unsorted = a.unsorted;
   s.tool_version = FEINT_VERSION;
 
-  auto progress = std::make_shared<ProgressLine>("feint score");
+  auto progress = std::make_shared<io::ProgressLine>("feint score");
   if (progress->active()) {
     s.on_progress = [progress](const metrics::ScoreProgress& p) {
       progress->update(p.rows_read, p.bytes_read, p.trials_scored, p.trials_rejected);
@@ -48,19 +41,8 @@ void run(const ScoreArgs& a) {
   const auto summary = metrics::score_to_file(a.inputs, s, a.output);
   progress->finish();
 
-  std::string line = fmt::format("feint score: {} rows read from {} file(s), {} trials scored, {} "
-                                 "rejected",
-                                 summary.rows_read, summary.files, summary.trials_scored,
-                                 summary.trials_rejected);
-  if (!summary.rejects_path.empty()) line += fmt::format(" (list in {})", summary.rejects_path);
-  line += fmt::format(" -> {}", summary.output_path == "-" ? "stdout" : summary.output_path);
-  if (!summary.sidecar_path.empty()) line += fmt::format(" (settings in {})", summary.sidecar_path);
   std::fflush(stdout);
-  fmt::print(stderr, "{}\n", line);
-  if (summary.overspeed_trials > 0) {
-    fmt::print(stderr, "feint score: warning: {} trial(s) move faster than the pad speed (see "
-                       "the overspeed_segments column)\n", summary.overspeed_trials);
-  }
+  fmt::print(stderr, "{}", metrics::summary_text(summary));
 }
 
 }  // namespace

@@ -1,4 +1,8 @@
 // feint - deception user-study logs to the statistics a paper reports.
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <new>
@@ -6,17 +10,8 @@
 #include <string_view>
 #include <vector>
 
-#include <fmt/format.h>
-#include <fmt/ranges.h>
-
-#include <algorithm>
-
 #include "commands.hpp"
 #include "feint/error.hpp"
-
-#ifndef FEINT_VERSION
-#define FEINT_VERSION "dev"
-#endif
 
 int main(int argc, char** argv) {
   CLI::App app{
@@ -52,16 +47,18 @@ int main(int argc, char** argv) {
   if (!args.empty() && args[0] == "help") {
     args.erase(args.begin());
     if (args.size() > 1) {
-      fmt::print(stderr, "feint: error: 'feint help' takes at most one command, e.g. 'feint help "
-                         "table'\n");
+      fmt::print(stderr,
+                 "feint: error: 'feint help' takes at most one command, e.g. 'feint help "
+                 "table'\n");
       return static_cast<int>(feint::ExitCode::usage);
     }
     args.push_back("--help");
   }
   if (!args.empty() && !args[0].empty() && args[0][0] != '-' &&
       std::find(names.begin(), names.end(), args[0]) == names.end()) {
-    fmt::print(stderr, "feint: error: unknown command '{}'; the commands are {} (feint --help "
-                       "describes them)\n",
+    fmt::print(stderr,
+               "feint: error: unknown command '{}'; the commands are {} (feint --help "
+               "describes them)\n",
                args[0], fmt::join(names, ", "));
     return static_cast<int>(feint::ExitCode::usage);
   }

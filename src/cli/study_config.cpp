@@ -1,11 +1,10 @@
-// The settings file of a study (see study_config.hpp).
-#include "study_config.hpp"
-
+// The settings file of a study (see options.hpp).
 #include <fmt/format.h>
 
 #include <vector>
 
 #include "feint/error.hpp"
+#include "options.hpp"
 
 namespace feint::cli {
 

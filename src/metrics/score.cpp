@@ -418,4 +418,21 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
   return summary;
 }
 
+std::string summary_text(const ScoreSummary& summary) {
+  std::string line = fmt::format("feint score: {} rows read from {} file(s), {} trials scored, {} "
+                                 "rejected",
+                                 summary.rows_read, summary.files, summary.trials_scored,
+                                 summary.trials_rejected);
+  if (!summary.rejects_path.empty()) line += fmt::format(" (list in {})", summary.rejects_path);
+  line += fmt::format(" -> {}", summary.output_path == "-" ? "stdout" : summary.output_path);
+  if (!summary.sidecar_path.empty()) line += fmt::format(" (settings in {})", summary.sidecar_path);
+  line += '\n';
+  if (summary.overspeed_trials > 0) {
+    line += fmt::format("feint score: warning: {} trial(s) move faster than the pad speed (see "
+                        "the overspeed_segments column)\n",
+                        summary.overspeed_trials);
+  }
+  return line;
+}
+
 }  // namespace feint::metrics

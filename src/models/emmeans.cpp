@@ -360,6 +360,41 @@ EmmAdjust parse_emm_adjust(const std::string& text) {
   throw UsageError("--adjust " + text + ": expected tukey, holm or none");
 }
 
+DdfMethod parse_ddf_method(const std::string& text) {
+  if (text == "satterthwaite") return DdfMethod::satterthwaite;
+  if (text == "kenward-roger") return DdfMethod::kenward_roger;
+  throw UsageError("--ddf " + text + ": expected satterthwaite or kenward-roger");
+}
+
+EmmContrastRequest parse_emm_contrasts(const std::vector<std::string>& contrasts,
+                                       const std::string& adjust) {
+  EmmContrastRequest r;
+  for (const auto& c : contrasts) {
+    using F = EmmFamily;
+    std::vector<F> add;
+    if (c == "pairwise") {
+      add = {F::pairwise_condition, F::pairwise_iteration};
+    } else if (c == "simple") {
+      add = {F::condition_at_iteration, F::iteration_in_condition};
+    } else if (c == "poly") {
+      add = {F::poly_iteration, F::poly_in_condition};
+    } else {
+      throw UsageError("--contrasts " + c + ": expected pairwise, simple or poly");
+    }
+    for (const F f : add)
+      if (std::find(r.families.begin(), r.families.end(), f) == r.families.end())
+        r.families.push_back(f);
+  }
+  if (!adjust.empty()) {
+    if (contrasts.empty()) throw UsageError("--adjust applies to --contrasts");
+    r.adjust = parse_emm_adjust(adjust);
+    if (*r.adjust == EmmAdjust::tukey &&
+        std::find(contrasts.begin(), contrasts.end(), "poly") != contrasts.end())
+      throw UsageError("--adjust tukey applies to pairwise and simple contrasts, not to poly");
+  }
+  return r;
+}
+
 std::vector<EmmRow> estimated_means(const MixedModelFit& fit, EmmTerm term, double conf_level) {
   return grid_means(model_grid(fit), term, conf_level);
 }

@@ -658,4 +658,16 @@ std::string render_model(const ModelAnalysis& a, OutputFormat format,
   return out;
 }
 
+void validate(const ModelOptions& o) {
+  if ((o.emmeans || !o.contrast_families.empty()) && (o.trend || o.exposure))
+    throw UsageError("--emmeans and --contrasts need iteration as a factor (drop --trend/--exposure)");
+  if (o.exposure && o.compare) throw UsageError("--compare does not apply to --exposure");
+  if (o.random_slope && !o.trend)
+    throw UsageError("--random-slope needs --trend (a random slope of the linear trend)");
+  if (o.exposure && (o.trend || o.random_slope))
+    throw UsageError(
+        "--exposure fits its own model (strategy * exposure); drop --trend/--random-slope");
+
+}
+
 }  // namespace feint::report

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "feint/error.hpp"
 #include "feint/io/csv.hpp"
 #include "feint/io/number.hpp"
 #include "feint/io/output.hpp"
@@ -233,6 +234,22 @@ std::string study_summary_text(const std::vector<sim::ParticipantRecord>& people
                      nl ? last / nl : std::nan(""));
   }
   return o;
+}
+
+std::string output_format(const std::string& format, const std::string& output) {
+  if (!format.empty()) {
+    const std::string f = io::to_lower(format);
+    if (f == "text" || f == "markdown" || f == "csv" || f == "json") return f;
+    throw UsageError(fmt::format("--format '{}': expected text, markdown, csv or json", format));
+  }
+  auto ends = [&](const char* ext) {
+    const std::string e = ext;
+    return output.size() > e.size() && io::to_lower(output.substr(output.size() - e.size())) == e;
+  };
+  if (ends(".csv")) return "csv";
+  if (ends(".json")) return "json";
+  if (ends(".md")) return "markdown";
+  return "text";
 }
 
 }  // namespace feint::report

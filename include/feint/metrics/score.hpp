@@ -115,4 +115,9 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
 ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSettings& settings,
                            const std::string& output_path);
 
+/// What `feint score` says on standard error after a run: "feint score: N rows read from F
+/// file(s), T trials scored, R rejected (list in ...) -> OUTPUT (settings in ...)", and a warning
+/// line when trials moved faster than the pad speed. Each line ends with a newline.
+std::string summary_text(const ScoreSummary& summary);
+
 }  // namespace feint::metrics

@@ -19,6 +19,7 @@
 // estimate -+ qtukey(conf, k, df) / sqrt 2 * SE, k the number of means of the family).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -91,5 +92,21 @@ std::string to_string(EmmAdjust adjust);
 
 /// "none", "holm", "tukey" (UsageError otherwise).
 EmmAdjust parse_emm_adjust(const std::string& text);
+
+/// "satterthwaite" or "kenward-roger" (`--ddf`; UsageError otherwise).
+DdfMethod parse_ddf_method(const std::string& text);
+
+/// The contrasts asked for (`--contrasts` of `feint anova` and `feint model`) and their adjustment.
+struct EmmContrastRequest {
+  std::vector<EmmFamily> families;  ///< in the order asked, each once
+  std::optional<EmmAdjust> adjust;  ///< empty: tukey for pairwise families, none for polynomials
+};
+
+/// `contrasts`: each "pairwise" (conditions, iterations), "simple" (condition at each iteration,
+/// iteration within each condition) or "poly" (iterations, within each condition); `adjust`: ""
+/// or as parse_emm_adjust. Throws UsageError for an unknown family, an adjustment without
+/// contrasts, or tukey with poly.
+EmmContrastRequest parse_emm_contrasts(const std::vector<std::string>& contrasts,
+                                       const std::string& adjust);
 
 }  // namespace feint::models

@@ -41,6 +41,11 @@ struct ModelOptions {
   std::optional<models::EmmAdjust> adjust;
 };
 
+/// Throws UsageError for options that do not go together: --emmeans or --contrasts with --trend or
+/// --exposure, --compare with --exposure, --random-slope without --trend, --exposure with --trend
+/// or --random-slope.
+void validate(const ModelOptions& o);
+
 using models::EmmTable;
 
 /// A contrast (or slope) row: what it compares and its test.

@@ -11,6 +11,11 @@
 
 namespace feint::report {
 
+/// The format of a simulation's output: `format` when given ("text", "markdown", "csv" or "json",
+/// any case; else UsageError), otherwise from the extension of `output` (.csv, .json, .md), else
+/// text.
+std::string output_format(const std::string& format, const std::string& output);
+
 /// `format`: "text", "markdown", "csv" or "json" (anything else: text). One row per simulated
 /// algorithm/lambda: entropy (mean, sd, se, min, max, pooled), repetition, conditional entropy,
 /// guess accuracy and the batch quantiles.

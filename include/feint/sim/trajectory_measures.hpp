@@ -30,4 +30,10 @@ struct TrajectoryMeasuresRow {
 std::vector<TrajectoryMeasuresRow> strategy_measures(const Geometry& g,
                                                      const models::DeceptivenessSettings& settings);
 
+/// A path file (`feint simulate trajectories --path`): a CSV whose header names t, x and y (x and
+/// y also as robot_x, robot_y; any order, any case, other columns ignored), one sample a row,
+/// blank lines skipped. Throws IoError when it cannot be opened, InvalidData naming file, row and
+/// column for a missing column or a cell that is not a number.
+std::vector<models::PathSample> read_path_file(const std::string& file);
+
 }  // namespace feint::sim

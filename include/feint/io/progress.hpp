@@ -1,11 +1,11 @@
-// src/cli/progress.hpp - a progress line on stderr for long runs, only when stderr is a terminal.
+// feint/io/progress.hpp - a progress line on stderr for long runs, only when stderr is a terminal.
 #pragma once
 
 #include <chrono>
 #include <cstdint>
 #include <string>
 
-namespace feint::cli {
+namespace feint::io {
 
 class ProgressLine {
  public:
@@ -29,4 +29,4 @@ class ProgressLine {
   std::chrono::steady_clock::time_point start_, last_;
 };
 
-}  // namespace feint::cli
+}  // namespace feint::io

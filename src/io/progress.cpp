@@ -1,4 +1,4 @@
-#include "progress.hpp"
+#include "feint/io/progress.hpp"
 
 #include <unistd.h>
 
@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-namespace feint::cli {
+namespace feint::io {
 
 ProgressLine::ProgressLine(std::string what)
     : what_(std::move(what)),
@@ -41,4 +41,4 @@ void ProgressLine::finish() {
   }
 }
 
-}  // namespace feint::cli
+}  // namespace feint::io

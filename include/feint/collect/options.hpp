@@ -1,0 +1,59 @@
+// feint/collect/options.hpp - `feint collect`'s options as given (command line or the [collect]
+// section of STUDY/feint.toml; docs/collect.md), turned into the study's Settings and the
+// server's ServerOptions, and the lines the command prints when the server starts.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "feint/collect/server.hpp"
+#include "feint/collect/study.hpp"
+
+namespace feint::collect {
+
+/// The options with their defaults (the paper's study on this computer).
+struct CollectOptions {
+  std::string host = "127.0.0.1";
+  int port = 8080;
+  std::vector<std::string> conditions{"adaptive", "random"};  // NAME or NAME:LAMBDA
+  double lambda = 0.5;
+  int iterations = 20;
+  int practice = 2;
+  double pad_speed = 0.8;
+  double robot_speed = 1.0;
+  double target_distance = 4.0;
+  double target_height = 4.0;
+  double sample_rate = 25.0;
+  std::uint64_t seed = 1;
+  std::vector<std::string> items;  // NAME=QUESTION; empty: the paper's four
+  std::string yes_no = "intentional=Did the robot's movement look intentional?";  // '' for none
+  std::string consent;
+  std::string consent_file;  // relative to the study folder
+  std::string completion_url;
+  std::string admin_token;
+  unsigned threads = 16;
+  std::vector<std::string> allowed_hosts;
+  std::vector<std::string> trusted_proxies;
+  std::size_t max_connections = 0;
+  int idle_timeout = 10;
+};
+
+/// The study's settings: conditions parsed, NAME=QUESTION items split, the consent file read
+/// (relative to `study`). Throws UsageError naming the option (--item, --yes-no,
+/// --completion-url), IoError when the consent file cannot be read.
+Settings study_settings(const CollectOptions& o, const std::filesystem::path& study);
+
+/// The server's options (signals stop it). Throws UsageError for a port outside [0, 65535].
+ServerOptions server_options(const CollectOptions& o);
+
+/// A warning for standard error when `host` is not a loopback address; empty otherwise.
+std::string network_warning(const std::string& host);
+
+/// What the command prints once the server listens: the study, the URLs of the participants'
+/// and the admin page, the connection cap, how to stop.
+std::string start_message(const std::filesystem::path& study, const Settings& s,
+                          const std::string& host, const Server& server);
+
+}  // namespace feint::collect

@@ -1,0 +1,68 @@
+#include "feint/sim/options.hpp"
+
+#include <fmt/format.h>
+
+#include "feint/error.hpp"
+#include "feint/io/number.hpp"
+#include "feint/sim/sweep.hpp"
+
+namespace feint::sim {
+
+std::vector<SimulationSettings> selection_settings(const SelectionOptions& o) {
+  SimulationSettings base;
+  base.run.algorithm = parse_algorithm(o.algorithm);
+  base.run.lambda = o.lambda;
+  base.run.iterations = o.iterations;
+  base.run.targets = parse_target_order(o.targets);
+  base.runs = o.runs;
+  base.seed = o.seed;
+  base.batch = o.batch;
+  base.threads = o.threads;
+  return selection_grid(base, o.compare,
+                        o.sweep.empty() ? std::vector<double>{} : parse_lambda_sweep(o.sweep));
+}
+
+StudySettings study_settings(const StudyOptions& o) {
+  StudySettings s;
+  s.participants = o.participants;
+  s.iterations = o.iterations;
+  s.lambda = o.lambda;
+  s.seed = o.seed;
+  s.geometry.sample_rate = o.sample_rate;
+  if (parse_participant_model(o.participant_model) == ParticipantModel::heuristic) {
+    s.observer = ObserverParams{};  // feint 0.1's participant, with its own defaults
+  }
+  s.observer.pad_speed = o.pad_speed;
+  for (const auto& kv : o.observer) set_parameter(s.observer, kv);
+  validate(s.geometry);
+  validate(s.observer);
+  return s;
+}
+
+TrajectoryMeasures trajectory_measures(const TrajectoriesOptions& o) {
+  TrajectoryMeasures m;
+  models::DeceptivenessSettings& s = m.settings;
+  s.observer = {o.beta, o.tau, o.prior};
+  models::validate(s.observer);
+  s.pad_speed = o.pad_speed;
+  const Geometry g;
+  if (o.path.empty()) {
+    m.rows = strategy_measures(g, s);
+    return m;
+  }
+  const std::string t = io::to_lower(o.target);
+  if (t != "left" && t != "right") {
+    throw UsageError(fmt::format("--target '{}': expected left or right", o.target));
+  }
+  s.goals = goals_of(g);
+  const auto path = read_path_file(o.path);
+  try {
+    const auto goal = t == "right" ? models::GoalSide::right : models::GoalSide::left;
+    m.rows.push_back({"custom", "main", t, models::deceptiveness(path, goal, s)});
+  } catch (const InvalidData& e) {
+    throw InvalidData(fmt::format("{}: {}", o.path, e.what()));
+  }
+  return m;
+}
+
+}  // namespace feint::sim
