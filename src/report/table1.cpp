@@ -9,6 +9,8 @@
 
 #include "feint/error.hpp"
 #include "feint/io/number.hpp"
+#include "feint/stats/bayes_factor.hpp"
+#include "feint/stats/effect_size.hpp"
 #include "feint/stats/ttest.hpp"
 
 namespace feint::report {
@@ -280,6 +282,8 @@ Table1 build_table1(const io::ScoresTable& scores, const Table1Options& options)
           t.rows.push_back(std::move(row));
           return t.rows.size() - 1;
         };
+        stats::add_effect_size_intervals(diff);
+        stats::add_bayes_factor(diff);
         blk.cells[ii][m].difference_row = add_row(std::move(diff));
         family.push_back(blk.cells[ii][m].difference_row);
         if (o.equivalence) {
