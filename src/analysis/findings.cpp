@@ -178,6 +178,54 @@ Finding family_finding(std::string id, std::string hypothesis, std::string quest
   return f;
 }
 
+std::vector<Finding> exposure_findings(const models::ExposureByCondition& e, const WordingRules& rules,
+                                       std::string source) {
+  std::vector<Finding> out;
+  const std::string question =
+      "Does a strategy wear off with exposure differently under the two conditions?";
+  if (e.differences.empty()) {
+    out.push_back(one_condition_only("H1-exposure", "H1", question,
+                                     e.slopes.empty() ? std::string("none") : e.slopes.front().condition,
+                                     source));
+    return out;
+  }
+  std::vector<std::optional<double>> p;
+  for (const auto& d : e.differences) p.push_back(d.test.computed ? d.test.p_value : std::nullopt);
+  const auto adj = stats::p_adjust(p, stats::PAdjustMethod::holm);
+  const std::size_t k = e.differences.size();
+  for (std::size_t i = 0; i < k; ++i) {
+    stats::TestResult d = e.differences[i].test;
+    d.p_adjusted = adj[i];
+    const auto& a = e.slopes[i];
+    const auto& b = e.slopes[k + i];
+    Finding f;
+    f.id = "H1-exposure-" + e.differences[i].strategy;
+    f.hypothesis = "H1";
+    f.question = question;
+    f.source = source;
+    f.strength = classify(d, nullptr, rules, &f.grade);
+    f.evidence = evidence_text(f.strength, f.grade);
+    auto slope_text = [](const models::ExposureSlope& s) {
+      if (!s.test.computed || !s.test.estimate) return fmt::format("{}: not computable", s.condition);
+      return fmt::format("{}: {:.3f} per exposure, 95% CI [{:.3f}, {:.3f}]", s.condition, *s.test.estimate,
+                         *s.test.conf_low, *s.test.conf_high);
+    };
+    if (f.strength == Strength::not_computable) {
+      f.sentence = fmt::format("Exposure slope of strategy '{}' by condition: not computable ({}).",
+                               e.differences[i].strategy, d.note);
+    } else {
+      f.statistics = fmt::format("t({:.2f}) = {:.2f}, Holm-adjusted p = {:.3f}", *d.df, *d.statistic, *d.p_adjusted);
+      f.sentence = fmt::format(
+          "Exposure slope of strategy '{}' ({}; {}): {} between the conditions (difference {:.3f}, "
+          "95% CI [{:.3f}, {:.3f}], {}, Holm-corrected over {} strategies).",
+          e.differences[i].strategy, slope_text(a), slope_text(b), f.evidence, *d.estimate, *d.conf_low,
+          *d.conf_high, f.statistics, k);
+    }
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
 ReferenceCheck check_reference(const std::string& metric, double reference,
                                std::span<const std::vector<double>> values) {
   ReferenceCheck c;

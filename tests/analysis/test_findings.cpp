@@ -199,3 +199,39 @@ TEST(FindingsCalibration, UnderTheNullBf01GrowsWithN) {
   }
   EXPECT_GT(prev_median, 10.0);  // strong evidence for no difference at n = 640 per group
 }
+
+TEST(Findings, ExposureFindingsPerStrategyAndOneConditionOnly) {
+  models::ExposureByCondition e;
+  auto slope = [](std::string strategy, std::string cond, double est) {
+    models::ExposureSlope s;
+    s.strategy = std::move(strategy);
+    s.condition = std::move(cond);
+    s.test.estimate = est;
+    s.test.conf_low = est - 0.02;
+    s.test.conf_high = est + 0.02;
+    s.test.p_value = 0.5;
+    return s;
+  };
+  e.slopes = {slope("ambiguous", "adaptive", 0.01), slope("switching", "adaptive", 0.0),
+              slope("ambiguous", "random", -0.05), slope("switching", "random", 0.0)};
+  models::ExposureSlope d1 = slope("ambiguous", "adaptive-random", 0.06), d2 = slope("switching", "adaptive-random", 0.0);
+  d1.test.p_value = 0.001;
+  d1.test.df = 100;
+  d1.test.statistic = 3.4;
+  d2.test.df = 100;
+  d2.test.statistic = 0;
+  d2.test.p_value = 1.0;
+  e.differences = {d1, d2};
+  const auto fs = exposure_findings(e);
+  ASSERT_EQ(fs.size(), 2u);
+  EXPECT_EQ(fs[0].strength, Strength::evidence_for_difference);  // Holm: 0.002 < .05
+  EXPECT_NE(fs[0].sentence.find("Exposure slope of strategy 'ambiguous' (adaptive: 0.010 per exposure"), std::string::npos) << fs[0].sentence;
+  EXPECT_NE(fs[0].sentence.find("Holm-adjusted p = 0.002"), std::string::npos) << fs[0].sentence;
+  // no Bayes factor and no TOST: a large p is "no evidence either way", never "no difference"
+  EXPECT_EQ(fs[1].strength, Strength::no_evidence_either_way);
+  e.differences.clear();
+  const auto one = exposure_findings(e);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].strength, Strength::not_computable);
+  EXPECT_NE(one[0].sentence.find("Only one condition"), std::string::npos);
+}

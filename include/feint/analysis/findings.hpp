@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "feint/models/exposure.hpp"
 #include "feint/stats/htest.hpp"
 
 namespace feint::analysis {
@@ -75,6 +76,14 @@ Finding difference_finding(std::string id, std::string hypothesis, std::string q
 Finding family_finding(std::string id, std::string hypothesis, std::string question,
                        std::string what, std::vector<stats::TestResult> tests, std::string source,
                        const WordingRules& rules = {});
+
+/// H1, condition x exposure per strategy: one finding per strategy on the difference of the two
+/// conditions' exposure slopes (Holm-corrected over the strategies; a model contrast has no Bayes
+/// factor, so the rule for tests without one applies), both slopes with their CIs in the sentence.
+/// With one condition only: one "not computable" finding that says so.
+std::vector<Finding> exposure_findings(const models::ExposureByCondition& exposure,
+                                       const WordingRules& rules = {},
+                                       std::string source = "model-exposure");
 
 /// Reference plausibility: where the reference lies relative to every value of the metric.
 struct ReferenceCheck {
