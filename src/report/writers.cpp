@@ -391,6 +391,8 @@ std::string latex_escape(std::string_view text) {
     if (starts("\u03c7")) { out += "\\ensuremath{\\chi}"; i += 1; continue; }
     if (starts("\u03b7")) { out += "\\ensuremath{\\eta}"; i += 1; continue; }
     if (starts("\u00b2")) { out += "\\textsuperscript{2}"; i += 1; continue; }
+    if (starts("\u2081\u2080")) { out += "\\textsubscript{10}"; i += 5; continue; }  // BF10
+    if (starts("\u2080\u2081")) { out += "\\textsubscript{01}"; i += 5; continue; }  // BF01
     if (starts("\u2013")) { out += "--"; i += 2; continue; }
     if (starts("\u2014")) { out += "---"; i += 2; continue; }
     if (starts("\u2265")) { out += "\\ensuremath{\\geq}"; i += 2; continue; }

@@ -297,6 +297,7 @@ TEST(TidyCell, LikertColumnsAndUnknownColumn) {
 TEST(LatexEscape, SpecialCharactersAndApprox) {
   EXPECT_EQ(latex_escape("a_b & 50% #1 {x} $"), "a\\_b \\& 50\\% \\#1 \\{x\\} \\$");
   EXPECT_EQ(latex_escape("M\u2248R"), "M\\ensuremath{\\approx}R");
+  EXPECT_EQ(latex_escape("BF\u2081\u2080 = 3.20, BF\u2080\u2081 = 4.00"), "BF\\textsubscript{10} = 3.20, BF\\textsubscript{01} = 4.00");
   EXPECT_EQ(latex_escape("a<b"), "a\\textless{}b");
   EXPECT_EQ(latex_escape("method = \"holm\", \"p adj.\""), "method = ``holm'', ``p adj.''");
   EXPECT_EQ(latex_escape("\u03b7\u00b2"), "\\ensuremath{\\eta}\\textsuperscript{2}");
