@@ -331,7 +331,8 @@ std::string findings_markdown(std::span<const Finding> findings) {
     o += fmt::format("- **{}** ({}). {}", capitalised(f.evidence), f.hypothesis, f.sentence);
     if (!f.source.empty()) o += fmt::format(" [{}](#{})", f.source, f.source);
     o += "\n";
-    for (const auto& w : f.warnings) o += "  - Warning: " + w + "\n";
+    for (const auto& w : f.warnings)
+      if (w != f.sentence) o += "  - Warning: " + w + "\n";
   }
   return o;
 }
@@ -343,7 +344,8 @@ std::string findings_html(std::span<const Finding> findings) {
                      strength_key(f.strength), html_escape(f.id), html_escape(capitalised(f.evidence)),
                      html_escape(f.hypothesis), html_escape(f.sentence));
     if (!f.source.empty()) o += fmt::format(" <a href=\"#{}\">{}</a>", html_escape(f.source), html_escape(f.source));
-    for (const auto& w : f.warnings) o += "<br><span class=\"warning\">" + html_escape(w) + "</span>";
+    for (const auto& w : f.warnings)
+      if (w != f.sentence) o += "<br><span class=\"warning\">" + html_escape(w) + "</span>";
     o += "</li>\n";
   }
   return o + "</ul>\n";
@@ -370,7 +372,8 @@ std::string findings_text(std::span<const Finding> findings) {
   std::string o = "Findings\n";
   for (const auto& f : findings) {
     o += fmt::format("* [{}] {}: {}\n", f.hypothesis, capitalised(f.evidence), f.sentence);
-    for (const auto& w : f.warnings) o += "  warning: " + w + "\n";
+    for (const auto& w : f.warnings)
+      if (w != f.sentence) o += "  warning: " + w + "\n";
   }
   return o;
 }

@@ -66,77 +66,67 @@ void add_report_options(CLI::App& cmd, ReportOptions& options, ReportOptionSet s
       ->capture_default_str();
 }
 
-ResolvedReportOptions resolve_report_options(const ReportOptions& o) {
-  ResolvedReportOptions r;
-  r.format = report::parse_output_format(o.format);
-  r.output = o.output.empty() ? std::string("-") : o.output;
-  r.apa = o.apa;
-  if (!(std::isfinite(o.alpha) && o.alpha > 0.0 && o.alpha < 1.0)) {
-    throw UsageError(fmt::format("--alpha {}: expected a number in (0, 1), e.g. 0.05", o.alpha));
+void add_questionnaire_options(CLI::App& cmd, analysis::LikertOptions& o, bool in_analyze,
+                               const std::string& group) {
+  // feint analyze names the scale and the reference after the questionnaire (the tables have a
+  // reference of their own); feint likert has only the questionnaire.
+  const std::string p = in_analyze ? "--likert-" : "--";
+  const char* q = in_analyze ? "Questionnaire: " : "";
+  auto take_all = [](CLI::Option* opt) {
+    return opt->expected(1)->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->allow_extra_args(false);
+  };
+  std::vector<CLI::Option*> added = {
+      cmd.add_option("--layout", o.layout,
+                     fmt::format("{}long, wide or auto (long when the header has the item and "
+                                 "response columns)", q))->capture_default_str(),
+      cmd.add_option(p + "scale", o.scale, "Scale bounds MIN-MAX (whole numbers)")
+          ->capture_default_str(),
+      cmd.add_option("--labels", o.labels,
+                     "Map text answers to scale points: \"Strongly disagree=1,Disagree=2,...\" "
+                     "(default: built-in agree/disagree map for 5- and 7-point scales)"),
+      take_all(cmd.add_option("--items", o.items,
+                              "Items to analyse, in order (wide: columns; long: item names); "
+                              "NAME=COLUMN renames (trust=Q5_1); comma-separated, repeatable")),
+      cmd.add_option("--id-column", o.id_column, fmt::format("{}Respondent id column", q))
+          ->capture_default_str(),
+      cmd.add_option("--condition-column", o.condition_column,
+                     fmt::format("{}Condition column (optional in the file)", q))
+          ->capture_default_str(),
+      cmd.add_option("--item-column", o.item_column, fmt::format("{}Long layout: item column", q))
+          ->capture_default_str(),
+      cmd.add_option("--response-column", o.response_column,
+                     fmt::format("{}Long layout: response column", q))
+          ->capture_default_str(),
+      take_all(cmd.add_option("--reverse", o.reverse,
+                              "Reverse-coded items (comma-separated, repeatable), recoded x -> "
+                              "min + max - x before anything else")),
+      take_all(cmd.add_option("--composite", o.composites,
+                              "Multi-item scale NAME=ITEM,ITEM,... (repeatable): mean of its "
+                              "items, Cronbach's alpha")),
+      cmd.add_option(p + "reference", o.reference,
+                     "Reference value of the one-sample tests (default: the scale midpoint; "
+                     "the paper used 3.5)"),
+      cmd.add_option("--alpha-missing", o.alpha_missing,
+                     "Cronbach's alpha with missing answers: pairwise (psych::alpha's default) "
+                     "or complete (complete cases)")
+          ->capture_default_str(),
+      cmd.add_flag("--keep-unfinished", o.keep_unfinished,
+                   "Survey exports: keep responses with Finished = False or Progress < 100 "
+                   "(excluded by default, and named in the note)"),
+      cmd.add_flag("--keep-previews", o.keep_previews,
+                   "Survey exports: keep Status = Survey Preview, Survey Test, Spam (excluded by "
+                   "default, and named in the note)"),
+  };
+  if (!group.empty()) {
+    for (auto* opt : added) opt->group(group);
   }
-  r.alpha = o.alpha;
-  if (!(std::isfinite(o.conf_level) && o.conf_level > 0.0 && o.conf_level < 1.0)) {
-    throw UsageError(
-        fmt::format("--conf-level {}: expected a number in (0, 1), e.g. 0.95", o.conf_level));
-  }
-  r.test.conf_level = o.conf_level;
-  try {
-    r.test.alternative = stats::parse_alternative(o.alternative);
-  } catch (const UsageError&) {
-    throw UsageError(
-        fmt::format("--alternative '{}': expected two.sided, greater or less", o.alternative));
-  }
-  r.p_adjust = parse_p_adjust_option(o.p_adjust);
-  if (!o.label.empty()) report::validate_latex_label(o.label);
-  r.presentation.label = o.label;
-  r.presentation.caption = o.caption;
-  r.presentation.wide = o.latex_wide;
-  return r;
-}
-
-stats::PAdjustMethod parse_p_adjust_option(std::string_view text) {
-  // R's p.adjust.methods, in any case (R itself is case-sensitive, but nobody means anything else
-  // by "Holm" or "bh"); "fdr" is R's alias of BH.
-  const std::string name = io::to_lower(io::trim(text));
-  if (name == "none") return stats::PAdjustMethod::none;
-  if (name == "bonferroni") return stats::PAdjustMethod::bonferroni;
-  if (name == "holm") return stats::PAdjustMethod::holm;
-  if (name == "hochberg") return stats::PAdjustMethod::hochberg;
-  if (name == "hommel") return stats::PAdjustMethod::hommel;
-  if (name == "bh" || name == "fdr") return stats::PAdjustMethod::BH;
-  if (name == "by") return stats::PAdjustMethod::BY;
-  throw UsageError(fmt::format("--p-adjust '{}': expected none, bonferroni, holm, hochberg, "
-                               "hommel, BH (alias fdr) or BY, in any case",
-                               text));
 }
 
 void write_report(const std::string& path, std::string_view content) {
   io::AtomicOutput out(path);
   out.stream().write(content.data(), static_cast<std::streamsize>(content.size()));
   out.commit();
-}
-
-std::pair<std::string, std::string> parse_compare(const std::string& text) {
-  const auto parts = io::split_csv_line(text);
-  if (parts.size() != 2 || io::trim(parts[0]).empty() || io::trim(parts[1]).empty()) {
-    throw UsageError(
-        fmt::format("--compare '{}': expected two conditions A,B (e.g. adaptive,random)", text));
-  }
-  return {std::string(io::trim(parts[0])), std::string(io::trim(parts[1]))};
-}
-
-std::vector<report::MetricSpec> parse_metric_specs(const std::vector<std::string>& texts) {
-  if (texts.empty()) return report::default_metrics();
-  std::vector<report::MetricSpec> specs;
-  std::set<std::string> seen;
-  for (const auto& m : texts) {
-    auto spec = report::parse_metric_spec(m);
-    if (!seen.insert(io::to_lower(spec.column)).second) {
-      throw UsageError(fmt::format("--metric '{}': metric '{}' given twice", m, spec.column));
-    }
-    specs.push_back(std::move(spec));
-  }
-  return specs;
 }
 
 }  // namespace feint::cli

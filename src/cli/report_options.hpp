@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "feint/analysis/options.hpp"
 #include "feint/io/scores.hpp"
 #include "feint/report/table1.hpp"
 #include "feint/report/writers.hpp"
@@ -25,19 +26,13 @@
 
 namespace feint::cli {
 
-/// The raw option values as CLI11 parses them.
-struct ReportOptions {
-  std::string format = "text";
-  std::string output = "-";
-  bool apa = false;
-  double alpha = 0.05;
-  std::string alternative = "two.sided";
-  double conf_level = 0.95;
-  std::string p_adjust = "none";
-  std::string label;
-  std::string caption;
-  bool latex_wide = false;
-};
+/// The option values and their checks live in the library (feint/analysis/options.hpp).
+using analysis::parse_compare;
+using analysis::parse_metric_specs;
+using analysis::parse_p_adjust_option;
+using analysis::ReportOptions;
+using analysis::resolve_report_options;
+using analysis::ResolvedReportOptions;
 
 /// Which of the shared options a command offers (describe has no tests: only format and output).
 struct ReportOptionSet {
@@ -59,31 +54,12 @@ void add_scores_column_options(CLI::App& cmd, io::ScoresOptions& columns,
 /// Registers `--label`, `--caption`, `--latex-wide` (in CLI11 group `group` when not empty).
 void add_presentation_options(CLI::App& cmd, ReportOptions& options, const std::string& group = "");
 
-/// The validated options.
-struct ResolvedReportOptions {
-  report::OutputFormat format = report::OutputFormat::text;
-  std::string output = "-";
-  bool apa = false;
-  double alpha = 0.05;
-  stats::TestOptions test;
-  stats::PAdjustMethod p_adjust = stats::PAdjustMethod::none;
-  report::TablePresentation presentation;
-};
-
-/// Validates: format name, alpha and conf-level in (0, 1), alternative, p-adjust method. Throws
-/// UsageError (exit 64) naming the option and the accepted values.
-ResolvedReportOptions resolve_report_options(const ReportOptions& options);
-
-/// Parses a `--p-adjust` value: R's method names in any case, and R's alias "fdr" for BH.
-/// Throws UsageError naming the accepted values.
-stats::PAdjustMethod parse_p_adjust_option(std::string_view text);
-
-/// Parses `--compare A,B` (the two conditions, trimmed). Throws UsageError otherwise.
-std::pair<std::string, std::string> parse_compare(const std::string& text);
-
-/// Parses repeated `--metric NAME[=REF]`; empty input gives the paper's defaults. Throws
-/// UsageError for a malformed spec or a metric named twice.
-std::vector<report::MetricSpec> parse_metric_specs(const std::vector<std::string>& texts);
+/// Registers the questionnaire options (analysis::LikertOptions): --layout, --scale, --labels,
+/// --items, the column names, --reverse, --composite, --reference, --alpha-missing,
+/// --keep-unfinished, --keep-previews; `in_analyze` names the scale and the reference
+/// --likert-scale and --likert-reference (feint analyze's tables have a reference of their own).
+void add_questionnaire_options(CLI::App& cmd, analysis::LikertOptions& options, bool in_analyze,
+                               const std::string& group = "");
 
 /// Writes `content` to `path` atomically (temporary file + rename; `-` = standard output).
 void write_report(const std::string& path, std::string_view content);

@@ -9,16 +9,6 @@ namespace feint::cli {
 
 namespace {
 
-char parse_delimiter(const std::string& text) {
-  const std::string d = io::to_lower(text);
-  if (d.empty() || d == "auto") return 0;
-  if (d == "," || d == "comma") return ',';
-  if (d == ";" || d == "semicolon") return ';';
-  if (d == "\t" || d == "\\t" || d == "tab") return '\t';
-  if (d == "|" || d == "pipe") return '|';
-  throw UsageError(fmt::format("--delimiter '{}': expected , ; tab | or auto", text));
-}
-
 }  // namespace
 
 void add_score_options(CLI::App& cmd, ScoreOptions& o, const std::string& group) {
@@ -68,38 +58,6 @@ void add_score_options(CLI::App& cmd, ScoreOptions& o, const std::string& group)
   if (!group.empty()) {
     for (auto* opt : added) opt->group(group);
   }
-}
-
-metrics::ScoreSettings score_settings(const ScoreOptions& o) {
-  metrics::ScoreSettings s;
-  if (o.trim) s.metrics.trim_start = s.metrics.trim_end = *o.trim;
-  if (o.trim_start) s.metrics.trim_start = *o.trim_start;
-  if (o.trim_end) s.metrics.trim_end = *o.trim_end;
-  s.metrics.deadband = o.deadband;
-  const auto norm = metrics::parse_confusion_norm(o.norm);
-  if (!norm) throw UsageError(fmt::format("--confusion-norm '{}': expected speed or raw", o.norm));
-  s.metrics.norm = *norm;
-  s.metrics.pad_speed = o.pad_speed;
-  for (const auto& m : o.maps) {
-    const auto eq = m.find('=');
-    if (eq == std::string::npos || eq == 0 || eq + 1 == m.size()) {
-      throw UsageError(fmt::format("--map '{}': expected NAME=COLUMN, e.g. --map pad=position", m));
-    }
-    const std::string name = io::to_lower(io::trim(m.substr(0, eq)));
-    if (s.column_map.count(name) != 0) {
-      throw UsageError(fmt::format("--map: '{}' is mapped twice", name));
-    }
-    s.column_map[name] = std::string(io::trim(m.substr(eq + 1)));
-  }
-  s.delimiter = parse_delimiter(o.delimiter);
-  if (o.on_error != "strict" && o.on_error != "skip") {
-    throw UsageError(fmt::format("--on-error '{}': expected strict or skip", o.on_error));
-  }
-  s.on_error = o.on_error == "skip" ? metrics::OnError::skip : metrics::OnError::strict;
-  const auto unit = metrics::parse_time_unit(o.time_unit);
-  if (!unit) throw UsageError(fmt::format("--time-unit '{}': expected s or ms", o.time_unit));
-  s.time_unit = *unit;
-  return s;
 }
 
 }  // namespace feint::cli

@@ -6,28 +6,15 @@
 #include <string>
 #include <vector>
 
-#include "feint/metrics/score.hpp"
+#include "feint/analysis/options.hpp"
 
 namespace feint::cli {
 
-/// The raw values of the scoring options as CLI11 parses them.
-struct ScoreOptions {
-  std::optional<double> trim, trim_start, trim_end;
-  double deadband = 1e-9;
-  std::string norm = "speed";
-  std::optional<double> pad_speed;
-  std::vector<std::string> maps;
-  std::string delimiter;
-  std::string on_error = "strict";
-  std::string time_unit = "s";
-};
+/// The option values and their checks live in the library (feint/analysis/options.hpp).
+using analysis::score_settings;
+using analysis::ScoreOptions;
 
 /// Registers --trim, --trim-start, --trim-end, --deadband, --confusion-norm, --pad-speed, --map,
 /// --delimiter, --on-error and --time-unit on `cmd` (in help group `group`, if not empty), bound to `options`.
 void add_score_options(CLI::App& cmd, ScoreOptions& options, const std::string& group = "");
-
-/// The settings they stand for (trims, dead band, normalisation, pad speed, column map,
-/// delimiter, error mode). Throws UsageError naming the option for a malformed value.
-metrics::ScoreSettings score_settings(const ScoreOptions& options);
-
 }  // namespace feint::cli

@@ -141,8 +141,9 @@ body { margin: 0; background: #fff; color: #1a1a1a;
 main { max-width: 1100px; margin: 0 auto; padding: 24px 32px 48px; }
 header h1 { font-size: 26px; margin: 8px 0 2px; }
 header p.subtitle { margin: 0 0 12px; color: #555; }
-nav { border-top: 1px solid #ddd; border-bottom: 1px solid #ddd; padding: 6px 0; margin-bottom: 8px; font-size: 14px; }
-nav a { margin-right: 14px; color: #0b5394; text-decoration: none; white-space: nowrap; }
+nav { border-top: 1px solid #ddd; border-bottom: 1px solid #ddd; padding: 6px 0; margin-bottom: 8px; font-size: 14px;
+  display: flex; flex-wrap: wrap; gap: 2px 14px; }
+nav a { color: #0b5394; text-decoration: none; white-space: nowrap; }
 nav a:hover { text-decoration: underline; }
 h2 { font-size: 20px; margin: 32px 0 8px; padding-bottom: 3px; border-bottom: 2px solid #0072b2; }
 h3 { font-size: 16px; margin: 20px 0 6px; }
@@ -166,6 +167,17 @@ tbody tr:last-child td { border-bottom: 2px solid #333; }
 td.num, th.num { text-align: right; }
 tr.section th { background: #f2f6fa; text-align: left; font-weight: 600; }
 footer { margin-top: 40px; border-top: 1px solid #ddd; padding-top: 8px; color: #666; font-size: 13px; }
+p.download { margin: 2px 0 12px; font-size: 13px; }
+p.download a { color: #0b5394; }
+dd, figcaption, pre { overflow-wrap: anywhere; }
+/* A phone (390 px): one column of facts, narrower margins; wide tables scroll in their own box. */
+@media (max-width: 640px) {
+  main { padding: 12px 12px 32px; }
+  header h1 { font-size: 21px; }
+  h2 { font-size: 18px; }
+  dl.facts { grid-template-columns: 1fr; gap: 0; }
+  dl.facts dd { margin-bottom: 6px; }
+}
 @media print {
   @page { size: A4; margin: 14mm 12mm; }
   body { font-size: 10pt; }
@@ -178,6 +190,12 @@ footer { margin-top: 40px; border-top: 1px solid #ddd; padding-top: 8px; color: 
   th, td { padding: 1px 4px; }
   pre { white-space: pre-wrap; font-size: 8pt; }
   a { color: inherit; text-decoration: none; }
+  /* Paper: no download links or file lists; figures and tables keep their captions. */
+  p.download, figcaption .files { display: none; }
+  section { break-before: auto; }
+  h3 { break-after: avoid; page-break-after: avoid; }
+  div.table, table { break-inside: auto; }
+  tr { break-inside: avoid; page-break-inside: avoid; }
 }
 )css";
 

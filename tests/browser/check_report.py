@@ -6,9 +6,14 @@ headless Chromium (driven by chromedriver over WebDriver, on 127.0.0.1 only) wit
 disabled, and checks that the page
   - makes no request other than for the file itself (performance log: Network.requestWillBeSent),
   - logs no console error or warning (browser log),
-  - shows every figure as inline SVG with a size, and has no horizontal scroll at 1280 px,
+  - shows every figure as inline SVG with a size and alt text (its <title>; <img> alt),
+  - at 1280 px and at a phone's 390 px has no horizontal overflow: no element reaches past the
+    right edge unless it lies inside a box of its own that scrolls (wide tables do),
+  - names no absolute path (text, links), so the folder can be moved or sent,
+  - prints a settings block (feint.toml) that `feint analyze --config` accepts,
   - prints on A4 (WebDriver print).
-Optionally saves a screenshot at 1280 px width (--screenshot) and the A4 print (--print-pdf).
+Optionally saves screenshots at 1280 and 390 px (--screenshot-dir: report-1280.png,
+report-390.png) and the A4 print (--print-pdf).
 
 Python 3 standard library only. Exits 77 (ctest SKIP_RETURN_CODE) with a message when chromium,
 chromedriver or the feint binary is missing.
@@ -17,6 +22,7 @@ import argparse
 import base64
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -26,6 +32,77 @@ import time
 from webdriver import WebDriver, find, free_port
 
 SKIP = 77
+
+
+# Elements whose right edge passes the window's, unless an ancestor that scrolls horizontally
+# (overflow-x auto/scroll) and itself fits the window contains them (a wide table in its box).
+OVERFLOW_JS = """
+const W = document.documentElement.clientWidth;
+const out = [];
+for (const el of document.body.querySelectorAll('*')) {
+  if (el.closest('svg') && el.tagName.toLowerCase() !== 'svg') continue;
+  const r = el.getBoundingClientRect();
+  if (r.width === 0 || r.right <= W + 0.5) continue;
+  let boxed = false;
+  for (let a = el.parentElement; a; a = a.parentElement) {
+    const ox = getComputedStyle(a).overflowX;
+    if ((ox === 'auto' || ox === 'scroll') && a.getBoundingClientRect().right <= W + 0.5) {
+      boxed = true;
+      break;
+    }
+  }
+  if (!boxed) {
+    out.push(el.tagName.toLowerCase() + (el.id ? '#' + el.id : '') +
+             (el.className && typeof el.className === 'string' ? '.' + el.className : '') +
+             ' (right edge ' + Math.round(r.right) + ' px, window ' + W + ' px)');
+  }
+  if (out.length >= 10) break;
+}
+return out;
+"""
+
+# Figures (inline SVG) need a non-empty <title> (their accessible name); images need alt.
+ALT_JS = """
+let missing = 0;
+for (const s of document.querySelectorAll('figure svg')) {
+  const t = s.querySelector('title');
+  if (s.getAttribute('role') !== 'img' || !t || !t.textContent.trim()) missing++;
+}
+for (const i of document.querySelectorAll('img')) {
+  if (!(i.getAttribute('alt') || '').trim()) missing++;
+}
+return missing;
+"""
+
+ABSOLUTE = re.compile(r'(?:href|src)="(?:/|file:)|(?<![\w.~-])/(?:home|tmp|work|usr|root|var|mnt|srv|opt|Users)/')
+
+
+def absolute_paths(html, roots):
+    """Absolute paths in the page: the run's own folders, links to / or file:, /home/... text."""
+    found = [f"names the absolute path {r}" for r in roots
+             if re.search(r"(?<![\w./-])" + re.escape(r), html)]
+    text = re.sub(r"<svg.*?</svg>", "", html, flags=re.S)
+    for m in ABSOLUTE.finditer(text):
+        found.append(f"names an absolute path: ...{text[max(0, m.start() - 40):m.end() + 40]}...")
+    return found[:10]
+
+
+def settings_refused(feint, study, html, work):
+    """The settings block (pre.settings) must be a feint.toml that feint analyze accepts."""
+    m = re.search(r'<pre class="settings">(.*?)</pre>', html, re.S)
+    if not m:
+        return ["no settings block (pre.settings) in the report"]
+    import html as htmllib
+    toml = os.path.join(work, "printed-settings.toml")
+    with open(toml, "w", encoding="utf-8") as f:
+        f.write(htmllib.unescape(m.group(1)))
+    out2 = os.path.join(work, "out-from-printed-settings")
+    shutil.rmtree(out2, ignore_errors=True)
+    r = subprocess.run([feint, "analyze", study, "--config", toml, "-o", out2, "--no-figures",
+                        "--no-report"], capture_output=True, text=True)
+    if r.returncode != 0:
+        return [f"feint refuses the report's settings block ({r.returncode}): {r.stderr.strip()}"]
+    return []
 
 
 def main():
@@ -38,6 +115,8 @@ def main():
     ap.add_argument("--scroll", type=int, default=0,
                     help="screenshot from this page offset (px; needs --height)")
     ap.add_argument("--print-pdf", default=None, help="save the A4 print here")
+    ap.add_argument("--screenshot-dir", default=None,
+                    help="save report-1280.png and report-390.png (top of the page) here")
     args = ap.parse_args()
 
     chromium = find(["chromium", "chromium-browser", "google-chrome"])
@@ -51,6 +130,8 @@ def main():
         return SKIP
 
     work = args.work or tempfile.mkdtemp(prefix="feint-browser-")
+    if args.screenshot_dir:
+        os.makedirs(args.screenshot_dir, exist_ok=True)
     out = os.path.join(work, "out")
     shutil.rmtree(out, ignore_errors=True)
     os.makedirs(work, exist_ok=True)
@@ -64,6 +145,10 @@ def main():
     with open(report, encoding="utf-8") as f:
         html = f.read()
     expected_figures = html.count("<figure")
+    failures = []
+    failures += absolute_paths(html, [os.path.abspath(args.study), os.path.abspath(out),
+                                      os.path.abspath(work)])
+    failures += settings_refused(args.feint, args.study, html, work)
 
     port = free_port()
     profile = tempfile.mkdtemp(prefix="feint-chromium-")
@@ -71,7 +156,6 @@ def main():
     proc = subprocess.Popen([driver_bin, f"--port={port}", "--allowed-ips=127.0.0.1"],
                             stdout=log, stderr=subprocess.STDOUT)
     d = WebDriver(port)
-    failures = []
     try:
         d.wait_ready()
         caps = {
@@ -105,11 +189,34 @@ def main():
             if js("return document.readyState") == "complete":
                 break
             time.sleep(0.1)
+        for width in (390, 1280):
+            d.s("POST", "/window/rect", {"width": width, "height": 1000})
+            time.sleep(0.2)
+            inner = js("return window.innerWidth")
+            scroll_width = js("return document.documentElement.scrollWidth")
+            if scroll_width > inner:
+                failures.append(f"horizontal scroll at {width} px: page {scroll_width} px wide, "
+                                f"window {inner} px")
+            for o in js(OVERFLOW_JS) or []:
+                failures.append(f"at {width} px, {o} reaches past the right edge outside a "
+                                f"scrolling box of its own")
+            if args.screenshot_dir:
+                js("window.scrollTo(0, 0); return 0")
+                d.s("POST", "/window/rect", {"width": width, "height": 1400 if width > 500 else 1600})
+                time.sleep(0.2)
+                d.screenshot(os.path.join(args.screenshot_dir, f"report-{width}.png"))
+                # A wide table in its own scrolling box, and the settings block.
+                for anchor in ("table1", "settings"):
+                    js(f"document.getElementById('{anchor}').scrollIntoView(); return 0")
+                    time.sleep(0.1)
+                    d.screenshot(os.path.join(args.screenshot_dir,
+                                              f"report-{width}-{anchor}.png"))
+                d.s("POST", "/window/rect", {"width": 1280, "height": 1000})
         inner = js("return window.innerWidth")
         scroll_width = js("return document.documentElement.scrollWidth")
-        if scroll_width > inner:
-            failures.append(f"horizontal scroll at 1280 px: page {scroll_width} px wide, "
-                            f"window {inner} px")
+        missing_alt = js(ALT_JS)
+        if missing_alt:
+            failures.append(f"{missing_alt} figure(s) or image(s) without alt text")
         sizes = js("return Array.from(document.querySelectorAll('figure svg'))"
                    ".map(s => [s.getBoundingClientRect().width, s.getBoundingClientRect().height])")
         if len(sizes) != expected_figures or expected_figures == 0:

@@ -211,5 +211,8 @@ TEST(InputsAreSacred, AnalyzeRecordsTheFinalScoresPathInTheSidecar) {
   ASSERT_EQ(run_feint("analyze " + q(study) + " -o " + q(out)).exit_code, 0);
   const std::string sidecar = read_text(out / "scores.csv.meta.json");
   EXPECT_EQ(sidecar.find("feint-staging"), std::string::npos) << sidecar;
-  EXPECT_NE(sidecar.find((out / "scores.csv").string()), std::string::npos) << sidecar;
+  // The scores file is named relative to the sidecar's folder (the output folder): true wherever
+  // the folder is moved, and no absolute path (issue 19).
+  EXPECT_NE(sidecar.find("\"output\": \"scores.csv\""), std::string::npos) << sidecar;
+  EXPECT_EQ(sidecar.find(out.string()), std::string::npos) << sidecar;
 }

@@ -1,13 +1,16 @@
-// Uses the installed library as another project would: metrics of metrics.md's worked example B
-// and a one-sample t-test (R: t.test(c(.55,.61,.48,.7,.52), mu = .5)); exits non-zero when off.
+// Uses the installed library as another project would: metrics of metrics.md's worked example B,
+// a one-sample t-test (R: t.test(c(.55,.61,.48,.7,.52), mu = .5)), and the whole study pipeline
+// (load_study -> analyze -> StudyResults) on the study folder named by argv[1] (data/demo);
+// exits non-zero when a number is off.
 #include <cmath>
 #include <cstdio>
 #include <vector>
 
+#include "feint/analysis/analyze.hpp"
 #include "feint/metrics/trial_metrics.hpp"
 #include "feint/stats/ttest.hpp"
 
-int main() {
+int main(int argc, char** argv) {
   feint::io::Trial trial;
   trial.target = 1.0;
   trial.pad_speed = 0.25;
@@ -20,5 +23,28 @@ int main() {
   const bool ok = std::fabs(score.error - 115.0 / 144) < 1e-12 &&
                   std::fabs(score.confusion - 217.0 / 360) < 1e-12 &&
                   std::fabs(*t.statistic - 1.8753561398542429) < 1e-12;
-  return ok ? 0 : 1;
+  if (!ok || argc < 2) return 1;
+
+  feint::analysis::AnalysisSettings settings;
+  settings.compare = "adaptive,random";
+  const feint::analysis::Study study = feint::analysis::load_study(argv[1], settings);
+  const feint::analysis::StudyResults results = feint::analysis::analyze(study, "consumer");
+  // The demo: 60 participants x 20 iterations; the Table 1 mean error of the first row is the
+  // mean of the adaptive participants' error at iteration 1, as the scores give it.
+  const auto& row = results.table1.rows.front();
+  double sum = 0;
+  int n = 0;
+  for (const auto& r : results.scores.records) {
+    if (r.condition == row.group1 && r.iteration == *row.iteration && r.values[0]) {
+      sum += *r.values[0];
+      ++n;
+    }
+  }
+  std::printf("study %s: %llu trials, Table 1 row 1 mean %.15g (n = %d)\n", results.study.c_str(),
+              static_cast<unsigned long long>(results.diagnostics.scoring.trials_scored),
+              *row.result.mean1, n);
+  return results.diagnostics.scoring.trials_scored == 1200 && n == 30 &&
+                 std::fabs(*row.result.mean1 - sum / n) < 1e-12 && results.model.has_value()
+             ? 0
+             : 1;
 }

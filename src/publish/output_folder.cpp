@@ -1,4 +1,4 @@
-#include "output_folder.hpp"
+#include "feint/publish/output_folder.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -17,7 +17,7 @@
 #include "feint/error.hpp"
 #include "feint/io/number.hpp"
 
-namespace feint::cli {
+namespace feint::publish {
 
 namespace fs = std::filesystem;
 
@@ -277,4 +277,4 @@ std::vector<std::string> OutputFolder::commit(std::string_view tool_version) {
   return files;
 }
 
-}  // namespace feint::cli
+}  // namespace feint::publish

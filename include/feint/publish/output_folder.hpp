@@ -1,4 +1,4 @@
-// src/cli/output_folder.hpp - the output folder of `feint analyze`, replaced as one unit.
+// feint/publish/output_folder.hpp - the output folder of `feint analyze`, replaced as one unit.
 //
 // A run never writes into the user's folder directly. It writes everything into a fresh hidden
 // staging folder beside it (`.OUT.feint-staging-XXXXXX`); commit() lists what was written in a
@@ -18,7 +18,7 @@
 #include <string_view>
 #include <vector>
 
-namespace feint::cli {
+namespace feint::publish {
 
 /// Name of the manifest a run writes into its output folder.
 inline constexpr std::string_view kAnalyzeManifest = ".feint-analyze.json";
@@ -60,4 +60,4 @@ std::vector<std::string> parse_manifest_files(const std::string& json);
 bool is_legacy_analyze_output(std::string_view name);
 }  // namespace detail
 
-}  // namespace feint::cli
+}  // namespace feint::publish

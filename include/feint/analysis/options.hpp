@@ -1,0 +1,97 @@
+// feint/analysis/options.hpp - the settings of the scoring and of the statistical tests as the
+// command line and feint.toml spell them (text), and their conversion into the library's typed
+// settings. Shared by every command, so that `--alpha 2` or `--map pad` is refused with the same
+// message by `feint analyze`, `feint table` and `feint likert`.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "feint/metrics/score.hpp"
+#include "feint/report/likert.hpp"
+#include "feint/report/table1.hpp"
+#include "feint/report/writers.hpp"
+#include "feint/stats/htest.hpp"
+#include "feint/stats/p_adjust.hpp"
+
+namespace feint::analysis {
+
+/// The scoring options of `feint score` and `feint analyze` (docs/metrics.md).
+struct ScoreOptions {
+  std::optional<double> trim, trim_start, trim_end;
+  double deadband = 1e-9;
+  std::string norm = "speed";
+  std::optional<double> pad_speed;
+  std::vector<std::string> maps;  ///< NAME=COLUMN
+  std::string delimiter;          ///< "" = detect
+  std::string on_error = "strict";
+  std::string time_unit = "s";
+};
+
+/// Typed scoring settings; throws UsageError naming the option for a value it cannot take.
+metrics::ScoreSettings score_settings(const ScoreOptions& options);
+
+/// The test and output options shared by the table commands.
+struct ReportOptions {
+  std::string format = "text";
+  std::string output = "-";
+  bool apa = false;
+  double alpha = 0.05;
+  std::string alternative = "two.sided";
+  double conf_level = 0.95;
+  std::string p_adjust = "none";
+  std::string label;
+  std::string caption;
+  bool latex_wide = false;
+};
+
+struct ResolvedReportOptions {
+  report::OutputFormat format = report::OutputFormat::text;
+  std::string output = "-";
+  bool apa = false;
+  double alpha = 0.05;
+  stats::TestOptions test;
+  stats::PAdjustMethod p_adjust = stats::PAdjustMethod::none;
+  report::TablePresentation presentation;
+};
+
+/// Checks and converts; UsageError names the option (--alpha, --conf-level, ...).
+ResolvedReportOptions resolve_report_options(const ReportOptions& options);
+
+/// none, bonferroni, holm, hochberg, hommel, BH (alias fdr), BY; any case. Throws UsageError.
+stats::PAdjustMethod parse_p_adjust_option(std::string_view text);
+
+/// "A,B" -> (A, B). Throws UsageError.
+std::pair<std::string, std::string> parse_compare(const std::string& text);
+
+/// --metric NAME=REF list (default: the paper's error=0.5 confusion=0.95). Throws UsageError.
+std::vector<report::MetricSpec> parse_metric_specs(const std::vector<std::string>& texts);
+
+/// The questionnaire options of `feint likert` and `feint analyze` (docs/likert.md). Lists may
+/// hold comma-separated names ("a,b"); they are split and trimmed.
+struct LikertOptions {
+  std::string layout = "auto";
+  std::string scale = "1-7";
+  std::string labels;              ///< "Strongly disagree=1,Disagree=2,..." ("" = built-in)
+  std::vector<std::string> items;  ///< NAME or NAME=COLUMN
+  std::string id_column = "participant";
+  std::string condition_column = "condition";
+  std::string item_column = "item";
+  std::string response_column = "response";
+  std::vector<std::string> reverse;
+  std::vector<std::string> composites;  ///< NAME=ITEM,ITEM,...
+  std::optional<double> reference;      ///< default: the scale midpoint
+  std::string alpha_missing = "pairwise";
+  bool keep_unfinished = false;
+  bool keep_previews = false;
+};
+
+/// The Likert analysis settings (loading, composites, reference, tests); throws UsageError naming
+/// the option for a value it cannot take.
+report::LikertSettings likert_settings(const LikertOptions& options,
+                                       const ResolvedReportOptions& tests);
+
+}  // namespace feint::analysis

@@ -1,0 +1,72 @@
+// feint/analysis/results.hpp - everything a study run computes (analyze), as plain data: no file
+// is read or written through it. The writers render it: feint/publish (report.html, report.md,
+// results.json, the tables in every format) and feint/plot (the figures, drawn from FigureData).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "feint/analysis/figure_data.hpp"
+#include "feint/analysis/findings.hpp"
+#include "feint/io/scores.hpp"
+#include "feint/metrics/score.hpp"
+#include "feint/report/anova_render.hpp"
+#include "feint/report/likert.hpp"
+#include "feint/report/model_render.hpp"
+#include "feint/report/table1.hpp"
+
+namespace feint::analysis {
+
+/// One reason trials, participants or questionnaire answers were left out or warned about.
+struct Exclusion {
+  std::string stage;   ///< "scoring", "questionnaire", "anova", "model", "figures"
+  std::string what;    ///< "trial", "participant", "respondent", "analysis"
+  std::size_t count = 0;
+  std::string reason;  ///< e.g. "trial durations look like milliseconds"
+  std::vector<std::string> examples;  ///< up to 5 items (file:line, respondent id)
+};
+
+/// What was read, left out and warned about, stage by stage (issue 15 item 5).
+struct Diagnostics {
+  metrics::ScoreSummary scoring;  ///< files, rows and trials read, scored, rejected
+  std::size_t participants = 0;   ///< distinct participants with at least one scored trial
+  std::vector<std::pair<std::string, std::size_t>> participants_per_condition;
+  std::size_t questionnaire_rows = 0;  ///< data rows of the questionnaire (0 without one)
+  std::size_t respondents = 0;         ///< respondents analysed
+  std::vector<std::string> warnings;   ///< every warning, as also printed on standard error
+  std::vector<Exclusion> exclusions;   ///< what was left out and why
+};
+
+/// The data of every figure (the plot module draws them; nothing here is read from a file then).
+struct FigureData {
+  std::vector<TrialLabel> labels;  ///< per scored trial; empty when the logs have no strategy
+  std::string labels_note;         ///< why there is no strategy figure ("" when there is)
+  std::vector<TraceCurve> traces;  ///< mean pad trace per strategy, version and exposure
+};
+
+struct StudyResults {
+  std::string study;             ///< the study's name (its folder's last component)
+  std::string tool_version;
+  std::string settings_toml;     ///< the feint.toml that reproduces this run (settings_toml)
+  // Scores: the scored trials as written to scores.csv (with the sidecar and rejected trials).
+  io::ScoresTable scores;        ///< path "scores.csv"
+  std::string scores_csv;        ///< the file's bytes
+  std::string scores_sidecar;    ///< scores.csv.meta.json's bytes ("" when none)
+  std::string rejects_csv;       ///< scores.csv.rejects.csv's bytes ("" in strict mode)
+  // Tables.
+  report::Table1 table1;                     ///< one-sample, per condition
+  std::optional<report::Table1> comparison;  ///< condition A against B (--compare)
+  std::optional<report::AnovaReport> anova;  ///< mixed ANOVA (GG); empty when the design allows none
+  std::optional<report::ModelAnalysis> model;        ///< metric ~ condition * iteration (feint model)
+  std::optional<report::ModelAnalysis> trend_model;  ///< metric ~ condition * iteration as a trend
+  std::optional<report::LikertAnalysis> likert;          ///< against the reference
+  std::optional<report::LikertAnalysis> likert_compare;  ///< A against B
+  FigureData figures;
+  Diagnostics diagnostics;
+  std::vector<Finding> findings;  ///< filled by the findings engine (empty until then)
+};
+
+}  // namespace feint::analysis

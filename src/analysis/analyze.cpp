@@ -1,0 +1,265 @@
+// The study pipeline: Study -> StudyResults (see feint/analysis/analyze.hpp).
+#include "feint/analysis/analyze.hpp"
+#include "feint/analysis/study_findings.hpp"
+
+#include <fmt/format.h>
+#include <stdlib.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <set>
+
+#include "feint/error.hpp"
+#include "feint/io/csv.hpp"
+#include "feint/io/trace.hpp"
+
+namespace feint::analysis {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A private folder for the scores file, removed however analyze() ends.
+class ScratchFolder {
+ public:
+  ScratchFolder() {
+    std::string tmpl = (fs::temp_directory_path() / "feint-analyze-XXXXXX").string();
+    if (mkdtemp(tmpl.data()) == nullptr) {
+      throw IoError(fmt::format("cannot create a temporary folder in '{}'",
+                                fs::temp_directory_path().string()));
+    }
+    path_ = tmpl;
+  }
+  ~ScratchFolder() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+std::string read_all(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The scratch folder's name never reaches an output: the sidecar names the scores file relative
+// to the output folder it is written into.
+std::string without_prefix(std::string text, const std::string& prefix) {
+  for (auto pos = text.find(prefix); pos != std::string::npos; pos = text.find(prefix, pos)) {
+    text.erase(pos, prefix.size());
+  }
+  return text;
+}
+
+// "logs/p01.csv:12: column 't': not increasing (trial p01/adaptive/3)" -> "column 't': not
+// increasing": the reason without where it happened, so that rejections can be counted by reason.
+std::string bare_reason(const std::string& reason) {
+  std::string r = reason;
+  const auto trial = r.rfind(" (trial ");
+  if (trial != std::string::npos) r.erase(trial);
+  // Drop a leading "file:line: ".
+  const auto colon = r.find(": ");
+  if (colon != std::string::npos) {
+    const auto first = r.find(':');
+    if (first < colon && r.find_first_not_of("0123456789", first + 1) == colon) {
+      r.erase(0, colon + 2);
+    }
+  }
+  return r;
+}
+
+// Rejected trials counted by reason; the participants of the rejected trials returned.
+std::set<std::string> count_rejections(const fs::path& rejects, Diagnostics& d) {
+  std::set<std::string> participants;
+  if (!fs::exists(rejects)) return participants;
+  io::CsvReader csv(rejects.string());
+  const int reason = csv.column("reason");
+  const int file = csv.column("file");
+  const int line = csv.column("line");
+  const int participant = csv.column("participant");
+  if (reason < 0) return participants;
+  std::map<std::string, Exclusion> by_reason;
+  while (csv.next()) {
+    if (participant >= 0) {
+      participants.insert(std::string(csv.field(static_cast<std::size_t>(participant))));
+    }
+    const std::string why = bare_reason(std::string(csv.field(static_cast<std::size_t>(reason))));
+    Exclusion& e = by_reason[why];
+    e.stage = "scoring";
+    e.what = "trial";
+    e.reason = why;
+    ++e.count;
+    if (e.examples.size() < 5 && file >= 0 && line >= 0) {
+      e.examples.push_back(fmt::format(
+          "{}:{}", fs::path(std::string(csv.field(static_cast<std::size_t>(file)))).filename().string(),
+          csv.field(static_cast<std::size_t>(line))));
+    }
+  }
+  for (auto& [_, e] : by_reason) d.exclusions.push_back(std::move(e));
+  return participants;
+}
+
+void note_left_out(Diagnostics& d, const std::string& stage, const std::string& reason) {
+  d.exclusions.push_back({stage, "analysis", 0, reason, {}});
+  d.warnings.push_back(fmt::format("{}: {}", stage, reason));
+}
+
+}  // namespace
+
+StudyResults analyze(const Study& study, const std::string& tool_version) {
+  StudyResults r;
+  r.study = study.name;
+  r.tool_version = tool_version;
+  r.settings_toml = settings_toml(study.settings);
+  Diagnostics& d = r.diagnostics;
+
+  // 1. Score every trial (into the scratch folder: the scores file with its sidecar is the
+  // study's record of how each number was made, and Table 1 reads its provenance from there).
+  const ScratchFolder scratch;
+  metrics::ScoreSettings s = study.scoring;
+  s.tool_version = tool_version;
+  s.on_warning = [&d](const std::string& w) { d.warnings.push_back(w); };
+  const fs::path scores_path = scratch.path() / "scores.csv";
+  d.scoring = metrics::score_to_file(study.log_inputs, s, scores_path.string());
+  const std::string prefix = (scratch.path() / "").string();
+  r.scores_csv = read_all(scores_path);
+  if (!d.scoring.sidecar_path.empty()) {
+    r.scores_sidecar = without_prefix(read_all(d.scoring.sidecar_path), prefix);
+  }
+  std::set<std::string> rejected_participants;
+  if (!d.scoring.rejects_path.empty()) {
+    r.rejects_csv = read_all(d.scoring.rejects_path);
+    rejected_participants = count_rejections(d.scoring.rejects_path, d);
+  }
+  d.scoring.output_path = "scores.csv";
+  if (!d.scoring.sidecar_path.empty()) {
+    d.scoring.sidecar_path = fs::path(d.scoring.sidecar_path).filename().string();
+  }
+  if (!d.scoring.rejects_path.empty()) {
+    d.scoring.rejects_path = fs::path(d.scoring.rejects_path).filename().string();
+  }
+  for (const auto& w : d.scoring.warnings) {
+    d.exclusions.push_back({"scoring", "warning", 0, w, {}});
+  }
+
+  // 2. Table 1: one-sample per condition, and A against B when asked.
+  report::Table1Options t;
+  t.metrics = study.metrics;
+  t.alpha = study.tests.alpha;
+  t.test = study.tests.test;
+  t.p_adjust = study.tests.p_adjust;
+  t.equivalence = study.settings.equivalence;
+  t.apa = study.tests.apa;
+  io::ScoresOptions load;
+  load.metrics.clear();
+  for (const auto& m : t.metrics) load.metrics.push_back(m.column);
+  r.scores = io::load_scores(scores_path.string(), load);
+  {
+    std::map<std::string, std::set<std::string>> per;
+    std::set<std::string> all;
+    for (const auto& rec : r.scores.records) {
+      per[rec.condition].insert(rec.participant);
+      all.insert(rec.participant);
+    }
+    d.participants = all.size();
+    // A participant whose every trial was rejected is not in the scores at all: say so.
+    Exclusion gone{"scoring", "participant", 0, "every trial rejected (not in the analysis)", {}};
+    for (const auto& p : rejected_participants) {
+      if (all.count(p) != 0) continue;
+      ++gone.count;
+      if (gone.examples.size() < 5) gone.examples.push_back(p);
+    }
+    if (gone.count > 0) d.exclusions.push_back(std::move(gone));
+    for (const auto& c : r.scores.conditions()) d.participants_per_condition.emplace_back(c, per[c].size());
+  }
+  r.table1 = report::build_table1(r.scores, t);
+  if (study.compare) {
+    report::Table1Options c = t;
+    c.compare = study.compare;
+    c.var_equal = study.settings.var_equal;
+    c.paired = study.settings.paired;
+    r.comparison = report::build_table1(r.scores, c);
+  }
+
+  // 3. The mixed ANOVA (GG, as afex) and the mixed models (as lme4/lmerTest): left out, with the
+  // reason, when the design does not allow them (one iteration, one condition, a constant metric).
+  try {
+    r.anova = report::build_anova_report(r.scores, models::SphericityCorrection::GG);
+  } catch (const InvalidData& e) {
+    note_left_out(d, "anova", fmt::format("no mixed ANOVA: {}", e.what()));
+  }
+  // The model of condition x iteration needs two of each (and models::fit_mixed_model does not
+  // yet refuse fewer cleanly).
+  if (r.scores.conditions().size() < 2 || r.scores.iterations().size() < 2) {
+    note_left_out(d, "model",
+                  "no mixed model: it needs at least two conditions and two iterations");
+  } else if (study.tests.test.alternative != stats::Alternative::two_sided) {
+    note_left_out(d, "model", "no mixed model: its contrasts are two-sided (alternative = two.sided)");
+  } else {
+    report::ModelOptions o;
+    o.metrics = load.metrics;
+    o.compare = study.compare;
+    o.alpha = study.tests.alpha;
+    o.conf_level = study.tests.test.conf_level;
+    o.p_adjust = study.tests.p_adjust;
+    o.apa = study.tests.apa;
+    try {
+      r.model = report::build_model_analysis(r.scores, o);
+      o.trend = true;
+      r.trend_model = report::build_model_analysis(r.scores, o);
+    } catch (const InvalidData& e) {
+      note_left_out(d, "model", fmt::format("no mixed model: {}", e.what()));
+    }
+  }
+
+  // 4. The questionnaire, when the study has one.
+  if (study.answers) {
+    const io::Questionnaire& q = *study.answers;
+    d.questionnaire_rows = q.rows_read;
+    d.respondents = q.participants.size();
+    std::map<std::string, Exclusion> excluded;
+    for (const auto& x : q.excluded) {
+      Exclusion& e = excluded[x.reason];
+      e.stage = "questionnaire";
+      e.what = "respondent";
+      e.reason = x.reason;
+      ++e.count;
+      if (e.examples.size() < 5) e.examples.push_back(x.id);
+    }
+    for (auto& [_, e] : excluded) d.exclusions.push_back(std::move(e));
+    r.likert = report::analyze_likert(q, study.likert);
+    if (study.compare) {
+      report::LikertSettings lc = study.likert;
+      lc.compare = study.compare;
+      r.likert_compare = report::analyze_likert(q, lc);
+    }
+  }
+
+  // 5. Figure data: the strategies shown (from the scores) and the mean pad traces (the logs,
+  // streamed once more).
+  try {
+    r.figures.labels = read_trial_labels(scores_path.string());
+  } catch (const InvalidData& e) {
+    r.figures.labels_note = without_prefix(e.what(), prefix);
+  }
+  if (!r.figures.labels.empty()) {
+    io::TraceOptions topt;
+    topt.column_map = s.column_map;
+    topt.delimiter = s.delimiter;
+    topt.unsorted = s.unsorted;
+    r.figures.traces = mean_traces(study.logs, topt, r.figures.labels, t.test.conf_level);
+  }
+  r.scores.path = "scores.csv";
+  // 6. The findings (docs/findings.md): what the study shows, and how strongly.
+  r.findings = study_findings(r, t.metrics);
+  return r;
+}
+
+}  // namespace feint::analysis

@@ -1,0 +1,86 @@
+// A study's inputs, located and checked once (see feint/analysis/study.hpp).
+#include "feint/analysis/study.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+
+#include "feint/error.hpp"
+#include "feint/io/trace.hpp"
+#include "feint/stats/reliability.hpp"
+
+namespace feint::analysis {
+
+namespace fs = std::filesystem;
+
+std::string display_path(const std::string& path, const std::string& base) {
+  if (path.empty()) return path;
+  std::error_code ec;
+  const fs::path p = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  const fs::path b = fs::weakly_canonical(fs::absolute(base.empty() ? "." : base, ec), ec);
+  fs::path rel = p.lexically_relative(b);
+  if (rel.empty() || *rel.begin() == "..") {
+    rel = p.lexically_relative(fs::weakly_canonical(fs::current_path(ec), ec));
+  }
+  if (rel.empty()) return fs::path(path).filename().string();
+  return rel.generic_string();
+}
+
+std::vector<std::string> Study::inputs() const {
+  std::vector<std::string> v = log_inputs;
+  for (const auto& p : {questionnaire, config}) {
+    if (!p.empty()) v.push_back(p);
+  }
+  return v;
+}
+
+Study load_study(const std::string& folder, const AnalysisSettings& a, const std::string& config) {
+  const fs::path study(folder);
+  if (!fs::is_directory(study)) {
+    throw IoError(fmt::format("study folder '{}' does not exist or is not a folder", folder));
+  }
+  Study s;
+  s.folder = folder;
+  s.name = study.lexically_normal().filename().empty()
+               ? study.lexically_normal().parent_path().filename().string()
+               : study.lexically_normal().filename().string();
+  if (s.name.empty() || s.name == ".") s.name = fs::absolute(study).lexically_normal().filename().string();
+  s.config = config;
+  s.settings = a;
+
+  // Typed settings first: a usage error is reported before any file is read.
+  s.scoring = score_settings(a.scoring);
+  s.tests = resolve_report_options(a.report);
+  s.metrics = parse_metric_specs(a.metrics);
+  if (!a.compare.empty()) s.compare = parse_compare(a.compare);
+  for (const auto& n : a.formats) s.formats.push_back(report::parse_output_format(n));
+  if (s.formats.empty()) {
+    throw UsageError("--formats: name at least one of text, markdown, latex, csv, json");
+  }
+
+  auto in_study = [&](const std::string& p) {
+    const fs::path path(p);
+    return path.is_absolute() ? path.string() : (study / path).string();
+  };
+  std::vector<std::string> inputs;
+  for (const auto& l : a.logs) inputs.push_back(in_study(l));
+  if (inputs.empty()) {
+    if (!fs::is_directory(study / "logs")) {
+      throw InvalidData(fmt::format(
+          "{}: no logs/ folder (put the pad-trace logs there, or name them with --logs)", folder));
+    }
+    inputs.push_back((study / "logs").string());
+  }
+  s.log_inputs = inputs;
+  s.logs = io::expand_inputs(inputs);
+  s.questionnaire = a.questionnaire.empty() ? "" : in_study(a.questionnaire);
+  if (s.questionnaire.empty() && fs::exists(study / "questionnaire.csv")) {
+    s.questionnaire = (study / "questionnaire.csv").string();
+  }
+
+  s.likert = likert_settings(a.likert, s.tests);
+  if (!s.questionnaire.empty()) s.answers = io::load_questionnaire(s.questionnaire, s.likert.load);
+  return s;
+}
+
+}  // namespace feint::analysis

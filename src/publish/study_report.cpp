@@ -1,0 +1,339 @@
+// report.html, report.md and results.json of a study (see feint/publish/study_report.hpp).
+#include "feint/publish/study_report.hpp"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+
+#include "feint/io/html_escape.hpp"
+#include "feint/io/number.hpp"
+#include "feint/io/output.hpp"
+#include "feint/plot/html.hpp"
+#include "feint/report/writers.hpp"
+
+namespace feint::publish {
+
+namespace {
+
+namespace fs = std::filesystem;
+using io::html_escape;
+using report::OutputFormat;
+
+// A table of the report: its anchor, heading, Markdown and CSV renderings, and its files' stem.
+struct ReportTable {
+  std::string id, heading, stem, markdown, csv;
+};
+
+std::vector<ReportTable> tables(const analysis::StudyResults& r) {
+  std::vector<ReportTable> t;
+  auto add = [&](std::string id, std::string heading, std::string stem, auto&& render) {
+    t.push_back({std::move(id), std::move(heading), std::move(stem), render(OutputFormat::markdown),
+                 render(OutputFormat::csv)});
+  };
+  add("table1", "Table 1 per condition", "table1",
+      [&](OutputFormat f) { return report::render_table1(r.table1, f); });
+  if (r.comparison) {
+    add("comparison", "Comparison", "table1_compare",
+        [&](OutputFormat f) { return report::render_table1(*r.comparison, f); });
+  }
+  if (r.anova) {
+    add("anova", "Mixed ANOVA", "anova", [&](OutputFormat f) {
+      return report::render_anova(*r.anova, f, r.table1.options.apa);
+    });
+  }
+  if (r.model) {
+    add("model", "Mixed model (condition x iteration)", "model",
+        [&](OutputFormat f) { return report::render_model(*r.model, f); });
+  }
+  if (r.trend_model) {
+    add("model-trend", "Mixed model (linear trend over the iterations)", "model_trend",
+        [&](OutputFormat f) { return report::render_model(*r.trend_model, f); });
+  }
+  if (r.likert) {
+    add("questionnaire", "Questionnaire", "likert",
+        [&](OutputFormat f) { return report::render_likert(*r.likert, f); });
+  }
+  if (r.likert_compare) {
+    add("questionnaire-compare", "Questionnaire between the conditions", "likert_compare",
+        [&](OutputFormat f) { return report::render_likert(*r.likert_compare, f); });
+  }
+  return t;
+}
+
+std::string percent_encoded(const std::string& s) {
+  std::string o;
+  for (const unsigned char c : s) {
+    if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~' || c == ',') {
+      o += static_cast<char>(c);
+    } else {
+      o += fmt::format("%{:02X}", c);
+    }
+  }
+  return o;
+}
+
+std::string csv_link(const ReportTable& t, bool beside) {
+  const std::string href = beside ? t.stem + ".csv"
+                                  : "data:text/csv;charset=utf-8," + percent_encoded(t.csv);
+  return fmt::format("<p class=\"download\"><a href=\"{}\" download=\"{}.csv\">Download this "
+                     "table as CSV ({}.csv)</a></p>\n",
+                     html_escape(href), html_escape(t.stem), html_escape(t.stem));
+}
+
+std::string facts(const std::vector<std::pair<std::string, std::string>>& rows) {
+  std::string o = "<dl class=\"facts\">\n";
+  for (const auto& [k, v] : rows) {
+    o += fmt::format("<dt>{}</dt><dd>{}</dd>\n", html_escape(k), html_escape(v));
+  }
+  return o + "</dl>\n";
+}
+
+std::vector<std::pair<std::string, std::string>> design_rows(const analysis::StudyResults& r,
+                                                             const ReportContext& c) {
+  std::vector<std::string> per_condition;
+  for (const auto& [cond, n] : r.diagnostics.participants_per_condition) {
+    per_condition.push_back(
+        fmt::format("{} ({})", cond.empty() ? "(none)" : cond, count(n, "participant")));
+  }
+  const auto its = r.scores.iterations();
+  std::vector<std::string> metrics;
+  for (const auto& m : r.table1.options.metrics) {
+    metrics.push_back(fmt::format("{} against {:g}", m.column, m.reference));
+  }
+  return {
+      {"Study folder", c.study_folder},
+      {"Conditions", fmt::format("{}", fmt::join(per_condition, ", "))},
+      {"Iterations",
+       its.empty() ? "none" : fmt::format("{} ({} to {})", its.size(), its.front(), its.back())},
+      {"Metrics and references", fmt::format("{}", fmt::join(metrics, "; "))},
+      {"Comparison", r.comparison ? fmt::format("{} against {}", r.comparison->blocks.front().group1,
+                                                r.comparison->blocks.front().group2)
+                                  : "none (set compare = \"A,B\")"},
+      {"Questionnaire", c.questionnaire.empty() ? "none" : c.questionnaire},
+      {"Settings file", c.config.empty() ? "none" : c.config},
+  };
+}
+
+std::string title_of(const analysis::StudyResults& r) {
+  return fmt::format("Study report: {}", r.study);
+}
+std::string subtitle_of(const analysis::StudyResults& r) {
+  return fmt::format("feint {} analyze, {} of {}", r.tool_version,
+                     count(r.diagnostics.scoring.trials_scored, "trial"),
+                     count(r.diagnostics.scoring.files, "log file"));
+}
+
+std::string exclusion_text(const analysis::Exclusion& e) {
+  std::string s = e.count > 0 ? fmt::format("{} {}: {}", e.stage, count(e.count, e.what), e.reason)
+                              : fmt::format("{}: {}", e.stage, e.reason);
+  if (!e.examples.empty()) s += fmt::format(" (e.g. {})", fmt::join(e.examples, ", "));
+  return s;
+}
+
+}  // namespace
+
+std::string count(std::size_t n, const std::string& singular, const std::string& plural) {
+  return fmt::format("{} {}", n, n == 1 ? singular : (plural.empty() ? singular + "s" : plural));
+}
+
+std::vector<std::string> diagnostics_lines(const analysis::Diagnostics& d) {
+  const auto& s = d.scoring;
+  std::vector<std::string> lines = {
+      fmt::format("Read {} ({}); {} scored, {} rejected.", count(s.files, "log file"),
+                  count(s.rows_read, "row"), count(s.trials_scored, "trial"),
+                  count(s.trials_rejected, "trial")),
+      fmt::format("{} with at least one scored trial.", count(d.participants, "participant")),
+  };
+  if (s.overspeed_trials > 0) {
+    lines.push_back(fmt::format("{} with a segment faster than the pad speed (kept).",
+                                count(s.overspeed_trials, "trial")));
+  }
+  if (d.questionnaire_rows > 0) {
+    lines.push_back(fmt::format("Questionnaire: {} read, {} analysed.",
+                                count(d.questionnaire_rows, "row"),
+                                count(d.respondents, "respondent")));
+  }
+  if (d.exclusions.empty()) {
+    lines.emplace_back("Nothing was excluded and there was no warning.");
+  }
+  for (const auto& e : d.exclusions) lines.push_back(exclusion_text(e));
+  return lines;
+}
+
+std::string study_report_html(const analysis::StudyResults& r,
+                              const std::vector<RenderedFigure>& figures,
+                              const std::vector<std::string>& notes, const ReportContext& c) {
+  plot::HtmlReport page;
+  page.title = title_of(r);
+  page.subtitle = subtitle_of(r);
+  if (!r.findings.empty()) {
+    // the findings engine's own fragment (docs/findings.md): strength, sentence, link, warnings
+    page.sections.push_back({"findings", "Findings", analysis::findings_html(r.findings)});
+  }
+  page.sections.push_back({"design", "Design", facts(design_rows(r, c))});
+  {
+    const auto& s = r.diagnostics.scoring;
+    std::vector<std::pair<std::string, std::string>> rows = {
+        {"Log files read", std::to_string(s.files)},
+        {"Rows read", std::to_string(s.rows_read)},
+        {"Rows scored", std::to_string(s.rows_scored)},
+        {"Rows rejected", std::to_string(s.rows_rejected)},
+        {"Trials scored", std::to_string(s.trials_scored)},
+        {"Trials rejected", std::to_string(s.trials_rejected)},
+        {"Trials with an overspeed segment", std::to_string(s.overspeed_trials)},
+        {"Participants", std::to_string(r.diagnostics.participants)},
+        // Named relative to this page, which the output folder carries along when it is moved.
+        {"Scores", "scores.csv (beside this report)"},
+    };
+    if (!s.rejects_path.empty()) {
+      rows.emplace_back("Rejected trials listed in", s.rejects_path + " (beside this report)");
+    }
+    if (r.diagnostics.questionnaire_rows > 0) {
+      rows.emplace_back("Questionnaire rows read", std::to_string(r.diagnostics.questionnaire_rows));
+      rows.emplace_back("Respondents analysed", std::to_string(r.diagnostics.respondents));
+    }
+    std::string html = facts(rows);
+    html += fmt::format("<p>rows read = rows scored + rows rejected: {} = {} + {}.</p>\n",
+                        s.rows_read, s.rows_scored, s.rows_rejected);
+    html += "<h3>Excluded and warned about</h3>\n<ul class=\"diagnostics\">\n";
+    for (const auto& l : diagnostics_lines(r.diagnostics)) {
+      html += "<li>" + html_escape(l) + "</li>\n";
+    }
+    html += "</ul>\n";
+    page.sections.push_back({"accounting", "Accounting", html});
+  }
+  if (!figures.empty() || !notes.empty()) {
+    std::string html;
+    for (std::size_t i = 0; i < figures.size(); ++i) {
+      const RenderedFigure& d = figures[i];
+      std::string links;
+      for (const auto& f : d.files) {
+        if (!links.empty()) links += ", ";
+        links += fmt::format("<a href=\"{0}\">{1}</a>", html_escape(f),
+                             html_escape(fs::path(f).filename().string()));
+      }
+      html += fmt::format(
+          "<figure id=\"fig-{0}\">\n{1}\n<figcaption><strong>Figure {2}. {3}.</strong> {4}{5}"
+          "</figcaption>\n</figure>\n",
+          html_escape(d.name), plot::inline_svg(d.svg, fmt::format("f{}-", i + 1), d.alt), i + 1,
+          html_escape(d.title), html_escape(d.caption),
+          links.empty() ? "" : "<br><span class=\"files\">Files: " + links + "</span>");
+    }
+    for (const auto& n : notes) html += "<p>" + html_escape(n) + "</p>\n";
+    page.sections.push_back({"figures", "Figures", html});
+  }
+  for (const auto& t : tables(r)) {
+    page.sections.push_back({t.id, t.heading, plot::markdown_to_html(t.markdown) + csv_link(t, c.csv_beside)});
+  }
+  std::string settings;
+  std::vector<std::pair<std::string, std::string>> scoring;
+  for (const auto& [k, v] : r.table1.provenance.settings) {
+    if (k.rfind("settings.", 0) == 0) scoring.emplace_back(k.substr(9), v);
+  }
+  settings += "<p>Every setting of this run as a feint.toml (also written beside this report as "
+              "<a href=\"settings.toml\">settings.toml</a>): <code>feint analyze --config "
+              "settings.toml STUDY</code> reproduces it.</p>\n<pre class=\"settings\">" +
+              html_escape(r.settings_toml) + "</pre>\n";
+  if (!scoring.empty()) settings += "<h3>Scoring (from the scores' sidecar)</h3>\n" + facts(scoring);
+  page.sections.push_back({"settings", "Settings", settings});
+  page.sections.push_back(
+      {"reproduce", "Reproduce",
+       fmt::format("<p>This report was made by feint {} with the command</p>\n<pre>{}</pre>\n"
+                   "<p>Every table is also in the output folder as text, Markdown, LaTeX, CSV "
+                   "and JSON (as the formats setting asks); the figures one-column (3.5 in) and "
+                   "two-column (7.16 in) wide.</p>\n",
+                   html_escape(r.tool_version), html_escape(c.command_line))});
+  page.footer = fmt::format("feint {}: {}", r.tool_version, c.command_line);
+  return plot::render_html(page);
+}
+
+std::string study_report_markdown(const analysis::StudyResults& r,
+                                  const std::vector<RenderedFigure>& figures,
+                                  const ReportContext& c) {
+  std::string o = fmt::format("# {}\n\n{}\n\n", title_of(r), subtitle_of(r));
+  if (!r.findings.empty()) {
+    o += "## Findings\n\n";
+    o += analysis::findings_markdown(r.findings);
+    o += "\n";
+  }
+  o += "## Design\n\n";
+  for (const auto& [k, v] : design_rows(r, c)) o += fmt::format("- {}: {}\n", k, v);
+  o += "\n## Accounting: data read, excluded and warned about\n\n";
+  for (const auto& l : diagnostics_lines(r.diagnostics)) o += "- " + l + "\n";
+  if (!figures.empty()) {
+    o += "\n## Figures\n\n";
+    for (std::size_t i = 0; i < figures.size(); ++i) {
+      const auto& f = figures[i];
+      std::string image;
+      for (const auto& file : f.files) {
+        if (file.find("-2col.svg") != std::string::npos || file.find("-2col.png") != std::string::npos) {
+          image = file;
+        }
+      }
+      o += fmt::format("**Figure {}. {}.** ", i + 1, f.title);
+      if (!image.empty()) o += fmt::format("![{}]({})\n\n", f.alt, image);
+      o += f.caption + "\n\n";
+    }
+  }
+  for (const auto& t : tables(r)) {
+    o += fmt::format("\n## {}\n\n{}\n", t.heading, t.markdown);
+    if (c.csv_beside) o += fmt::format("\n[Download as CSV]({}.csv)\n", t.stem);
+  }
+  o += "\n## Settings\n\n`feint analyze --config settings.toml STUDY` reproduces this run:\n\n```toml\n" +
+       r.settings_toml + "```\n";
+  o += fmt::format("\n## Reproduce\n\nMade by feint {} with\n\n```\n{}\n```\n", r.tool_version,
+                   c.command_line);
+  return o;
+}
+
+std::string study_results_json(const analysis::StudyResults& r) {
+  auto q = [](const std::string& s) { return io::json_quote(s); };
+  auto trimmed = [](std::string s) {
+    while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
+    return s;
+  };
+  std::string o = "{\n";
+  o += fmt::format("  \"study\": {},\n  \"version\": {},\n", q(r.study), q(r.tool_version));
+  const auto& s = r.diagnostics.scoring;
+  o += fmt::format(
+      "  \"diagnostics\": {{\"log_files\": {}, \"rows_read\": {}, \"rows_scored\": {}, "
+      "\"rows_rejected\": {}, \"trials_scored\": {}, \"trials_rejected\": {}, "
+      "\"overspeed_trials\": {}, \"participants\": {}, \"questionnaire_rows\": {}, "
+      "\"respondents\": {}, \"warnings\": [",
+      s.files, s.rows_read, s.rows_scored, s.rows_rejected, s.trials_scored, s.trials_rejected,
+      s.overspeed_trials, r.diagnostics.participants, r.diagnostics.questionnaire_rows,
+      r.diagnostics.respondents);
+  for (std::size_t i = 0; i < r.diagnostics.warnings.size(); ++i) {
+    o += (i ? ", " : "") + q(r.diagnostics.warnings[i]);
+  }
+  o += "], \"exclusions\": [";
+  for (std::size_t i = 0; i < r.diagnostics.exclusions.size(); ++i) {
+    const auto& e = r.diagnostics.exclusions[i];
+    o += fmt::format("{}{{\"stage\": {}, \"what\": {}, \"count\": {}, \"reason\": {}}}",
+                     i ? ", " : "", q(e.stage), q(e.what), e.count, q(e.reason));
+  }
+  o += "]},\n  \"findings\": [";
+  for (std::size_t i = 0; i < r.findings.size(); ++i) {
+    const auto& f = r.findings[i];
+    o += fmt::format("{}{{\"id\": {}, \"question\": {}, \"sentence\": {}, \"evidence\": {}, "
+                     "\"source\": {}}}",
+                     i ? ", " : "", q(f.id), q(f.question), q(f.sentence), q(f.evidence),
+                     q(f.source));
+  }
+  o += "]";
+  for (const auto& t : tables(r)) {
+    std::string json;
+    if (t.stem == "table1") json = report::render_table1(r.table1, OutputFormat::json);
+    else if (t.stem == "table1_compare") json = report::render_table1(*r.comparison, OutputFormat::json);
+    else if (t.stem == "anova") json = report::render_anova(*r.anova, OutputFormat::json, r.table1.options.apa);
+    else if (t.stem == "model") json = report::render_model(*r.model, OutputFormat::json);
+    else if (t.stem == "model_trend") json = report::render_model(*r.trend_model, OutputFormat::json);
+    else if (t.stem == "likert") json = report::render_likert(*r.likert, OutputFormat::json);
+    else if (t.stem == "likert_compare") json = report::render_likert(*r.likert_compare, OutputFormat::json);
+    o += fmt::format(",\n  {}: {}", q(t.stem), trimmed(json));
+  }
+  o += fmt::format(",\n  \"settings_toml\": {}\n}}\n", q(r.settings_toml));
+  return o;
+}
+
+}  // namespace feint::publish

@@ -1,0 +1,107 @@
+// A study's output folder (see feint/publish/study_report.hpp).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "feint/io/output.hpp"
+#include "feint/plot/canvas.hpp"
+#include "feint/publish/output_folder.hpp"
+#include "feint/publish/study_report.hpp"
+#include "feint/report/writers.hpp"
+
+namespace feint::publish {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string extension(report::OutputFormat format) {
+  switch (format) {
+    case report::OutputFormat::text: return "txt";
+    case report::OutputFormat::markdown: return "md";
+    case report::OutputFormat::latex: return "tex";
+    case report::OutputFormat::csv: return "csv";
+    case report::OutputFormat::json: return "json";
+  }
+  return "txt";
+}
+
+}  // namespace
+
+WrittenStudy write_study(const analysis::Study& study, const analysis::StudyResults& r,
+                         const std::string& out_name, const std::string& command_line) {
+  const analysis::AnalysisSettings& a = study.settings;
+  for (const auto& f : a.figure_formats) plot::parse_file_format(f);  // UsageError before any work
+  OutputFolder out(out_name, study.inputs());
+  auto write = [&](const std::string& name, const std::string& text) {
+    io::write_file_atomically(out.path(name), text);
+  };
+  auto write_all = [&](const std::string& stem, auto&& render) {
+    for (const auto f : study.formats) write(stem + "." + extension(f), render(f));
+  };
+  write("scores.csv", r.scores_csv);
+  if (!r.diagnostics.scoring.sidecar_path.empty()) {
+    write(r.diagnostics.scoring.sidecar_path, r.scores_sidecar);
+  }
+  if (!r.diagnostics.scoring.rejects_path.empty() && !r.rejects_csv.empty()) {
+    write(r.diagnostics.scoring.rejects_path, r.rejects_csv);
+  }
+  const report::TablePresentation& presentation = study.tests.presentation;
+  write_all("table1", [&](report::OutputFormat f) {
+    return report::render_table1(r.table1, f, presentation);
+  });
+  if (r.comparison) {
+    write_all("table1_compare", [&](report::OutputFormat f) {
+      return report::render_table1(*r.comparison, f, presentation);
+    });
+  }
+  if (r.anova) {
+    report::TablePresentation wide;  // analyze has no --label/--caption; table* applies to all
+    wide.wide = presentation.wide;
+    write_all("anova", [&](report::OutputFormat f) {
+      return report::render_anova(*r.anova, f, r.table1.options.apa, wide);
+    });
+  }
+  if (r.model) {
+    write_all("model", [&](report::OutputFormat f) { return report::render_model(*r.model, f); });
+  }
+  if (r.trend_model) {
+    write_all("model_trend",
+              [&](report::OutputFormat f) { return report::render_model(*r.trend_model, f); });
+  }
+  if (r.likert) {
+    write_all("likert", [&](report::OutputFormat f) {
+      return report::render_likert(*r.likert, f, presentation);
+    });
+    write("likert_summary.csv", report::likert_summary_csv(*r.likert));
+  }
+  if (r.likert_compare) {
+    write_all("likert_compare", [&](report::OutputFormat f) {
+      return report::render_likert(*r.likert_compare, f, presentation);
+    });
+  }
+  write("settings.toml", r.settings_toml);
+  write("results.json", study_results_json(r));
+  write("findings.json", analysis::findings_json(r.findings));
+
+  DrawnFigures drawn;
+  if (!a.no_figures) drawn = draw_figures(r, a.figure_formats, out.staging().string());
+  if (!a.no_report) {
+    ReportContext c;
+    c.study_folder = analysis::display_path(study.folder, ".");
+    c.questionnaire = analysis::display_path(study.questionnaire, study.folder);
+    c.config = analysis::display_path(study.config, study.folder);
+    c.command_line = command_line;
+    c.csv_beside = std::find(study.formats.begin(), study.formats.end(),
+                             report::OutputFormat::csv) != study.formats.end();
+    write("report.html", study_report_html(r, drawn.figures, drawn.notes, c));
+    write("report.md", study_report_markdown(r, drawn.figures, c));
+  }
+  WrittenStudy w;
+  w.files = out.commit(r.tool_version);
+  w.folder = out_name;
+  return w;
+}
+
+}  // namespace feint::publish

@@ -1,0 +1,157 @@
+// The study pipeline as a library: load_study -> analyze -> StudyResults (plain data).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <vector>
+#include <string>
+
+#include "feint/analysis/analyze.hpp"
+#include "feint/error.hpp"
+
+namespace fs = std::filesystem;
+using namespace feint;
+
+namespace {
+const std::string kDemo = std::string(FEINT_SOURCE_DIR) + "/data/demo";
+
+analysis::AnalysisSettings demo_settings() {
+  analysis::AnalysisSettings s;  // as data/demo/feint.toml
+  s.compare = "adaptive,random";
+  s.likert.reference = 3.5;
+  return s;
+}
+}  // namespace
+
+TEST(Study, LoadsTheDemoAndChecksSettingsFirst) {
+  const analysis::Study study = analysis::load_study(kDemo, demo_settings());
+  EXPECT_EQ(study.name, "demo");
+  EXPECT_EQ(study.logs.size(), 60u);
+  ASSERT_TRUE(study.answers.has_value());
+  EXPECT_EQ(study.answers->participants.size(), 60u);
+  EXPECT_EQ(study.compare->first, "adaptive");
+
+  auto bad = demo_settings();
+  bad.report.alpha = 2;
+  EXPECT_THROW(analysis::load_study(kDemo, bad), UsageError);
+  bad = demo_settings();
+  bad.formats.clear();
+  EXPECT_THROW(analysis::load_study(kDemo, bad), UsageError);
+  EXPECT_THROW(analysis::load_study(kDemo + "/no-such-folder", demo_settings()), IoError);
+  EXPECT_THROW(analysis::load_study(kDemo + "/logs", demo_settings()), InvalidData);  // no logs/
+}
+
+TEST(Analyze, TheDemoGivesEveryPartAsPlainData) {
+  const analysis::Study study = analysis::load_study(kDemo, demo_settings());
+  const analysis::StudyResults r = analysis::analyze(study, "test");
+  const auto& d = r.diagnostics;
+  EXPECT_EQ(d.scoring.files, 60u);
+  EXPECT_EQ(d.scoring.trials_scored, 1200u);
+  EXPECT_EQ(d.scoring.trials_rejected, 0u);
+  EXPECT_EQ(d.scoring.rows_read, d.scoring.rows_scored + d.scoring.rows_rejected);
+  EXPECT_EQ(d.participants, 60u);
+  ASSERT_EQ(d.participants_per_condition.size(), 2u);
+  EXPECT_EQ(d.participants_per_condition[0].second + d.participants_per_condition[1].second, 60u);
+  // Scores: one record per scored trial; no path of the scratch folder survives.
+  EXPECT_EQ(r.scores.records.size(), 1200u);
+  EXPECT_EQ(r.scores.path, "scores.csv");
+  EXPECT_EQ(r.scores_sidecar.find("feint-analyze-"), std::string::npos);
+  // Table 1: 2 conditions x 20 iterations x 2 metrics one-sample tests.
+  EXPECT_EQ(r.table1.rows.size(), 80u);
+  ASSERT_TRUE(r.comparison.has_value());
+  EXPECT_EQ(r.comparison->rows.size(), 40u);
+  ASSERT_TRUE(r.anova.has_value());
+  EXPECT_EQ(r.anova->analyses.size(), 2u);
+  ASSERT_TRUE(r.model.has_value());
+  ASSERT_EQ(r.model->models.size(), 2u);
+  EXPECT_EQ(r.model->models[0].contrasts.size(), 20u);  // A - B per iteration
+  ASSERT_TRUE(r.trend_model.has_value());
+  ASSERT_TRUE(r.likert.has_value());
+  ASSERT_TRUE(r.likert_compare.has_value());
+  EXPECT_EQ(d.respondents, 60u);
+  // Figure data: a label per scored trial, first and later exposures per strategy.
+  EXPECT_EQ(r.figures.labels.size(), 1200u);
+  EXPECT_FALSE(r.figures.traces.empty());
+  for (const auto& c : r.figures.traces) EXPECT_EQ(c.mean.size(), analysis::kTracePoints);
+  // The findings engine: H1 per metric (the comparison's per-iteration contrasts), the demo's
+  // confusion reference 0.95 above every score, H2 per item against the reference and between.
+  ASSERT_FALSE(r.findings.empty());
+  EXPECT_EQ(r.findings.front().id, "H1-iterations-error");
+  EXPECT_NE(r.findings.front().sentence.find("Holm-corrected over 20 tests"), std::string::npos);
+  bool reference_warning = false, h2 = false;
+  for (const auto& f : r.findings) {
+    reference_warning |= f.id == "reference-confusion" && !f.warnings.empty();
+    h2 |= f.hypothesis == "H2" && f.sentence.find("BF") != std::string::npos;
+  }
+  EXPECT_TRUE(reference_warning);
+  EXPECT_TRUE(h2);
+  EXPECT_EQ(r.settings_toml, analysis::settings_toml(study.settings));
+}
+
+TEST(Analyze, ScoringWarningsAreCollectedNotPrinted) {
+  auto s = demo_settings();
+  s.scoring.time_unit = "ms";  // the demo's seconds read as milliseconds: implausibly short trials
+  const analysis::StudyResults r = analysis::analyze(analysis::load_study(kDemo, s));
+  ASSERT_FALSE(r.diagnostics.warnings.empty());
+  bool listed = false;
+  for (const auto& e : r.diagnostics.exclusions) listed |= e.stage == "scoring" && e.what == "warning";
+  EXPECT_TRUE(listed);
+}
+
+TEST(Settings, TomlNamesEverySettingAndQuotesStrings) {
+  analysis::AnalysisSettings s;
+  s.likert.labels = "Agree \"a lot\"=7";
+  s.scoring.trim = 0.1;
+  const std::string t = analysis::settings_toml(s);
+  EXPECT_NE(t.find("labels = \"Agree \\\"a lot\\\"=7\"\n"), std::string::npos) << t;
+  EXPECT_NE(t.find("trim = 0.1\n"), std::string::npos) << t;
+  EXPECT_NE(t.find("# compare = \"\""), std::string::npos) << t;
+  EXPECT_NE(t.find("formats = [\"text\", \"markdown\", \"latex\", \"csv\", \"json\"]\n"),
+            std::string::npos);
+  EXPECT_EQ(t.find("\nstudy"), std::string::npos) << "no positional argument in the block";
+}
+
+TEST(DisplayPath, RelativeToTheBaseNeverAbsolute) {
+  EXPECT_EQ(analysis::display_path(kDemo + "/questionnaire.csv", kDemo), "questionnaire.csv");
+  EXPECT_EQ(analysis::display_path(kDemo + "/logs/../feint.toml", kDemo), "feint.toml");
+  const std::string outside = analysis::display_path(kDemo, kDemo + "/logs");
+  EXPECT_FALSE(fs::path(outside).is_absolute()) << outside;
+  EXPECT_EQ(analysis::display_path("", kDemo), "");
+}
+
+TEST(Analyze, RejectedTrialsAndParticipantsAreCountedByReason) {
+  // Two participants; P2's only trial goes back in time and is rejected (--on-error skip).
+  const fs::path study = fs::temp_directory_path() / "feint-test-rejects-study";
+  fs::remove_all(study);
+  fs::create_directories(study / "logs");
+  {
+    std::ofstream f(study / "logs" / "s.csv");
+    f << "participant,condition,iteration,target,t,pad,pad_speed\n";
+    for (int it = 1; it <= 2; ++it) {
+      for (int k = 0; k <= 5; ++k) f << "P1,adaptive," << it << ",right," << k * 0.2 << ",0.6,0.5\n";
+    }
+    f << "P2,adaptive,1,right,0,0.5,0.5\nP2,adaptive,1,right,0.4,0.5,0.5\n"
+      << "P2,adaptive,1,right,0.2,0.5,0.5\n";
+  }
+  analysis::AnalysisSettings s;
+  s.scoring.on_error = "skip";
+  const auto r = analysis::analyze(analysis::load_study(study.string(), s), "test");
+  EXPECT_EQ(r.diagnostics.scoring.trials_scored, 2u);
+  EXPECT_EQ(r.diagnostics.scoring.trials_rejected, 1u);
+  EXPECT_EQ(r.diagnostics.participants, 1u);
+  bool trial = false, participant = false;
+  for (const auto& e : r.diagnostics.exclusions) {
+    if (e.stage == "scoring" && e.what == "trial") {
+      trial = e.count == 1 && e.examples == std::vector<std::string>{"s.csv:16"};
+      EXPECT_EQ(e.reason.find("s.csv"), std::string::npos) << "the reason without the place: "
+                                                          << e.reason;
+    }
+    if (e.what == "participant") {
+      participant = e.count == 1 && e.examples == std::vector<std::string>{"P2"};
+    }
+  }
+  EXPECT_TRUE(trial) << r.rejects_csv;
+  EXPECT_TRUE(participant);
+  EXPECT_FALSE(r.rejects_csv.empty());
+  fs::remove_all(study);
+}
