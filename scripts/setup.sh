@@ -12,9 +12,10 @@ jobs=$(nproc 2>/dev/null || echo 2)
 # Debian packages feint needs to build and test (no others; nothing is downloaded from elsewhere).
 packages="g++ make cmake pkg-config ca-certificates libfmt-dev libcli11-dev libboost-dev libeigen3-dev zlib1g-dev libgtest-dev libcairo2-dev"
 # The test suite also checks the SVG figures (xmllint), report.html and the feint collect game in
-# headless Chromium, and compiles the LaTeX tables and PDF figures in a paper (pdflatex, booktabs).
+# headless Chromium, and compiles the LaTeX tables and PDF figures in a paper (pdflatex, booktabs);
+# feint collect is tested behind nginx with a self-signed TLS certificate (nginx, openssl).
 if [ "$mode" = test ]; then
-  packages="$packages libxml2-utils python3 chromium chromium-driver texlive-latex-base texlive-latex-recommended"
+  packages="$packages libxml2-utils python3 chromium chromium-driver texlive-latex-base texlive-latex-recommended nginx openssl"
 fi
 
 missing=""

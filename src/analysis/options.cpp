@@ -34,6 +34,7 @@ metrics::ScoreSettings score_settings(const ScoreOptions& o) {
   if (o.trim_start) s.metrics.trim_start = *o.trim_start;
   if (o.trim_end) s.metrics.trim_end = *o.trim_end;
   s.metrics.deadband = o.deadband;
+  s.metrics.belief_deadband = o.belief_deadband;
   const auto norm = metrics::parse_confusion_norm(o.norm);
   if (!norm) throw UsageError(fmt::format("--confusion-norm '{}': expected speed or raw", o.norm));
   s.metrics.norm = *norm;
@@ -57,6 +58,36 @@ metrics::ScoreSettings score_settings(const ScoreOptions& o) {
   const auto unit = metrics::parse_time_unit(o.time_unit);
   if (!unit) throw UsageError(fmt::format("--time-unit '{}': expected s or ms", o.time_unit));
   s.time_unit = *unit;
+  if (!o.decimal.empty()) {
+    if (o.decimal == "." || io::to_lower(o.decimal) == "point") {
+      s.reading.decimal = '.';
+    } else if (o.decimal == "," || io::to_lower(o.decimal) == "comma") {
+      s.reading.decimal = ',';
+    } else {
+      throw UsageError(fmt::format("--decimal '{}': expected . or ,", o.decimal));
+    }
+    if (s.reading.decimal == ',' && s.delimiter == ',') {
+      throw UsageError("--decimal , with --delimiter , : the comma cannot be both; a European "
+                       "export is read with --delimiter ';' --decimal ,");
+    }
+  }
+  s.reading.no_header = o.no_header;
+  if (!o.columns.empty()) {
+    if (!o.no_header) {
+      throw UsageError("--columns names the columns of a file without a header: give --no-header "
+                       "too (a file with a header is renamed with --map FIELD=COLUMN)");
+    }
+    for (auto& name : io::split_csv_line(o.columns)) s.reading.column_names.emplace_back(io::trim(name));
+  }
+  if (o.no_header && s.reading.column_names.empty() && s.column_map.empty()) {
+    throw UsageError("--no-header needs the columns' names: --columns participant,iteration,"
+                     "target,t,pad (in the file's order) or --map FIELD=N for each field (N = "
+                     "column number from 1)");
+  }
+  if (!o.iteration_base.empty()) s.reading.iteration_base = o.iteration_base == "0" ? 0 : 1;
+  s.reading.participant_from_path = o.participant_from_path;
+  s.reading.samples_column = o.samples_column;
+  s.reading.single_condition = o.single_condition;
   return s;
 }
 

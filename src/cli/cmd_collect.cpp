@@ -2,6 +2,7 @@
 // [collect] section of STUDY/feint.toml, each also an option here (the command line wins).
 #include <fmt/format.h>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -42,7 +43,11 @@ struct CollectArgs {
   std::string consent_file;
   std::string completion_url;
   std::string admin_token;
-  unsigned threads = 4;
+  unsigned threads = 16;
+  std::vector<std::string> allowed_hosts;
+  std::vector<std::string> trusted_proxies;
+  std::size_t max_connections = 0;
+  int idle_timeout = 10;
 };
 
 std::pair<std::string, std::string> name_and_question(const std::string& text, const char* what) {
@@ -113,6 +118,10 @@ void run(CLI::App& cmd, CollectArgs& a) {
   o.port = static_cast<unsigned short>(a.port);
   o.admin_token = a.admin_token;
   o.threads = a.threads;
+  o.allowed_hosts = a.allowed_hosts;
+  o.trusted_proxies = a.trusted_proxies;
+  o.max_connections = a.max_connections;
+  o.idle_timeout = std::chrono::seconds(a.idle_timeout);
   o.stop_on_signals = true;
   collect::Server server(st, o);
   const std::string shown_host =
@@ -135,6 +144,7 @@ void run(CLI::App& cmd, CollectArgs& a) {
   fmt::print("participants: http://{}:{}/\n", shown_host, server.port());
   fmt::print("admin:        http://{}:{}/admin?token={}\n", shown_host, server.port(),
              server.admin_token());
+  fmt::print("connections: at most {} at once\n", server.max_connections());
   fmt::print("Stop with Ctrl-C; a restart resumes from the files in {}.\n", study.string());
   std::fflush(stdout);
   server.run();
@@ -191,8 +201,21 @@ void add_collect_command(CLI::App& app) {
                   "Where the completion page sends participants (e.g. Prolific's)");
   cmd->add_option("--admin-token", args->admin_token,
                   "Token of the admin page (default: random, printed at start)");
-  cmd->add_option("--threads", args->threads, "Server threads (default 4)")
+  cmd->add_option("--threads", args->threads, "Server threads (default 16; each waits for its group's sync, so more threads make bigger commit groups)")
       ->check(CLI::Range(1u, 64u));
+  cmd->add_option("--allowed-host", args->allowed_hosts,
+                  "Accepted Host header, NAME or NAME:PORT (repeatable). On 127.0.0.1/::1, "
+                  "localhost, 127.0.0.1 and [::1] are always accepted and other hosts refused "
+                  "(421: DNS-rebinding defence)");
+  cmd->add_option("--trusted-proxy", args->trusted_proxies,
+                  "IP address of a reverse proxy whose X-Forwarded-For gives the client's address "
+                  "in the events log (repeatable; e.g. 127.0.0.1 for nginx on this computer)");
+  cmd->add_option("--max-connections", args->max_connections,
+                  "Simultaneous connections (default: the descriptor limit, ulimit -n, less a "
+                  "reserve for the files written); more wait in the listen queue");
+  cmd->add_option("--idle-timeout", args->idle_timeout,
+                  "Seconds a kept-alive connection may wait for its next request (default 10)")
+      ->check(CLI::Range(1, 3600));
   cmd->callback([cmd, args] { run(*cmd, *args); });
 }
 

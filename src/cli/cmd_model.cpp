@@ -23,6 +23,10 @@ struct ModelArgs {
   bool exposure = false;
   io::ScoresOptions columns;  // --participant-column, --iteration-column, --condition-column
   std::string strategy_column = "strategy";
+  std::string ddf = "satterthwaite";
+  bool emmeans = false;
+  std::vector<std::string> contrasts;
+  std::string adjust;
   ReportOptions report;
 };
 
@@ -49,6 +53,40 @@ void run_model(const ModelArgs& a) {
   o.conf_level = r.test.conf_level;
   o.p_adjust = r.p_adjust;
   o.apa = r.apa;
+  if (a.ddf == "satterthwaite") {
+    o.ddf = models::DdfMethod::satterthwaite;
+  } else if (a.ddf == "kenward-roger") {
+    o.ddf = models::DdfMethod::kenward_roger;
+  } else {
+    throw UsageError("--ddf " + a.ddf + ": expected satterthwaite or kenward-roger");
+  }
+  o.emmeans = a.emmeans;
+  for (const auto& c : a.contrasts) {
+    using F = models::EmmFamily;
+    std::vector<F> add;
+    if (c == "pairwise") {
+      add = {F::pairwise_condition, F::pairwise_iteration};
+    } else if (c == "simple") {
+      add = {F::condition_at_iteration, F::iteration_in_condition};
+    } else if (c == "poly") {
+      add = {F::poly_iteration, F::poly_in_condition};
+    } else {
+      throw UsageError("--contrasts " + c + ": expected pairwise, simple or poly");
+    }
+    for (const F f : add)
+      if (std::find(o.contrast_families.begin(), o.contrast_families.end(), f) ==
+          o.contrast_families.end())
+        o.contrast_families.push_back(f);
+  }
+  if (!a.adjust.empty()) {
+    if (a.contrasts.empty()) throw UsageError("--adjust applies to --contrasts");
+    o.adjust = models::parse_emm_adjust(a.adjust);
+    if (*o.adjust == models::EmmAdjust::tukey &&
+        std::find(a.contrasts.begin(), a.contrasts.end(), "poly") != a.contrasts.end())
+      throw UsageError("--adjust tukey applies to pairwise and simple contrasts, not to poly");
+  }
+  if ((o.emmeans || !o.contrast_families.empty()) && (o.trend || o.exposure))
+    throw UsageError("--emmeans and --contrasts need iteration as a factor (drop --trend/--exposure)");
   if (o.exposure && o.compare) throw UsageError("--compare does not apply to --exposure");
   if (o.random_slope && !o.trend)
     throw UsageError("--random-slope needs --trend (a random slope of the linear trend)");
@@ -93,6 +131,21 @@ void add_model_command(CLI::App& app) {
   cmd->add_flag("--exposure", args->exposure,
                 "Fit metric ~ strategy * exposure + (1 | participant), exposure = earlier trials "
                 "of the same strategy; report the slope per strategy");
+  cmd->add_option("--ddf", args->ddf,
+                  "Denominator df of the F tests and contrasts: satterthwaite (lmerTest's default) "
+                  "or kenward-roger (pbkrtest: adjusted covariance and scaled F)")
+      ->capture_default_str();
+  cmd->add_flag("--emmeans", args->emmeans,
+                "Estimated marginal means with intervals: condition x iteration cells, conditions, "
+                "iterations (as emmeans)");
+  cmd->add_option("--contrasts", args->contrasts,
+                  "emmeans contrasts (repeatable): pairwise (all pairs of conditions, of "
+                  "iterations), simple (condition at each iteration, iteration within each "
+                  "condition), poly (polynomial trends over iterations, overall and per condition)")
+      ->allow_extra_args(false);
+  cmd->add_option("--adjust", args->adjust,
+                  "Adjustment of the --contrasts within each family: tukey, holm (Bonferroni "
+                  "intervals) or none (default: tukey for pairwise/simple, none for poly)");
   add_scores_column_options(*cmd, args->columns);
   cmd->add_option("--strategy-column", args->strategy_column,
                   "Name of the strategy column (--exposure)")

@@ -108,6 +108,8 @@ void add_power_command(CLI::App& app) {
   add_scores_column_options(*sim, s->o.columns, "Pilot: ");
   add_report_options(*sim, s->report, {.tests = false, .presentation = true});
   sim->callback([s] { run_simulate(*s); });
+
+  add_power_observer_command(*cmd);
 }
 
 }  // namespace feint::cli

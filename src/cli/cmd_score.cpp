@@ -77,7 +77,9 @@ void add_score_command(CLI::App& app) {
       "[pad_speed] (pad units/s). A trial = (participant, condition, iteration); its rows must "
       "be contiguous.\n"
       "Output columns: participant, condition, iteration, strategy, variant, target, n_samples, "
-      "duration, error, confusion, reversal_time, reversals, final_pad, overspeed_segments; the "
+      "duration, error, confusion, reversal_time, reversals, final_pad, overspeed_segments, "
+      "signed_area, max_deviation, flips, time_deceived, final_belief_time (belief-trace "
+      "measures, docs/metrics.md); the "
       "settings are recorded in OUTPUT.meta.json.\n"
       "Exit status: 0 ok, 64 bad command line, 65 invalid data, 74 cannot read/write a file.");
   cmd->add_option("inputs", args->inputs,

@@ -1,6 +1,8 @@
 // `feint simulate selection`: the strategy selection simulator and its entropy analysis
 // (selection.md; docs/simulation.md). `feint simulate study`: a simulated user study.
+// `feint simulate trajectories`: the observer's deceptiveness measures of each strategy (docs/observer.md).
 #include <cmath>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,6 +18,7 @@
 #include "feint/sim/simulation.hpp"
 #include "feint/sim/study.hpp"
 #include "feint/sim/sweep.hpp"
+#include "feint/sim/trajectory_measures.hpp"
 
 namespace feint::cli {
 
@@ -137,6 +140,8 @@ struct StudyOptions {
   std::uint64_t seed = 1;
   double sample_rate = 25.0;
   double pad_speed = 0.8;
+  std::string participant_model = "goal-inference";
+  std::vector<std::string> observer;  // KEY=VALUE
 };
 
 void run_study(const StudyOptions& o) {
@@ -146,7 +151,11 @@ void run_study(const StudyOptions& o) {
   s.lambda = o.lambda;
   s.seed = o.seed;
   s.geometry.sample_rate = o.sample_rate;
+  if (sim::parse_participant_model(o.participant_model) == sim::ParticipantModel::heuristic) {
+    s.observer = sim::ObserverParams{};  // feint 0.1's participant, with its own defaults
+  }
   s.observer.pad_speed = o.pad_speed;
+  for (const auto& kv : o.observer) sim::set_parameter(s.observer, kv);
   sim::validate(s.geometry);
   sim::validate(s.observer);
   const auto people = sim::write_study(s, o.out);
@@ -179,17 +188,221 @@ void add_study_command(CLI::App& parent) {
   cmd->add_option("--pad-speed", opts->pad_speed, "pad speed (pad units per second)")
       ->check(CLI::Range(0.01, 100.0))
       ->capture_default_str();
+  cmd->add_option("--participant-model", opts->participant_model,
+                  "how simulated people infer the goal: heuristic (tanh of the robot's x) or "
+                  "goal-inference (Bayesian observer; docs/simulation.md)")
+      ->capture_default_str();
+  cmd->add_option("--observer", opts->observer,
+                  "NAME=VALUE: set a parameter of the simulated observer (repeatable), e.g. beta=1.5 "
+                  "noise_sd=0.1; the names and defaults are in docs/simulation.md");
   cmd->callback([opts] { run_study(*opts); });
+}
+
+
+// --- trajectories: the observer's deceptiveness measures (docs/observer.md) ---------------------
+struct TrajectoriesOptions {
+  double beta = 1.0;
+  double tau = 0.0;
+  double prior = 0.5;
+  double pad_speed = 0.8;
+  std::string path;          // a custom path CSV (t,x,y) instead of the paper's strategies
+  std::string target = "right";
+  std::string format;
+  std::string output = "-";
+};
+
+/// A path file: a header naming t, x and y (any order, other columns ignored), one sample a row.
+std::vector<models::PathSample> read_path_file(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw IoError(fmt::format("{}: cannot open the path file", file));
+  std::string line;
+  if (!std::getline(in, line)) throw InvalidData(fmt::format("{}:1: the path file is empty", file));
+  const auto head = io::split_csv_line(line);
+  int ct = -1, cx = -1, cy = -1;
+  for (std::size_t i = 0; i < head.size(); ++i) {
+    const std::string h = io::to_lower(std::string(io::trim(head[i])));
+    if (h == "t") ct = static_cast<int>(i);
+    if (h == "x" || h == "robot_x") cx = static_cast<int>(i);
+    if (h == "y" || h == "robot_y") cy = static_cast<int>(i);
+  }
+  if (ct < 0 || cx < 0 || cy < 0) {
+    throw InvalidData(fmt::format("{}:1: the header must name the columns t, x and y (got '{}')", file, line));
+  }
+  std::vector<models::PathSample> out;
+  for (std::uint64_t ln = 2; std::getline(in, line); ++ln) {
+    if (io::trim(line).empty()) continue;
+    const auto cells = io::split_csv_line(line);
+    auto get = [&](int c, const char* name) {
+      const auto i = static_cast<std::size_t>(c);
+      const auto v = i < cells.size() ? io::parse_double(io::trim(cells[i])) : std::nullopt;
+      if (!v) {
+        throw InvalidData(fmt::format("{}:{}: column '{}': '{}' is not a number", file, ln, name,
+                                      i < cells.size() ? cells[i] : std::string()));
+      }
+      return *v;
+    };
+    out.push_back({get(ct, "t"), get(cx, "x"), get(cy, "y")});
+  }
+  return out;
+}
+
+struct Column {
+  std::string name;
+  bool text;  // a string (quoted in JSON) rather than a number
+};
+
+const std::vector<Column>& trajectory_columns() {
+  static const std::vector<Column> cols = {
+      {"strategy", true},         {"variant", true},          {"target", true},
+      {"duration", false},        {"path_length", false},     {"cost_overhead", false},
+      {"legibility", false},      {"time_deceived", false},   {"last_deceptive_point", false},
+      {"final_belief", false},    {"belief_error", false},    {"belief_confusion", false},
+      {"belief_overspeed_segments", false}, {"beta", false},  {"tau", false},
+      {"prior_right", false},     {"pad_speed", false}};
+  return cols;
+}
+
+std::vector<std::string> trajectory_cells(const sim::TrajectoryMeasuresRow& r, const TrajectoriesOptions& o) {
+  const auto& m = r.measures;
+  auto d = [](double x) { return io::format_double(x); };
+  return {r.strategy, r.variant, r.target, d(m.duration), d(m.path_length), d(m.cost_overhead),
+          d(m.legibility), d(m.time_deceived), d(m.last_deceptive_point), d(m.final_belief),
+          d(m.belief_error), d(m.belief_confusion), std::to_string(m.belief_overspeed_segments),
+          d(o.beta), d(o.tau), d(o.prior), d(o.pad_speed)};
+}
+
+std::string render_trajectories(const std::vector<sim::TrajectoryMeasuresRow>& rows,
+                                const TrajectoriesOptions& o, const std::string& format) {
+  const auto& cols = trajectory_columns();
+  std::string out;
+  if (format == "csv") {
+    for (std::size_t i = 0; i < cols.size(); ++i) out += (i ? "," : "") + cols[i].name;
+    out += '\n';
+    for (const auto& r : rows) {
+      const auto cells = trajectory_cells(r, o);
+      for (std::size_t i = 0; i < cells.size(); ++i) out += (i ? "," : "") + io::csv_escape(cells[i]);
+      out += '\n';
+    }
+    return out;
+  }
+  if (format == "json") {
+    out = "[\n";
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      const auto cells = trajectory_cells(rows[k], o);
+      out += "  {";
+      for (std::size_t i = 0; i < cells.size(); ++i) {
+        out += (i ? ", " : "") + io::json_quote(cols[i].name) + ": " +
+               (cols[i].text ? io::json_quote(cells[i]) : (cells[i].empty() ? "null" : cells[i]));
+      }
+      out += k + 1 < rows.size() ? "},\n" : "}\n";
+    }
+    return out + "]\n";
+  }
+  const bool md = format == "markdown";
+  const std::vector<std::string> head = {"strategy", "variant", "target", "T (s)", "overhead",
+                                         "legibility", "deceived", "LDP", "error", "confusion", "overspeed"};
+  std::vector<std::vector<std::string>> body;
+  auto f = [](double x) { return std::isnan(x) ? std::string("-") : fmt::format("{:.4f}", x); };
+  for (const auto& r : rows) {
+    const auto& m = r.measures;
+    body.push_back({r.strategy, r.variant, r.target, fmt::format("{:.2f}", m.duration), f(m.cost_overhead),
+                    f(m.legibility), f(m.time_deceived), f(m.last_deceptive_point), f(m.belief_error),
+                    f(m.belief_confusion), std::to_string(m.belief_overspeed_segments)});
+  }
+  std::vector<std::size_t> width(head.size());
+  for (std::size_t i = 0; i < head.size(); ++i) {
+    width[i] = head[i].size();
+    for (const auto& b : body) width[i] = std::max(width[i], b[i].size());
+  }
+  auto line = [&](const std::vector<std::string>& cells) {
+    std::string l = md ? "|" : "";
+    for (std::size_t i = 0; i < cells.size(); ++i) {
+      const std::string cell = i < 3 ? fmt::format("{:<{}}", cells[i], width[i]) : fmt::format("{:>{}}", cells[i], width[i]);
+      l += md ? " " + cell + " |" : (i ? "  " : "") + cell;
+    }
+    return l + "\n";
+  };
+  out += fmt::format("Observer: beta = {} 1/m, tau = {} s, P(right) = {}; confusion normalised by the pad "
+                     "speed v = {} pad units/s.\n",
+                     io::format_double(o.beta), io::format_double(o.tau), io::format_double(o.prior),
+                     io::format_double(o.pad_speed));
+  if (md) out += "\n";
+  out += line(head);
+  if (md) {
+    std::string sep = "|";
+    for (std::size_t i = 0; i < head.size(); ++i) sep += " " + std::string(width[i], '-') + " |";
+    out += sep + "\n";
+  }
+  for (const auto& b : body) out += line(b);
+  if (md) out += "\n";
+  out += "overhead: path length / straight line - 1; legibility: Dragan's time-weighted P(true goal);\n"
+         "deceived: share of time the true goal is the less probable one; LDP: last deceptive point\n"
+         "(share of the path); error, confusion: the paper's metrics of the delayed belief b(t) as a pad;\n"
+         "overspeed: segments where b(t) moved faster than v (counted as moving at v).\n";
+  return out;
+}
+
+void run_trajectories(const TrajectoriesOptions& o) {
+  const std::string format = infer_format(o.format, o.output);
+  models::DeceptivenessSettings s;
+  s.observer = {o.beta, o.tau, o.prior};
+  models::validate(s.observer);
+  s.pad_speed = o.pad_speed;
+  const sim::Geometry g;
+  std::vector<sim::TrajectoryMeasuresRow> rows;
+  if (o.path.empty()) {
+    rows = sim::strategy_measures(g, s);
+  } else {
+    const std::string t = io::to_lower(o.target);
+    if (t != "left" && t != "right") throw UsageError(fmt::format("--target '{}': expected left or right", o.target));
+    s.goals = sim::goals_of(g);
+    const auto path = read_path_file(o.path);
+    try {
+      rows.push_back({"custom", "main", t,
+                      models::deceptiveness(path, t == "right" ? models::GoalSide::right : models::GoalSide::left, s)});
+    } catch (const InvalidData& e) {
+      throw InvalidData(fmt::format("{}: {}", o.path, e.what()));
+    }
+  }
+  io::AtomicOutput out(o.output);
+  out.stream() << render_trajectories(rows, o, format);
+  out.commit();
+}
+
+void add_trajectories_command(CLI::App& parent) {
+  auto opts = std::make_shared<TrajectoriesOptions>();
+  auto* cmd = parent.add_subcommand(
+      "trajectories",
+      "Deceptiveness of every strategy and version of the paper (both targets) under the goal-inference "
+      "observer: legibility, time deceived, last deceptive point, cost overhead, and the error and "
+      "confusion of the observer's belief as if it were a pad (docs/observer.md).");
+  cmd->add_option("--beta", opts->beta, "observer rationality beta (1/m, >= 0)")->capture_default_str();
+  cmd->add_option("--tau", opts->tau, "observer response delay tau (s, >= 0)")->capture_default_str();
+  cmd->add_option("--prior", opts->prior, "prior P(right), in (0, 1)")->capture_default_str();
+  cmd->add_option("--pad-speed", opts->pad_speed,
+                  "pad speed v (pad units/s) normalising the belief's confusion")
+      ->capture_default_str();
+  cmd->add_option("--path", opts->path,
+                  "measure this path instead (CSV with columns t, x, y in the default geometry: start "
+                  "(0, 0), targets (-2, 4) and (2, 4))");
+  cmd->add_option("--target", opts->target, "with --path: the true target, left or right")->capture_default_str();
+  cmd->add_option("--format,-f", opts->format,
+                  "text, markdown, csv or json (default: from the -o extension, else text)");
+  cmd->add_option("--output,-o", opts->output, "output file (- = standard output)")->capture_default_str();
+  cmd->callback([opts] { run_trajectories(*opts); });
 }
 
 }  // namespace
 
 void add_simulate_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
-      "simulate", "Simulate strategy selection (entropy analysis) or a whole user study.");
+      "simulate",
+      "Simulate strategy selection (entropy analysis), a whole user study, or the observer's view of "
+      "the strategies' trajectories.");
   cmd->require_subcommand(1);
   add_selection_command(*cmd);
   add_study_command(*cmd);
+  add_trajectories_command(*cmd);
 }
 
 }  // namespace feint::cli

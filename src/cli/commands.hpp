@@ -17,7 +17,9 @@ void add_simulate_command(CLI::App& app);  // cmd_simulate.cpp (issue: selection
 void add_collect_command(CLI::App& app);   // cmd_collect.cpp  (issue 11: data collection)
 void add_anova_command(CLI::App& app);     // cmd_anova.cpp    (issue 10: mixed ANOVA)
 void add_power_command(CLI::App& app);     // cmd_power.cpp    (issue 10: power)
+void add_power_observer_command(CLI::App& power);  // cmd_power_observer.cpp (issue #17)
 void add_plot_command(CLI::App& app);      // cmd_plot.cpp     (issue #9: figures)
 void add_model_command(CLI::App& app);     // cmd_model.cpp    (issue #10: mixed model)
+void add_observer_command(CLI::App& app);  // cmd_observer.cpp (issue #16: observer fit)
 
 }  // namespace feint::cli

@@ -40,6 +40,7 @@ int main(int argc, char** argv) {
   feint::cli::add_power_command(app);
   feint::cli::add_plot_command(app);
   feint::cli::add_model_command(app);
+  feint::cli::add_observer_command(app);
 
   // `feint help [COMMAND]` is `feint [COMMAND] --help`; a first word that is no command is named
   // as such (CLI11 would only say "The following argument was not expected").

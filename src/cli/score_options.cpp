@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "feint/error.hpp"
+#include "feint/io/csv.hpp"
 #include "feint/io/number.hpp"
 
 namespace feint::cli {
@@ -28,6 +29,10 @@ void add_score_options(CLI::App& cmd, ScoreOptions& o, const std::string& group)
   added.push_back(cmd.add_option("--deadband", o.deadband,
                                  "Dead band eps in pad units: a segment moving <= eps has no "
                                  "direction for the reversal rule (default 1e-9)"));
+  added.push_back(cmd.add_option("--belief-deadband", o.belief_deadband,
+                                 "Dead band delta in pad units of the belief-trace measures: flips "
+                                 "smaller than delta are ignored, and the pad is on a side of 0.5 "
+                                 "only beyond delta (default 0.05)"));
   added.push_back(cmd.add_option("--confusion-norm", o.norm,
                                  "Confusion normalisation: 'speed' = moving fraction at the pad "
                                  "speed, in [0, 1] (default); 'raw' = the paper's eq. 4 as printed "
@@ -55,6 +60,34 @@ void add_score_options(CLI::App& cmd, ScoreOptions& o, const std::string& group)
                                  "Unit of the logs' t column: s (default) or ms (converted to "
                                  "seconds; jsPsych and many loggers write ms)")
                       ->check(CLI::IsMember({"s", "ms"}, CLI::ignore_case)));
+  added.push_back(cmd.add_option("--decimal", o.decimal,
+                                 "Decimal mark of the logs' numbers: . or , (default: '.' in a "
+                                 "comma-separated file; otherwise detected from the first number "
+                                 "holding one)"));
+  added.push_back(cmd.add_flag("--no-header", o.no_header,
+                               "The logs have no header row (MATLAB): name the columns with "
+                               "--columns, or by number with --map FIELD=N (N from 1)"));
+  added.push_back(cmd.add_option("--columns", o.columns,
+                                 "With --no-header: the columns' names in order, comma-separated, "
+                                 "e.g. participant,iteration,target,t,pad (a column not named is "
+                                 "called by its number)"));
+  added.push_back(cmd.add_option("--iteration-base", o.iteration_base,
+                                 "0 = the logs number iterations from 0 (PsychoPy; 1 is added, so "
+                                 "0..19 become 1..20); 1 = from 1 (an iteration 0 is invalid). "
+                                 "Default: as written, with a warning when they start at 0")
+                      ->check(CLI::IsMember({"0", "1"})));
+  added.push_back(cmd.add_option("--participant-from-path", o.participant_from_path,
+                                 "Take the participant id from each log's path instead of a "
+                                 "column: filename (name without extensions), dirname (folder "
+                                 "name), or a regular expression whose first group is the id, "
+                                 "e.g. 'sub-([0-9]+)'"));
+  added.push_back(cmd.add_option("--samples-column", o.samples_column,
+                                 "A column holding each trial's samples as JSON (jsPsych): "
+                                 "[{\"t\":0,\"pad\":0.5},...] or {\"t\":[...],\"pad\":[...]}; "
+                                 "keys follow --map t=KEY / pad=KEY"));
+  added.push_back(cmd.add_flag("--single-condition", o.single_condition,
+                               "Read every trial as one condition although a column looks like "
+                               "a condition (group, cond..., arm, treatment)"));
   if (!group.empty()) {
     for (auto* opt : added) opt->group(group);
   }

@@ -15,6 +15,7 @@ using analysis::score_settings;
 using analysis::ScoreOptions;
 
 /// Registers --trim, --trim-start, --trim-end, --deadband, --confusion-norm, --pad-speed, --map,
-/// --delimiter, --on-error and --time-unit on `cmd` (in help group `group`, if not empty), bound to `options`.
+/// --delimiter, --on-error, --time-unit, --decimal, --no-header, --columns, --iteration-base,
+/// --participant-from-path, --samples-column and --single-condition on `cmd` (in help group `group`, if not empty), bound to `options`.
 void add_score_options(CLI::App& cmd, ScoreOptions& options, const std::string& group = "");
 }  // namespace feint::cli

@@ -6,7 +6,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <fstream>
@@ -58,20 +61,242 @@ std::uint64_t append_durably(const fs::path& path, std::string_view header, std:
     created = f.fd >= 0;
   }
   if (f.fd < 0) fail(path, "cannot open for appending");
-  if (created) {
-    // Header and first data in one write: a file is never left with a header alone.
-    std::string first;
-    first.reserve(header.size() + data.size());
-    first.append(header).append(data);
-    write_all(f.fd, first, path);
-  } else {
-    write_all(f.fd, data, path);
-  }
-  if (::fdatasync(f.fd) != 0) fail(path, "cannot sync");
   struct stat st {};
   if (::fstat(f.fd, &st) != 0) fail(path, "cannot stat");
+  const auto before = static_cast<std::uint64_t>(st.st_size);
+  // An empty file (new, or left empty by a crash between its creation and its first write) gets
+  // the header, in the same write as the first data: a file never holds rows without a header.
+  std::string first;
+  if (before == 0) {
+    first.reserve(header.size() + data.size());
+    first.append(header).append(data);
+    data = first;
+  }
+  try {
+    write_all(f.fd, data, path);
+    if (::fdatasync(f.fd) != 0) fail(path, "cannot sync");
+  } catch (const IoError&) {
+    // Disk full, file too large, I/O error: this append is not acknowledged. Its own partial
+    // bytes (never acknowledged; the page still has them and retries) are cut back at once, so
+    // that the file ends with the last acknowledged line. If even that fails, the restart
+    // recovery (or the next append's size check) sets the tail aside.
+    const int saved = errno;
+    if (::ftruncate(f.fd, static_cast<off_t>(before)) == 0) (void)::fdatasync(f.fd);
+    errno = saved;
+    throw;
+  }
   if (created) sync_directory(path.parent_path());
-  return static_cast<std::uint64_t>(st.st_size);
+  return before + data.size();
+}
+
+// ---- group commit ----
+
+constexpr std::size_t kSyncThreads = 16;  // fdatasync() calls in flight at once
+
+struct GroupCommitter::Group {
+  std::vector<Append> items;
+  std::vector<Result> results;
+  bool done = false;
+  std::condition_variable cv;
+};
+
+GroupCommitter::GroupCommitter() : thread_([this] { writer(); }) {}
+
+GroupCommitter::~GroupCommitter() {
+  {
+    std::lock_guard lock(mu_);
+    stop_ = true;
+  }
+  work_.notify_all();
+  thread_.join();
+}
+
+std::vector<GroupCommitter::Result> GroupCommitter::commit(std::vector<Append> items) {
+  auto g = std::make_shared<Group>();
+  g->items = std::move(items);
+  g->results.resize(g->items.size());
+  std::unique_lock lock(mu_);
+  queue_.push_back(g);
+  work_.notify_one();
+  g->cv.wait(lock, [&] { return g->done; });
+  return std::move(g->results);
+}
+
+void GroupCommitter::enqueue(std::vector<Append> items) {
+  auto g = std::make_shared<Group>();
+  g->items = std::move(items);
+  g->results.resize(g->items.size());
+  std::lock_guard lock(mu_);
+  queue_.push_back(std::move(g));
+  work_.notify_one();
+}
+
+std::uint64_t GroupCommitter::append(const fs::path& path, std::string_view header,
+                                     std::string data) {
+  std::vector<Append> one;
+  one.push_back({path, std::string(header), std::move(data)});
+  const auto r = commit(std::move(one));
+  if (!r[0].error.empty()) throw IoError(r[0].error);
+  return r[0].size;
+}
+
+std::uint64_t GroupCommitter::groups() const noexcept {
+  std::lock_guard lock(mu_);
+  return groups_;
+}
+std::uint64_t GroupCommitter::appends() const noexcept {
+  std::lock_guard lock(mu_);
+  return appends_;
+}
+
+void GroupCommitter::writer() {
+  std::unique_lock lock(mu_);
+  for (;;) {
+    work_.wait(lock, [&] { return stop_ || !queue_.empty(); });
+    if (queue_.empty()) return;  // stopping, nothing left
+    // Everything that arrived while the previous group was being written and synced.
+    std::vector<std::shared_ptr<Group>> batch(queue_.begin(), queue_.end());
+    queue_.clear();
+    lock.unlock();
+    write_batch(batch);
+    lock.lock();
+    ++groups_;
+    for (auto& g : batch) {
+      appends_ += g->items.size();
+      g->done = true;
+      g->cv.notify_all();
+    }
+  }
+}
+
+void GroupCommitter::write_batch(std::vector<std::shared_ptr<Group>>& batch) {
+  struct File {
+    Fd fd;
+    std::uint64_t size = 0;
+    bool created = false;
+    std::string error;
+    std::vector<Result*> results;  // the appends to it, for a failed sync
+  };
+  std::vector<std::pair<fs::path, std::unique_ptr<File>>> files;
+  auto file_of = [&](const fs::path& path) -> File& {
+    for (auto& [p, f] : files)
+      if (p == path) return *f;
+    auto f = std::make_unique<File>();
+    f->fd.fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+    if (f->fd.fd < 0 && errno == ENOENT) {
+      f->fd.fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+      f->created = f->fd.fd >= 0;
+    }
+    struct stat st {};
+    if (f->fd.fd < 0) {
+      f->error = fmt::format("{}: cannot open for appending: {}", path.string(), std::strerror(errno));
+    } else if (::fstat(f->fd.fd, &st) != 0) {
+      f->error = fmt::format("{}: cannot stat: {}", path.string(), std::strerror(errno));
+    } else {
+      f->size = static_cast<std::uint64_t>(st.st_size);
+    }
+    files.emplace_back(path, std::move(f));
+    return *files.back().second;
+  };
+  // 1. Write, in queue order.
+  for (auto& g : batch) {
+    bool failed = false;
+    for (std::size_t i = 0; i < g->items.size(); ++i) {
+      auto& item = g->items[i];
+      auto& res = g->results[i];
+      if (failed) {
+        res.error = "not written: an earlier append of the same commit failed";
+        continue;
+      }
+      File& f = file_of(item.path);
+      if (!f.error.empty()) {
+        res.error = f.error;
+        failed = true;
+        continue;
+      }
+      std::string_view data = item.data;
+      std::string first;
+      if (f.size == 0) {  // an empty file gets its header first, in the same write
+        first.append(item.header).append(item.data);
+        data = first;
+      }
+      try {
+        write_all(f.fd.fd, data, item.path);
+        f.size += data.size();
+        res.size = f.size;
+        f.results.push_back(&res);
+      } catch (const IoError& e) {
+        // Not acknowledged: its own partial bytes are cut back (see append_durably).
+        (void)::ftruncate(f.fd.fd, static_cast<off_t>(f.size));
+        res.error = e.what();
+        failed = true;
+      }
+    }
+  }
+  // 2. One sync for the whole group.
+  std::vector<File*> touched;
+  for (auto& [p, f] : files)
+    if (!f->results.empty() || f->created) touched.push_back(f.get());
+  if (touched.empty()) return;
+  auto fail_all = [&](File& f, const std::string& why) {
+    for (Result* r : f.results)
+      if (r->error.empty()) r->error = why;
+  };
+  if (touched.size() == 1) {
+    File& f = *touched.front();
+    if (::fdatasync(f.fd.fd) != 0) fail_all(f, fmt::format("cannot sync: {}", std::strerror(errno)));
+    for (auto& [p, fp] : files) {
+      if (fp.get() != &f || !f.created) continue;
+      try {
+        sync_directory(p.parent_path());
+      } catch (const IoError& e) {
+        fail_all(f, e.what());
+      }
+    }
+  } else {
+    // fdatasync() of every file at once, from several threads: the file system joins them into
+    // one journal commit (ext4, xfs), so the group costs about one sync, and only these files'
+    // data is flushed (syncfs() would flush everything else on the disk too).
+    std::vector<fs::path> dirs;
+    for (auto& [p, f] : files)
+      if (f->created && std::find(dirs.begin(), dirs.end(), p.parent_path()) == dirs.end())
+        dirs.push_back(p.parent_path());
+    std::vector<std::string> errors(touched.size() + dirs.size());
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+      for (std::size_t i; (i = next++) < errors.size();) {
+        if (i < touched.size()) {
+          if (::fdatasync(touched[i]->fd.fd) != 0)
+            errors[i] = fmt::format("cannot sync: {}", std::strerror(errno));
+        } else {
+          try {
+            sync_directory(dirs[i - touched.size()]);
+          } catch (const IoError& e) {
+            errors[i] = e.what();
+          }
+        }
+      }
+    };
+    std::vector<std::thread> helpers;
+    const std::size_t n = std::min<std::size_t>(kSyncThreads, errors.size());
+    for (std::size_t t = 1; t < n; ++t) helpers.emplace_back(work);
+    work();
+    for (auto& t : helpers) t.join();
+    for (std::size_t i = 0; i < touched.size(); ++i)
+      if (!errors[i].empty()) fail_all(*touched[i], errors[i]);
+    for (std::size_t d = 0; d < dirs.size(); ++d) {
+      if (errors[touched.size() + d].empty()) continue;
+      for (auto& [p, f] : files)
+        if (f->created && p.parent_path() == dirs[d]) fail_all(*f, errors[touched.size() + d]);
+    }
+  }
+}
+
+fs::path unique_aside(const fs::path& dir, const std::string& name) {
+  std::error_code ec;
+  fs::path p = dir / name;
+  for (int i = 1; fs::exists(p, ec); ++i) p = dir / fmt::format("{}.{}", name, i);
+  return p;
 }
 
 std::string read_all(const fs::path& path) {
@@ -93,6 +318,10 @@ std::uint64_t file_size_or_zero(const fs::path& path) {
 
 void replace_with_prefix(const fs::path& path, std::uint64_t keep, const fs::path& aside) {
   const std::string content = read_all(path);
+  replace_with_content(path, std::string_view(content).substr(0, keep), aside);
+}
+
+void replace_with_content(const fs::path& path, std::string_view content, const fs::path& aside) {
   const fs::path tmp = path.parent_path() / ("." + path.filename().string() + ".recovering");
   std::error_code ec;
   fs::create_directories(aside.parent_path(), ec);
@@ -100,17 +329,18 @@ void replace_with_prefix(const fs::path& path, std::uint64_t keep, const fs::pat
     throw IoError(
         fmt::format("{}: cannot create folder: {}", aside.parent_path().string(), ec.message()));
   fs::remove(tmp, ec);
-  if (keep > 0) {
+  const bool keep = !content.empty();
+  if (keep) {
     Fd f{::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644)};
     if (f.fd < 0) fail(tmp, "cannot create");
-    write_all(f.fd, std::string_view(content).substr(0, keep), tmp);
+    write_all(f.fd, content, tmp);
     if (::fsync(f.fd) != 0) fail(tmp, "cannot sync");
   }
   fs::rename(path, aside, ec);
   if (ec)
     throw IoError(fmt::format("{}: cannot move aside to {}: {}", path.string(), aside.string(),
                               ec.message()));
-  if (keep > 0) {
+  if (keep) {
     fs::rename(tmp, path, ec);
     if (ec)
       throw IoError(fmt::format("{}: cannot rename into place: {}", path.string(), ec.message()));
@@ -128,6 +358,22 @@ std::string utc_now() {
 }
 
 std::int64_t unix_now() { return static_cast<std::int64_t>(std::time(nullptr)); }
+
+std::string bounded_detail(std::string_view text) {
+  std::string out;
+  const std::string suffix = text.size() > kMaxDetail
+                                 ? fmt::format("... [{} bytes in all]", text.size())
+                                 : std::string();
+  std::size_t keep = suffix.empty() ? text.size() : kMaxDetail - suffix.size();
+  while (keep > 0 && keep < text.size() && (static_cast<unsigned char>(text[keep]) & 0xC0) == 0x80)
+    --keep;  // not inside a UTF-8 character
+  out.reserve(keep + suffix.size());
+  for (std::size_t i = 0; i < keep; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    out += c < 0x20 || c == 0x7F ? '?' : c == '"' ? '\'' : text[i];
+  }
+  return out + suffix;
+}
 
 std::string csv_field(std::string_view text) {
   if (text.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(text);

@@ -1,5 +1,6 @@
-// The HTTP server of `feint collect` (feint/collect/server.hpp): request handling and the
-// Boost.Beast connection loop (modelled on Beast's http_server_async example).
+// The HTTP server of `feint collect` (feint/collect/server.hpp): request handling, the admin page,
+// the rate limit of the events log, Host and X-Forwarded-For parsing. The connection loop is in
+// connections.cpp.
 #include "feint/collect/server.hpp"
 
 #include <fmt/format.h>
@@ -7,15 +8,10 @@
 #include <algorithm>
 #include <atomic>
 #include <boost/asio/ip/tcp.hpp>
-#include <boost/asio/signal_set.hpp>
-#include <boost/asio/strand.hpp>
 #include <boost/beast/core.hpp>
-#include <boost/beast/http.hpp>
-#include <csignal>
 #include <map>
+#include <mutex>
 #include <optional>
-#include <random>
-#include <thread>
 #include <vector>
 
 #include "assets.hpp"
@@ -27,7 +23,6 @@
 namespace feint::collect {
 
 namespace beast = boost::beast;
-namespace http = beast::http;
 namespace net = boost::asio;
 using tcp = net::ip::tcp;
 
@@ -141,7 +136,8 @@ std::string age(std::int64_t last_seen) {
   return fmt::format("{} h ago", d / 3600);
 }
 
-Response admin_page(const Study& study, const std::string& token) {
+Response admin_page(const Study& study, const std::string& token,
+                    const std::optional<ServerState::WriteFailure>& failure) {
   const auto all = study.overview();
   const Settings& s = study.settings();
   std::map<std::string, int> per_condition;
@@ -181,11 +177,26 @@ Response admin_page(const Study& study, const std::string& token) {
   put("{{rows}}", rows.empty() ? "<tr><td colspan=\"7\">nobody has joined yet</td></tr>" : rows);
   put("{{token}}", html_escape(token));
   put("{{time}}", detail::utc_now());
+  put("{{banner}}",
+      failure ? fmt::format("<p id=\"write-failure\" class=\"alarm\" role=\"alert\"><b>Saving "
+                            "fails</b> since {} ({} attempt{}): {}. Participants see &ldquo;could "
+                            "not save, please wait&rdquo; and their pages retry; nothing they were "
+                            "told is saved is lost. Free disk space (or fix the folder) and the "
+                            "study carries on by itself.</p>",
+                            failure->since_utc, failure->attempts, failure->attempts == 1 ? "" : "s",
+                            html_escape(failure->what))
+              : std::string());
   return {200, "text/html; charset=utf-8", page};
 }
 
-Response admin_json(const Study& study) {
-  std::string body = "{\"participants\":[";
+Response admin_json(const Study& study,
+                    const std::optional<ServerState::WriteFailure>& failure) {
+  std::string body = fmt::format(
+      "{{\"write_failure\":{},\"participants\":[",
+      failure ? fmt::format("{{\"since\":{},\"attempts\":{},\"what\":{}}}",
+                            io::json_quote(failure->since_utc), failure->attempts,
+                            io::json_quote(failure->what))
+              : std::string("null"));
   bool first = true;
   for (const auto& p : study.overview()) {
     if (!first) body += ',';
@@ -229,10 +240,142 @@ bool constant_time_equal(const std::string& a, const std::string& b) {
   return d == 0;
 }
 
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (auto& c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+/// NAME and PORT of a Host header value or an allowed-host entry ("[::1]:8080" -> "[::1]", "8080").
+std::pair<std::string, std::string> split_host(std::string_view h) {
+  std::string_view name = h, port;
+  if (!h.empty() && h.front() == '[') {
+    const auto close = h.find(']');
+    if (close != std::string_view::npos) {
+      name = h.substr(0, close + 1);
+      if (close + 1 < h.size() && h[close + 1] == ':') port = h.substr(close + 2);
+    }
+  } else if (const auto colon = h.rfind(':'); colon != std::string_view::npos &&
+                                               h.find(':') == colon) {
+    name = h.substr(0, colon);
+    port = h.substr(colon + 1);
+  }
+  return {lower(name), std::string(port)};
+}
+
 }  // namespace
 
+bool host_allowed(const std::vector<std::string>& allowed, std::string_view host) {
+  const auto [name, port] = split_host(host);
+  if (name.empty()) return false;
+  for (const auto& a : allowed) {
+    const auto [an, ap] = split_host(a);
+    if (an == name && (ap.empty() || port.empty() || ap == port)) return true;
+  }
+  return false;
+}
+
+std::string client_address(const std::string& peer, std::string_view forwarded_for,
+                           const std::vector<std::string>& trusted) {
+  auto is_trusted = [&](std::string_view a) {
+    return std::find(trusted.begin(), trusted.end(), a) != trusted.end();
+  };
+  if (!is_trusted(peer) || forwarded_for.empty()) return peer;
+  std::string_view rest = forwarded_for;
+  while (!rest.empty()) {
+    const auto comma = rest.rfind(',');
+    std::string_view a = comma == std::string_view::npos ? rest : rest.substr(comma + 1);
+    rest = comma == std::string_view::npos ? std::string_view() : rest.substr(0, comma);
+    while (!a.empty() && (a.front() == ' ' || a.front() == '\t')) a.remove_prefix(1);
+    while (!a.empty() && (a.back() == ' ' || a.back() == '\t')) a.remove_suffix(1);
+    if (a.empty() || is_trusted(a)) continue;
+    beast::error_code ec;
+    const auto ip = net::ip::make_address(std::string(a), ec);
+    return ec ? peer : ip.to_string();  // a forged, non-address entry is not believed
+  }
+  return peer;
+}
+
+std::size_t reserved_descriptors(unsigned threads) noexcept { return 32 + 4 * std::size_t{threads}; }
+
+struct ServerState::Impl {
+  int per_minute;
+  struct Client {
+    std::int64_t minute = 0;
+    long count = 0;
+  };
+  std::mutex mu;
+  std::map<std::string, Client> clients;
+  mutable std::mutex health_mu;
+  std::optional<WriteFailure> failure;
+};
+
+ServerState::ServerState(int per_minute) : impl_(std::make_unique<Impl>()) {
+  impl_->per_minute = std::max(1, per_minute);
+}
+ServerState::~ServerState() = default;
+
+void ServerState::record_rejection(Study& study, const std::string& client,
+                                   const std::string& participant, const std::string& detail) {
+  constexpr std::size_t kMaxClients = 4096;  // beyond, the clients share one count
+  const std::int64_t minute = detail::unix_now() / 60;
+  long count = 0, not_logged = 0;
+  {
+    std::lock_guard lock(impl_->mu);
+    if (impl_->clients.size() >= kMaxClients) {
+      for (auto it = impl_->clients.begin(); it != impl_->clients.end();)
+        it = it->second.minute == minute ? std::next(it) : impl_->clients.erase(it);
+    }
+    const std::string key = impl_->clients.size() >= kMaxClients && !impl_->clients.count(client)
+                                ? std::string("(other clients)")
+                                : client;
+    auto& c = impl_->clients[key];
+    if (c.minute != minute) {
+      not_logged = std::max(0L, c.count - impl_->per_minute - 1);
+      c = {minute, 0};
+    }
+    count = ++c.count;
+  }
+  const std::string from = client.empty() ? "" : "from " + client + ": ";
+  try {
+    if (not_logged > 0) {
+      study.record_event(participant, "rate_limited",
+                         fmt::format("{}{} more rejections in an earlier minute were not logged",
+                                     from, not_logged));
+    }
+    if (count <= impl_->per_minute) {
+      study.record_event(participant, "rejected", from + detail);
+    } else if (count == impl_->per_minute + 1) {
+      study.record_event(participant, "rate_limited",
+                         fmt::format("{}more than {} rejections this minute; the rest of the minute "
+                                     "is counted, not logged",
+                                     from, impl_->per_minute));
+    }
+  } catch (const std::exception&) {
+    // The events log could not be written: the client still gets its answer.
+  }
+}
+
+void ServerState::write_failed(const std::string& what) {
+  std::lock_guard lock(impl_->health_mu);
+  if (!impl_->failure) impl_->failure = WriteFailure{what, detail::utc_now(), 0};
+  impl_->failure->what = what;
+  ++impl_->failure->attempts;
+}
+
+void ServerState::write_succeeded() {
+  std::lock_guard lock(impl_->health_mu);
+  impl_->failure.reset();
+}
+
+std::optional<ServerState::WriteFailure> ServerState::write_failure() const {
+  std::lock_guard lock(impl_->health_mu);
+  return impl_->failure;
+}
+
 Response handle_request(Study& study, const std::string& admin_token, const std::string& method,
-                        const std::string& target, const std::string& body) {
+                        const std::string& target, const std::string& body,
+                        const RequestInfo& info) {
   const auto q = target.find('?');
   const std::string path = target.substr(0, q);
   std::string participant;
@@ -256,7 +399,9 @@ Response handle_request(Study& study, const std::string& admin_token, const std:
         if (!constant_time_equal(arg("token"), admin_token)) {
           throw Rejection(403, "forbidden", "the admin page needs the token printed at start-up");
         }
-        return path == "/admin" ? admin_page(study, admin_token) : admin_json(study);
+        const auto failure = info.state ? info.state->write_failure() : std::nullopt;
+        return path == "/admin" ? admin_page(study, admin_token, failure)
+                                : admin_json(study, failure);
       }
       if (path.rfind("/api/", 0) == 0) throw Rejection(405, "method", "use POST for " + path);
       throw Rejection(404, "not_found", "no such page");
@@ -266,6 +411,8 @@ Response handle_request(Study& study, const std::string& admin_token, const std:
       if (participant.empty()) participant = arg("PROLIFIC_PID");
       const auto st = study.join(participant);
       participant = st.id;
+      if (!info.client.empty()) study.note_event(st.id, "joined", "from " + info.client);
+      if (info.state) info.state->write_succeeded();
       return {200, "application/json", status_json(study, st)};
     }
     if (path == "/api/round/start") {
@@ -295,184 +442,46 @@ Response handle_request(Study& study, const std::string& admin_token, const std:
       const auto st = study.submit_round(participant,
                                          kind == "practice" ? RoundKind::practice : RoundKind::main,
                                          static_cast<int>(*it), samples);
+      if (info.state) info.state->write_succeeded();
       return {200, "application/json", status_json(study, st)};
     }
     if (path == "/api/questionnaire") {
       const auto st = study.submit_questionnaire(participant, parse_form(body));
+      if (info.state) info.state->write_succeeded();
       return {200, "application/json", status_json(study, st)};
     }
     throw Rejection(404, "not_found", "no such page");
   } catch (const Rejection& r) {
-    try {
-      const std::string who = valid_participant_id(participant) ? participant : "";
-      if (r.status() != 404 || path.rfind("/api/", 0) == 0) {
-        study.record_event(
-            who, "rejected",
-            fmt::format("{} {} {} {}: {}", method, path, r.status(), r.code(), r.what()));
+    const std::string who = valid_participant_id(participant) ? participant : "";
+    if (r.status() != 404 || path.rfind("/api/", 0) == 0) {
+      const std::string detail =
+          fmt::format("{} {} {} {}: {}", method, path, r.status(), r.code(), r.what());
+      if (info.state) {
+        info.state->record_rejection(study, info.client, who, detail);
+      } else {
+        try {
+          study.record_event(who, "rejected", detail);
+        } catch (const std::exception&) {
+          // The events log could not be written: the client still gets its answer.
+        }
       }
-    } catch (const std::exception&) {
-      // The events log could not be written: the client still gets its answer.
     }
     return {r.status(), "application/json",
             fmt::format("{{\"error\":{},\"message\":{}}}", io::json_quote(r.code()),
                         io::json_quote(r.what()))};
   } catch (const std::exception& e) {
-    // A file could not be written (disk full...): the round is NOT saved, the page retries.
+    // A file could not be written (disk full...): nothing was acknowledged, the page retries.
+    // The participant is told to wait (the reason, with server paths, is for the admin only).
+    if (info.state) info.state->write_failed(e.what());
     try {
       study.record_event(valid_participant_id(participant) ? participant : "", "server_error",
                          e.what());
     } catch (const std::exception&) {
     }
     return {503, "application/json",
-            fmt::format("{{\"error\":\"server_error\",\"message\":{}}}", io::json_quote(e.what()))};
+            "{\"error\":\"could_not_save\",\"message\":\"could not save, please wait: the "
+            "page tries again by itself\"}"};
   }
 }
-
-// ---- the connection loop --------------------------------------------------------------------
-
-namespace {
-
-class Session : public std::enable_shared_from_this<Session> {
- public:
-  Session(tcp::socket&& socket, Study& study, const ServerOptions& opt)
-      : stream_(std::move(socket)), study_(study), opt_(opt) {}
-
-  void run() {
-    net::dispatch(stream_.get_executor(),
-                  beast::bind_front_handler(&Session::read, shared_from_this()));
-  }
-
- private:
-  void read() {
-    parser_.emplace();
-    parser_->body_limit(opt_.body_limit);
-    parser_->header_limit(16 * 1024);
-    stream_.expires_after(opt_.timeout);
-    http::async_read(stream_, buffer_, *parser_,
-                     beast::bind_front_handler(&Session::on_read, shared_from_this()));
-  }
-
-  void on_read(beast::error_code ec, std::size_t) {
-    if (ec == http::error::end_of_stream || ec == beast::error::timeout ||
-        ec == net::error::operation_aborted) {
-      return close();
-    }
-    if (ec) {
-      Response r;
-      if (ec == http::error::body_limit || ec == http::error::header_limit) {
-        r = {413, "application/json",
-             fmt::format("{{\"error\":\"too_large\",\"message\":\"request larger than {} bytes\"}}",
-                         opt_.body_limit)};
-        try {
-          study_.record_event("", "rejected", fmt::format("413 too_large: {}", ec.message()));
-        } catch (const std::exception&) {
-        }
-      } else {
-        r = {400, "application/json",
-             "{\"error\":\"malformed\",\"message\":\"not an HTTP request\"}"};
-      }
-      return send(r, false, 11);
-    }
-    auto req = parser_->release();
-    const Response r = handle_request(study_, opt_.admin_token, std::string(req.method_string()),
-                                      std::string(req.target()), req.body());
-    send(r, req.keep_alive(), req.version(), req.method() == http::verb::head);
-  }
-
-  void send(const Response& r, bool keep_alive, unsigned version, bool head = false) {
-    auto res = std::make_shared<http::response<http::string_body>>(
-        static_cast<http::status>(r.status), version);
-    res->set(http::field::server, "feint-collect");
-    res->set(http::field::content_type, r.content_type);
-    res->set(http::field::cache_control, "no-store");
-    res->set("X-Content-Type-Options", "nosniff");
-    res->set("Content-Security-Policy",
-             "default-src 'self'; img-src 'self' data:; style-src 'self'; script-src 'self'; "
-             "frame-ancestors 'none'");
-    res->keep_alive(keep_alive);
-    if (!head) res->body() = r.body;
-    res->prepare_payload();
-    if (head) res->body().clear();
-    stream_.expires_after(opt_.timeout);
-    http::async_write(
-        stream_, *res,
-        [self = shared_from_this(), res, keep_alive](beast::error_code ec, std::size_t) {
-          if (ec || !keep_alive) return self->close();
-          self->read();
-        });
-  }
-
-  void close() {
-    beast::error_code ec;
-    stream_.socket().shutdown(tcp::socket::shutdown_send, ec);
-  }
-
-  beast::tcp_stream stream_;
-  beast::flat_buffer buffer_;
-  std::optional<http::request_parser<http::string_body>> parser_;
-  Study& study_;
-  const ServerOptions& opt_;
-};
-
-}  // namespace
-
-struct Server::Impl {
-  Study& study;
-  ServerOptions opt;
-  net::io_context ioc;
-  tcp::acceptor acceptor;
-  Impl(Study& s, ServerOptions o)
-      : study(s),
-        opt(std::move(o)),
-        ioc(static_cast<int>(std::max(1u, opt.threads))),
-        acceptor(net::make_strand(ioc)) {}
-
-  void accept() {
-    acceptor.async_accept(net::make_strand(ioc), [this](beast::error_code ec, tcp::socket socket) {
-      if (!ec) std::make_shared<Session>(std::move(socket), study, opt)->run();
-      if (acceptor.is_open()) accept();
-    });
-  }
-};
-
-Server::Server(Study& study, ServerOptions options)
-    : impl_(std::make_unique<Impl>(study, std::move(options))) {
-  auto& o = impl_->opt;
-  if (o.admin_token.empty()) {
-    std::random_device rd;  // the kernel's generator (getrandom / /dev/urandom): 4 x 32 bits
-    o.admin_token = fmt::format("{:08x}{:08x}{:08x}{:08x}", rd(), rd(), rd(), rd());
-  }
-  beast::error_code ec;
-  const auto address = net::ip::make_address(o.host, ec);
-  if (ec) throw UsageError(fmt::format("--host '{}': not an IP address", o.host));
-  const tcp::endpoint ep(address, o.port);
-  auto& a = impl_->acceptor;
-  a.open(ep.protocol(), ec);
-  if (!ec) a.set_option(net::socket_base::reuse_address(true), ec);
-  if (!ec) a.bind(ep, ec);
-  if (!ec) a.listen(net::socket_base::max_listen_connections, ec);
-  if (ec) throw IoError(fmt::format("cannot listen on {}:{}: {}", o.host, o.port, ec.message()));
-}
-
-Server::~Server() = default;
-
-unsigned short Server::port() const noexcept { return impl_->acceptor.local_endpoint().port(); }
-const std::string& Server::admin_token() const noexcept { return impl_->opt.admin_token; }
-
-void Server::run() {
-  impl_->accept();
-  std::optional<net::signal_set> signals;
-  if (impl_->opt.stop_on_signals) {
-    signals.emplace(impl_->ioc, SIGINT, SIGTERM);
-    signals->async_wait([this](beast::error_code, int) { impl_->ioc.stop(); });
-  }
-  std::vector<std::thread> pool;
-  for (unsigned i = 1; i < std::max(1u, impl_->opt.threads); ++i)
-    pool.emplace_back([this] { impl_->ioc.run(); });
-  impl_->ioc.run();
-  for (auto& t : pool) t.join();
-}
-
-void Server::stop() { impl_->ioc.stop(); }
 
 }  // namespace feint::collect

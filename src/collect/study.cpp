@@ -13,16 +13,21 @@
 #include "feint/io/csv.hpp"
 #include "feint/io/number.hpp"
 #include "feint/rng.hpp"
+#include "feint/sim/robot_path.hpp"
 
 namespace feint::collect {
 
 namespace fs = std::filesystem;
-using detail::append_durably;
 using detail::csv_field;
 
 namespace {
 
+// Rows carry the robot's position at each sample (robot_x, robot_y: metres), computed here from
+// the round's plan, not taken from the page. A log begun before these columns existed keeps its
+// layout (kLegacyLogHeader) when its study is resumed, so that no file mixes the two.
 constexpr std::string_view kLogHeader =
+    "participant,condition,iteration,strategy,variant,target,t,pad,pad_speed,robot_x,robot_y\n";
+constexpr std::string_view kLegacyLogHeader =
     "participant,condition,iteration,strategy,variant,target,t,pad,pad_speed\n";
 constexpr std::string_view kAssignmentHeader = "participant,index,condition,assigned_utc\n";
 constexpr std::string_view kEventsHeader = "time_utc,participant,event,detail\n";
@@ -119,6 +124,7 @@ struct Study::Participant {
   std::vector<sim::Iteration> run;  // the planned analysed rounds
   int saved[2] = {0, 0};            // practice, main
   std::uint64_t log_size[2] = {0, 0};
+  bool legacy_log[2] = {false, false};  // the log has no robot_x/robot_y (written by an older feint)
   bool questionnaire_done = false;
   bool yes_no_done = false;
   std::int64_t last_seen = 0;
@@ -127,7 +133,9 @@ struct Study::Participant {
 };
 
 Study::Study(fs::path dir, Settings settings)
-    : dir_(std::move(dir)), settings_(std::move(settings)) {
+    : dir_(std::move(dir)),
+      settings_(std::move(settings)),
+      committer_(std::make_unique<detail::GroupCommitter>()) {
   validate(settings_);
   std::error_code ec;
   for (const auto& sub : {fs::path("logs"), fs::path("practice"), fs::path("collect")}) {
@@ -176,19 +184,38 @@ Round Study::plan_round(std::size_t index, std::size_t condition, RoundKind kind
 
 void Study::record_event(const std::string& participant, const std::string& event,
                          const std::string& detail) {
-  const std::string line = fmt::format("{},{},{},{}\n", detail::utc_now(), csv_field(participant),
-                                       csv_field(event), csv_field(detail));
-  std::lock_guard lock(events_mu_);
-  append_durably(dir_ / "collect" / "events.csv", kEventsHeader, line);
+  const std::string line =
+      fmt::format("{},{},{},{}\n", detail::utc_now(), csv_field(participant.substr(0, 64)),
+                  csv_field(event.substr(0, 32)), csv_field(detail::bounded_detail(detail)));
+  committer_->append(dir_ / "collect" / "events.csv", kEventsHeader, line);
 }
 
-// Moves a damaged shared file's incomplete last line aside (see replace_with_prefix).
+void Study::note_event(const std::string& participant, const std::string& event,
+                       const std::string& detail) {
+  std::vector<detail::GroupCommitter::Append> one;
+  one.push_back({dir_ / "collect" / "events.csv", std::string(kEventsHeader),
+                 fmt::format("{},{},{},{}\n", detail::utc_now(), csv_field(participant.substr(0, 64)),
+                             csv_field(event.substr(0, 32)),
+                             csv_field(detail::bounded_detail(detail)))});
+  committer_->enqueue(std::move(one));
+}
+
+// Repairs a shared file after a crash, whatever state it was left in: empty, header only, cut in
+// the header, cut mid-line. A file with no complete row after its header is set aside whole (the
+// next append creates it anew with its header); otherwise only an incomplete last line is set
+// aside (see replace_with_prefix). The original always goes whole to collect/damaged/.
 static void keep_complete_lines(const fs::path& path, const fs::path& damaged_dir) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return;
   const std::string content = detail::read_all(path);
-  const std::size_t keep = complete_prefix(content);
-  if (keep == content.size()) return;
+  std::size_t keep = complete_prefix(content);
+  const auto header_end = content.find('\n');
+  if (header_end == std::string::npos || keep <= header_end + 1) keep = 0;  // no complete row
+  if (keep == content.size() && keep > 0) return;
   detail::replace_with_prefix(
-      path, keep, damaged_dir / fmt::format("{}.{}", path.filename().string(), detail::unix_now()));
+      path, keep,
+      detail::unique_aside(damaged_dir, fmt::format("{}.{}", path.filename().string(),
+                                                    detail::unix_now())));
 }
 
 void Study::recover_log(Participant& p, RoundKind kind) {
@@ -197,7 +224,9 @@ void Study::recover_log(Participant& p, RoundKind kind) {
   const int k = static_cast<int>(kind);
   p.saved[k] = 0;
   p.log_size[k] = 0;
-  if (content.empty()) return;
+  p.legacy_log[k] = false;
+  std::error_code ec;
+  if (content.empty() && !fs::is_regular_file(path, ec)) return;
   const std::string where = path.string();
   std::size_t good_end = 0;
   std::size_t pos = 0;
@@ -205,6 +234,7 @@ void Study::recover_log(Participant& p, RoundKind kind) {
   bool current_done = true;
   double duration = 0;
   bool header = false;
+  bool headerless = false;
   int complete = 0;
   while (pos < content.size()) {
     const auto nl = content.find('\n', pos);
@@ -212,16 +242,25 @@ void Study::recover_log(Participant& p, RoundKind kind) {
     std::string_view line(content.data() + pos, nl - pos);
     const std::size_t next = nl + 1;
     if (!header) {
-      if (std::string(line) + "\n" != kLogHeader) {
+      header = true;
+      if (std::string(line) + "\n" == kLogHeader ||
+          std::string(line) + "\n" == kLegacyLogHeader) {
+        p.legacy_log[k] = std::string(line) + "\n" == kLegacyLogHeader;
+        good_end = next;
+        pos = next;
+        continue;
+      }
+      const auto f0 = io::split_csv_line(std::string(line), ',');
+      if ((f0.size() != 9 && f0.size() != 11) || f0[0] != p.id) {
         throw InvalidData(fmt::format("{}:1: not a feint collect log (unexpected header)", where));
       }
-      header = true;
-      good_end = next;
-      pos = next;
-      continue;
+      // Rows without a header: an earlier feint collect appended to a log that a crash had left
+      // empty. The rows are kept and the header is put back (below); this line is a row.
+      p.legacy_log[k] = f0.size() == 9;
+      headerless = true;
     }
     const auto f = io::split_csv_line(std::string(line), ',');
-    if (f.size() != 9 || f[0] != p.id) {
+    if (f.size() != (p.legacy_log[k] ? 9U : 11U) || f[0] != p.id) {
       throw InvalidData(
           fmt::format("{}: a row that feint collect did not write: '{}'", where, line));
     }
@@ -247,9 +286,29 @@ void Study::recover_log(Participant& p, RoundKind kind) {
     }
     pos = next;
   }
-  if (good_end < content.size()) {
-    const fs::path aside = dir_ / "collect" / "damaged" /
-                           fmt::format("{}-{}-{}.csv", p.id, to_string(kind), detail::unix_now());
+  // A log without a complete round (empty, header only, cut in its header or in its first
+  // round) is set aside whole: `feint analyze` never sees a log without rows, and the next round
+  // creates it anew with its header.
+  if (complete == 0) good_end = 0;
+  if (headerless && good_end > 0) {
+    const fs::path aside = detail::unique_aside(
+        dir_ / "collect" / "damaged",
+        fmt::format("{}-{}-{}.csv", p.id, to_string(kind), detail::unix_now()));
+    const std::string_view log_header = p.legacy_log[k] ? kLegacyLogHeader : kLogHeader;
+    detail::replace_with_content(path, std::string(log_header) + content.substr(0, good_end),
+                                 aside);
+    record_event(p.id, "recovered",
+                 fmt::format("{}: the log had no header; it was put back before the {} complete "
+                             "rounds; the original ({} bytes) is in {}",
+                             where, complete, content.size(), aside.string()));
+    p.saved[k] = complete;
+    p.log_size[k] = log_header.size() + good_end;
+    return;
+  }
+  if (good_end < content.size() || content.empty()) {
+    const fs::path aside = detail::unique_aside(
+        dir_ / "collect" / "damaged",
+        fmt::format("{}-{}-{}.csv", p.id, to_string(kind), detail::unix_now()));
     detail::replace_with_prefix(path, good_end, aside);
     record_event(
         p.id, "recovered",
@@ -259,6 +318,8 @@ void Study::recover_log(Participant& p, RoundKind kind) {
   }
   p.saved[k] = complete;
   p.log_size[k] = good_end;
+  // Nothing kept (not even the header): the next round starts the log anew, in the new layout.
+  if (good_end == 0) p.legacy_log[k] = false;
 }
 
 void Study::rebuild() {
@@ -386,14 +447,12 @@ ParticipantStatus make_status(const P& p, const Settings& s) {
 
 ParticipantStatus Study::join(const std::string& requested) {
   std::string id = requested;
-  std::shared_ptr<Participant> p;
-  {
+  auto existing = [&]() -> std::shared_ptr<Participant> {
     std::lock_guard lock(mu_);
     if (id.empty()) {
       // A generated ID: random-looking, from the seed and a counter, never an existing one.
-      Rng rng =
-          Rng::stream(settings_.seed ^ static_cast<std::uint64_t>(detail::unix_now()),
-                           participants_.size() + generated_);
+      Rng rng = Rng::stream(settings_.seed ^ static_cast<std::uint64_t>(detail::unix_now()),
+                            participants_.size() + generated_);
       do {
         id = fmt::format("G{:010x}", rng() & 0xFFFFFFFFFFULL);
         ++generated_;
@@ -405,12 +464,21 @@ ParticipantStatus Study::join(const std::string& requested) {
           "participant IDs are 1-64 letters, digits, '_' or '-' (not starting with '-')");
     }
     auto it = participants_.find(id);
-    if (it != participants_.end()) {
-      p = it->second;
-    } else {
+    return it == participants_.end() ? nullptr : it->second;
+  };
+  std::shared_ptr<Participant> p = existing();
+  if (!p) {
+    // New participants are assigned one at a time (the rows are numbered in order of arrival),
+    // but mu_ is not held during the sync: the participants already playing are not held up.
+    std::lock_guard assign(assignment_mu_);
+    p = existing();  // joined meanwhile (a double click)
+    if (!p) {
       p = std::make_shared<Participant>();
       p->id = id;
-      p->index = participants_.size();
+      {
+        std::lock_guard lock(mu_);
+        p->index = participants_.size();
+      }
       const std::size_t c = settings_.conditions.size();
       const std::uint64_t block = p->index / c;
       std::vector<std::size_t> perm(c);
@@ -418,11 +486,22 @@ ParticipantStatus Study::join(const std::string& requested) {
       Rng rng = Rng::stream(settings_.seed, block);
       sim::shuffle(perm, rng);
       p->condition = perm[p->index % c];
-      append_durably(dir_ / "collect" / "assignment.csv", kAssignmentHeader,
-                     fmt::format("{},{},{},{}\n", id, p->index,
-                                 settings_.conditions[p->condition].name, detail::utc_now()));
-      participants_[id] = p;
-      record_event(id, "assigned", settings_.conditions[p->condition].name);
+      const std::string& condition = settings_.conditions[p->condition].name;
+      // The assignment row and its event in one commit; the participant exists (in memory too)
+      // only once the row is on disk.
+      std::vector<detail::GroupCommitter::Append> commit;
+      commit.push_back({dir_ / "collect" / "assignment.csv", std::string(kAssignmentHeader),
+                        fmt::format("{},{},{},{}\n", id, p->index, condition, detail::utc_now())});
+      commit.push_back({dir_ / "collect" / "events.csv", std::string(kEventsHeader),
+                        fmt::format("{},{},assigned,{}\n", detail::utc_now(), id,
+                                    csv_field(condition))});
+      const auto done = committer_->commit(std::move(commit));
+      if (!done[0].error.empty()) throw IoError(done[0].error);
+      {
+        std::lock_guard lock(mu_);
+        participants_[id] = p;
+      }
+      if (!done[1].error.empty()) throw IoError(done[1].error);
     }
   }
   std::lock_guard lock(p->mu);
@@ -460,7 +539,7 @@ Round Study::start_round(const std::string& id) {
                  name + " was shown before and not saved; shown again from its start");
   }
   p->shown = std::make_pair(kind, iteration);
-  record_event(id, "round_shown", name);
+  note_event(id, "round_shown", name);  // acknowledges nothing: not waited for
   return r;
 }
 
@@ -523,15 +602,27 @@ ParticipantStatus Study::submit_round(const std::string& id, RoundKind kind, int
       fmt::format("{},{},{},{},{},{},", id, settings_.conditions[p->condition].name, iteration,
                   sim::to_string(r.strategy), sim::to_string(r.variant), sim::to_string(r.target));
   const std::string speed = io::format_double(settings_.pad_speed);
+  std::vector<double> times;
+  times.reserve(s.size());
+  for (const auto& x : s) times.push_back(x.t);
+  const auto robot =
+      sim::robot_positions(r.strategy, r.variant, r.target, settings_.geometry, times);
   std::string block;
-  block.reserve(s.size() * (key.size() + 32));
-  for (const auto& x : s) {
+  block.reserve(s.size() * (key.size() + 48));
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const auto& x = s[i];
     block += key;
     block += io::format_double(x.t);
     block += ',';
     block += io::format_double(x.pad);
     block += ',';
     block += speed;
+    if (!p->legacy_log[k]) {
+      block += ',';
+      block += sim::format_metres(robot[i].x);
+      block += ',';
+      block += sim::format_metres(robot[i].y);
+    }
     block += '\n';
   }
   const fs::path path = log_path(id, kind);
@@ -540,10 +631,20 @@ ParticipantStatus Study::submit_round(const std::string& id, RoundKind kind, int
     if (iteration != p->saved[k] + 1)
       throw Rejection(409, "out_of_order", name + ": state changed");
   }
-  p->log_size[k] = append_durably(path, kLogHeader, block);
+  // The round and its `saved` event in one commit: synced together with whatever other rounds
+  // arrived meanwhile (group commit); the event is written only when the round was.
+  std::vector<detail::GroupCommitter::Append> commit;
+  commit.push_back(
+      {path, std::string(p->legacy_log[k] ? kLegacyLogHeader : kLogHeader), std::move(block)});
+  commit.push_back({dir_ / "collect" / "events.csv", std::string(kEventsHeader),
+                    fmt::format("{},{},saved,{}\n", detail::utc_now(), id,
+                                csv_field(fmt::format("{} ({} samples)", name, s.size())))});
+  const auto done = committer_->commit(std::move(commit));
+  if (!done[0].error.empty()) throw IoError(done[0].error);
+  p->log_size[k] = done[0].size;
   p->saved[k] = iteration;
   p->shown.reset();
-  record_event(id, "saved", fmt::format("{} ({} samples)", name, s.size()));
+  if (!done[1].error.empty()) throw IoError(done[1].error);  // saved; the page hears "duplicate"
   return make_status(*p, settings_);
 }
 
@@ -585,16 +686,20 @@ ParticipantStatus Study::submit_questionnaire(const std::string& id,
   }
   std::lock_guard qlock(questionnaire_mu_);
   if (!yes_no.empty() && !p->yes_no_done) {
-    append_durably(dir_ / "questionnaire_yesno.csv",
+    committer_->append(dir_ / "questionnaire_yesno.csv",
                    "participant,condition," + settings_.yes_no_item + "\n", yes_no);
     p->yes_no_done = true;
   }
   std::string header = "participant,condition";
   for (const auto& i : settings_.items) header += "," + i;
-  append_durably(dir_ / "questionnaire.csv", header + "\n", row);
+  committer_->append(dir_ / "questionnaire.csv", header + "\n", row);
   p->questionnaire_done = true;
   record_event(id, "questionnaire", "saved");
   return make_status(*p, settings_);
+}
+
+Study::CommitStats Study::commit_stats() const {
+  return {committer_->groups(), committer_->appends()};
 }
 
 std::optional<ParticipantStatus> Study::status(const std::string& id) const {

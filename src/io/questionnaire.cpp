@@ -110,11 +110,24 @@ class ResponseParser {
   std::size_t mapped_ = 0;
 };
 
-int find_column(const std::vector<std::string>& header, std::string_view name) {
+// The column spelled exactly `name` (trimmed), else the one equal to it ignoring case; two or more
+// equal only ignoring case are ambiguous (issue 18: never take the first silently).
+int find_column(const std::vector<std::string>& header, std::string_view name,
+                const std::string& file = {}) {
   for (std::size_t i = 0; i < header.size(); ++i) {
-    if (iequals(header[i], name)) return static_cast<int>(i);
+    if (trim(header[i]) == trim(name)) return static_cast<int>(i);
   }
-  return -1;
+  std::vector<std::size_t> found;
+  for (std::size_t i = 0; i < header.size(); ++i) {
+    if (iequals(header[i], name)) found.push_back(i);
+  }
+  if (found.empty()) return -1;
+  if (found.size() == 1) return static_cast<int>(found[0]);
+  std::vector<std::string> names;
+  for (const auto i : found) names.push_back(fmt::format("'{}' (column {})", header[i], i + 1));
+  throw InvalidData(fmt::format("{}:1: columns {} differ only in case and none is exactly '{}': "
+                                "ambiguous; name one exactly with the column's option",
+                                file, fmt::join(names, " and "), trim(name)));
 }
 
 std::string list_names(const std::vector<std::string>& names) {
@@ -386,24 +399,24 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
   }
 
   // Columns.
-  int id_col = detail::find_column(header, options.id_column);
-  if (id_col < 0 && q.qualtrics) id_col = detail::find_column(header, "ResponseId");
+  int id_col = detail::find_column(header, options.id_column, file);
+  if (id_col < 0 && q.qualtrics) id_col = detail::find_column(header, "ResponseId", file);
   if (id_col < 0) {
     throw InvalidData(fmt::format(
         "{}: no column '{}' (the respondent id); name the study's column with --id-column "
         "(columns: {})",
         file, options.id_column, detail::list_names(header)));
   }
-  const int cond_col = detail::find_column(header, options.condition_column);
+  const int cond_col = detail::find_column(header, options.condition_column, file);
   q.has_condition = cond_col >= 0;
-  const int item_col = detail::find_column(header, options.item_column);
-  const int resp_col = detail::find_column(header, options.response_column);
+  const int item_col = detail::find_column(header, options.item_column, file);
+  const int resp_col = detail::find_column(header, options.response_column, file);
 
   // Survey exports: previews, tests, spam and unfinished responses are not participants.
-  const bool survey_export = q.qualtrics || detail::find_column(header, "ResponseId") >= 0;
-  const int status_col = survey_export ? detail::find_column(header, "Status") : -1;
-  const int finished_col = survey_export ? detail::find_column(header, "Finished") : -1;
-  const int progress_col = survey_export ? detail::find_column(header, "Progress") : -1;
+  const bool survey_export = q.qualtrics || detail::find_column(header, "ResponseId", file) >= 0;
+  const int status_col = survey_export ? detail::find_column(header, "Status", file) : -1;
+  const int finished_col = survey_export ? detail::find_column(header, "Finished", file) : -1;
+  const int progress_col = survey_export ? detail::find_column(header, "Progress", file) : -1;
   const auto excluded = [&](const Record& r) {
     std::optional<std::string> reason;
     if (status_col >= 0 && !options.keep_previews) {
@@ -557,7 +570,7 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
     if (!item_specs.empty()) {
       for (const auto& spec : item_specs) {
         const std::string& name = spec.source;
-        const int c = detail::find_column(header, name);
+        const int c = detail::find_column(header, name, file);
         if (c < 0) {
           throw UsageError(fmt::format("--items: no column '{}' in {} (columns: {})", name, file,
                                        detail::list_names(header)));

@@ -29,7 +29,7 @@ std::string header_list(const CsvReader& reader) {
 }
 
 int require_column(const CsvReader& reader, const std::string& name, std::string_view role) {
-  const int i = reader.column(name);
+  const int i = reader.column(name, fmt::format("name one exactly with {}", role));
   if (i < 0) {
     throw InvalidData(fmt::format("{}:1: column '{}' ({}) is missing; the header has: {}",
                                   reader.path(), name, role, header_list(reader)));
@@ -69,23 +69,62 @@ int ScoresTable::metric_index(const std::string& name) const noexcept {
 }
 
 ScoresTable load_scores(const std::string& path, const ScoresOptions& options) {
-  CsvReader reader(path);
+  if (options.decimal != 0 && options.decimal != '.' && options.decimal != ',') {
+    throw UsageError(fmt::format("--decimal '{}': expected . or ,", options.decimal));
+  }
+  CsvOptions copt;
+  copt.delimiter = options.delimiter;
+  CsvReader reader(path, copt);
   ScoresTable table;
   table.path = path;
   table.metrics = options.metrics;
-  const int ip = require_column(reader, options.participant_column, "participant");
-  const int ii = require_column(reader, options.iteration_column, "iteration");
-  const int ic = reader.column(options.condition_column);
+  // Every missing column in one message (not one per run).
+  std::vector<std::string> missing;
+  auto find = [&](const std::string& name, std::string_view role, std::string_view option) {
+    const int i = reader.column(name, fmt::format("name one exactly with {}", option));
+    if (i < 0) missing.push_back(fmt::format("'{}' ({})", name, role));
+    return i;
+  };
+  const int ip = find(options.participant_column, "participant", "--participant-column");
+  const int ii = find(options.iteration_column, "iteration", "--iteration-column");
+  const int ic = reader.column(options.condition_column,
+                               "name one exactly with --condition-column");
   table.has_condition = ic >= 0;
   std::vector<int> im;
-  for (const auto& m : options.metrics) {
-    const int i = reader.column(m);
-    if (i < 0) {
-      throw InvalidData(fmt::format("{}:1: metric column '{}' is missing; the header has: {}",
-                                    path, m, header_list(reader)));
-    }
-    im.push_back(i);
+  for (const auto& m : options.metrics) im.push_back(find(m, "metric", "--metric"));
+  if (missing.size() == 1) {
+    const bool metric = missing[0].ends_with("(metric)");
+    const std::string name = missing[0].substr(0, missing[0].rfind(" ("));
+    throw InvalidData(metric ? fmt::format("{}:1: metric column {} is missing; the header has: {}",
+                                           path, name, header_list(reader))
+                             : fmt::format("{}:1: column {} is missing; the header has: {}", path,
+                                           missing[0], header_list(reader)));
   }
+  if (!missing.empty()) {
+    throw InvalidData(fmt::format("{}:1: columns {} are missing; the header has: {}", path,
+                                  fmt::join(missing, ", "), header_list(reader)));
+  }
+  if (!table.has_condition && options.expected_conditions.size() >= 2) {
+    throw InvalidData(fmt::format(
+        "{}:1: no condition column '{}', but the study has {} conditions ({}): name it with "
+        "--condition-column COLUMN (the header has: {}); the conditions would otherwise be pooled",
+        path, options.condition_column, options.expected_conditions.size(),
+        fmt::join(options.expected_conditions, ", "), header_list(reader)));
+  }
+  // The decimal mark of the metric values (ScoresOptions::decimal).
+  char mark = options.decimal != 0 ? options.decimal : reader.delimiter() == ',' ? '.' : 0;
+  std::string comma_scratch;
+  auto number = [&](std::string_view text) -> std::optional<double> {
+    if (mark == 0) {
+      if (text.find('.') != std::string_view::npos) mark = '.';
+      else if (text.find(',') != std::string_view::npos) mark = ',';
+    }
+    if (mark != ',') return parse_double(text);
+    if (text.find('.') != std::string_view::npos) return std::nullopt;
+    comma_scratch.assign(text);
+    std::replace(comma_scratch.begin(), comma_scratch.end(), ',', '.');
+    return parse_double(comma_scratch);
+  };
 
   // (participant, condition, iteration) -> line, to name both places of a duplicate.
   std::map<std::tuple<std::string, std::string, long long>, std::uint64_t> seen;
@@ -132,13 +171,17 @@ ScoresTable load_scores(const std::string& path, const ScoresOptions& options) {
         rec.values.emplace_back();  // missing: excluded from this metric's tests, and counted
         continue;
       }
-      const auto v = parse_double(text);
+      const auto v = number(text);
       if (!v) {
         throw InvalidData(fmt::format("{}:{}: column '{}': '{}' is not a number ({}; expected a "
-                                      "finite number with a decimal point, or an empty cell)",
+                                      "finite number with a decimal {}, or an empty cell{})",
                                       path, rec.line,
                                       reader.header()[static_cast<std::size_t>(im[m])], text,
-                                      trial_key(rec, table.has_condition)));
+                                      trial_key(rec, table.has_condition),
+                                      mark == ',' ? "comma" : "point",
+                                      mark != ',' && text.find(',') != std::string_view::npos
+                                          ? "; a decimal comma? give --delimiter ';' --decimal ,"
+                                          : mark == ',' ? "; give --decimal . if the point is the decimal mark" : ""));
       }
       rec.values.push_back(*v);
     }

@@ -6,6 +6,8 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <limits>
+#include <regex>
 #include <set>
 #include <string_view>
 #include <unordered_map>
@@ -37,15 +39,17 @@ enum Field : int {
   kT,
   kPad,
   kPadSpeed,
+  kRobotX,  // optional per-sample robot position (m), read only together
+  kRobotY,
   kFieldCount
 };
 
 const std::array<const char*, kFieldCount> kFieldNames = {
     "participant", "condition", "iteration", "strategy", "variant", "target", "t", "pad",
-    "pad_speed"};
+    "pad_speed", "robot_x", "robot_y"};
 
-constexpr std::array<bool, kFieldCount> kRequired = {true, false, true, false, false,
-                                                     true, true,  true, false};
+constexpr std::array<bool, kFieldCount> kRequired = {true, false, true, false, false, true,
+                                                     true, true,  false, false, false};
 
 constexpr long long kMaxIteration = 1000000000;  // as io::load_scores
 
@@ -75,6 +79,8 @@ struct Builder {
   std::string error;  // lenient mode: the first problem (full message); empty = valid
   std::uint64_t error_line = 0;
   std::uint32_t error_file = 0;
+  std::uint64_t padding = 0;       // all-NaN t/pad rows seen since the last valid sample
+  std::uint64_t padding_line = 0;  // the first of them
 
   std::string label() const {
     return condition.empty() ? fmt::format("{}/{}", participant, iteration)
@@ -93,6 +99,22 @@ struct Builder {
     return trim(v);
   }
   return v;
+}
+
+// A t or pad cell that holds no value: how MATLAB (NaN), R (NA) and pandas (empty) pad
+// fixed-length arrays.
+bool is_missing(std::string_view v) noexcept {
+  if (v.empty()) return true;
+  if (v.size() > 3) return false;
+  const std::string l = to_lower(v);
+  return l == "nan" || l == "na";
+}
+
+// A name that suggests the study's condition (then pooling it silently would be wrong).
+bool looks_like_condition(std::string_view header_cell) {
+  const std::string k = to_lower(trim(header_cell));
+  return k.starts_with("cond") || k == "group" || k == "arm" || k == "treatment" ||
+         k == "between";
 }
 
 bool has_data_extension(const fs::path& p) {
@@ -196,6 +218,21 @@ struct TraceReader::Impl {
   std::uint64_t trials_bad = 0;
   std::uint64_t bytes_done = 0;
 
+  // Per file: the decimal mark ('.', ',', 0 = not known yet), the id from the path, the JSON
+  // samples column.
+  char mark = '.';
+  std::string comma_scratch;
+  std::string file_participant;
+  int samples_index = -1;
+  std::vector<double> json_t, json_pad;
+  std::string unit_name = "seconds";
+  // What diagnostics() reports.
+  std::uint64_t rows_padding = 0, trials_padded = 0;
+  std::size_t comma_files = 0;
+  Diagnostic first_comma;
+  long long min_iteration = std::numeric_limits<long long>::max(), max_iteration = -1;
+  std::string min_iteration_at;  // file:line of the smallest iteration
+
   bool strict() const { return !options.on_reject; }
 
   [[noreturn]] void throw_at(std::uint32_t file, std::uint64_t line, const std::string& what,
@@ -223,49 +260,208 @@ struct TraceReader::Impl {
     CsvOptions copt;
     copt.delimiter = options.delimiter;
     copt.require_header_width = false;  // a short/long row is a problem of its trial
+    copt.no_header = options.no_header;
+    copt.column_names = options.column_names;
     reader = std::make_unique<CsvReader>(files[file_index], copt);
     row = &reader->fields();
     const std::string& name = names[file_index];
+    if (options.no_header) {
+      // A header read as data would fail later on its iteration; say what happened instead.
+      // (Before the first next(), fields() holds the first row, which next() hands out again.)
+      for (const auto f : reader->fields()) {
+        const std::string cell = to_lower(trim(f));
+        if (std::find(kFieldNames.begin(), kFieldNames.end(), cell) != kFieldNames.end()) {
+          throw InvalidData(fmt::format("{}:{}: --no-header, but the first row holds the column "
+                                        "name '{}': the file has a header; drop --no-header "
+                                        "(and --columns) and name its columns with --map",
+                                        name, reader->line(), trim(f)));
+        }
+      }
+    }
+    const auto& header = reader->header();
+    mark = options.decimal != 0 ? options.decimal : reader->delimiter() == ',' ? '.' : 0;
+    if (!options.participant_from_path.empty()) file_participant = participant_from(files[file_index]);
+    const bool json = !options.samples_column.empty();
     cols = {};
-    cols.width = reader->header().size();
+    cols.width = header.size();
+    std::vector<std::string> missing;  // every missing column, reported in one message
+    std::vector<std::string> maps;     // the --map that would name each
+    bool missing_id = false, missing_samples = false;
     for (int f = 0; f < kFieldCount; ++f) {
       const auto mapped = options.column_map.find(kFieldNames[f]);
       const bool is_mapped = mapped != options.column_map.end();
       const std::string want = is_mapped ? mapped->second : kFieldNames[f];
-      int idx = reader->column(want);
-      if (f == kPadSpeed && options.pad_speed) idx = -1;  // the override replaces the column
-      cols.index[f] = idx;
-      if (idx >= 0) {
-        cols.name[f] = reader->header()[static_cast<std::size_t>(idx)];
+      cols.name[f] = want;
+      // Replaced by an option: the column is not read.
+      if ((f == kPadSpeed && options.pad_speed) ||
+          (f == kParticipant && !options.participant_from_path.empty()) ||
+          (json && (f == kT || f == kPad))) {
+        cols.index[f] = -1;
         continue;
       }
-      cols.name[f] = want;
-      if (f == kPadSpeed && options.pad_speed) continue;
+      const int idx = reader->column(
+          want, fmt::format("name one exactly with --map {}=COLUMN (the exact-case match is taken)",
+                            kFieldNames[f]));
+      cols.index[f] = idx;
+      if (idx >= 0) {
+        cols.name[f] = header[static_cast<std::size_t>(idx)];
+        continue;
+      }
       if (is_mapped) {
-        throw InvalidData(fmt::format("{}:1: no column '{}' (given by --map {}={}; the header "
-                                      "has: {})", name, want, kFieldNames[f], want,
-                                      fmt::join(reader->header(), ", ")));
+        missing.push_back(fmt::format("'{}' (given by --map {}={})", want, kFieldNames[f], want));
+      } else if (kRequired[f]) {
+        missing.push_back(fmt::format("'{}' (required)", want));
+      } else {
+        continue;
       }
-      if (kRequired[f]) {
+      maps.push_back(fmt::format("--map {}=COLUMN", kFieldNames[f]));
+      missing_id = missing_id || f == kParticipant;
+      missing_samples = missing_samples || f == kT || f == kPad;
+    }
+    if (json) {
+      samples_index = reader->column(options.samples_column,
+                                     "name one exactly with --samples-column (the exact-case match is taken)");
+      if (samples_index < 0) {
+        missing.push_back(fmt::format("'{}' (given by --samples-column)", options.samples_column));
+      }
+    }
+    if (!missing.empty()) {
+      std::string fixes = maps.empty() ? std::string("give --samples-column the JSON column's name")
+                                       : fmt::format("name the study's column{} with {}",
+                                                     maps.size() > 1 ? "s" : "", fmt::join(maps, " "));
+      if (missing_id) {
+        fixes += "; ids only in the file or folder name: --participant-from-path filename (or "
+                 "dirname, or a regular expression whose first group is the id)";
+      }
+      if (missing_samples && !json) {
+        fixes += "; samples stored as a JSON array in one cell (jsPsych): --samples-column COLUMN";
+      }
+      bool numeric = !options.no_header;
+      for (const auto& h : header) numeric = numeric && parse_double(h).has_value();
+      if (numeric) {
+        fixes = fmt::format("the first row holds only numbers, so the file has no header: name its "
+                            "{} columns by position with --no-header --columns "
+                            "participant,iteration,target,t,pad (one name per column, in order) or "
+                            "--no-header --map t=3 (columns are numbered from 1); ",
+                            header.size()) + fixes;
+      }
+      throw InvalidData(fmt::format("{}:1: no column {} (the header has: {}); {}", name,
+                                    fmt::join(missing, ", no column "), fmt::join(header, ", "),
+                                    fixes));
+    }
+    if (cols.index[kCondition] < 0 && !options.single_condition) {
+      if (options.expected_conditions.size() >= 2) {
         throw InvalidData(fmt::format(
-            "{}:1: no column '{}' (required; the header has: {}; name the study's column with "
-            "--map {}=COLUMN)",
-            name, want, fmt::join(reader->header(), ", "), kFieldNames[f]));
+            "{}:1: no condition column '{}', but the study has {} conditions ({}): name the "
+            "column with --map condition=COLUMN (the header has: {}); trials would otherwise be "
+            "pooled into one condition", name, cols.name[kCondition],
+            options.expected_conditions.size(), fmt::join(options.expected_conditions, ", "),
+            fmt::join(header, ", ")));
       }
-      if (f == kPadSpeed && options.require_pad_speed) {
-        throw UsageError(fmt::format(
-            "{}: no 'pad_speed' column, but the 'speed' confusion normalisation needs the pad "
-            "speed: give --pad-speed V (pad units per second), name the column with --map "
-            "pad_speed=COLUMN, or use --confusion-norm raw",
-            name));
+      for (std::size_t i = 0; i < header.size(); ++i) {
+        if (looks_like_condition(header[i])) {
+          throw InvalidData(fmt::format(
+              "{}:1: column '{}' (column {}) looks like the condition, but the condition is read "
+              "from a column named '{}': name it with --map condition={}, or give "
+              "--single-condition to pool every trial into one condition",
+              name, header[i], i + 1, cols.name[kCondition], trim(header[i])));
+        }
       }
+    }
+    if (cols.index[kPadSpeed] < 0 && !options.pad_speed && options.require_pad_speed) {
+      throw UsageError(fmt::format(
+          "{}: no 'pad_speed' column, but the 'speed' confusion normalisation needs the pad "
+          "speed: give --pad-speed V (pad units per second), name the column with --map "
+          "pad_speed=COLUMN, or use --confusion-norm raw",
+          name));
+    }
+    if (!options.read_robot_path || json) {  // a JSON cell holds a whole trial, not one sample
+      cols.index[kRobotX] = cols.index[kRobotY] = -1;
+    } else if ((cols.index[kRobotX] >= 0) != (cols.index[kRobotY] >= 0)) {
+      const Field has = cols.index[kRobotX] >= 0 ? kRobotX : kRobotY;
+      const Field lacks = has == kRobotX ? kRobotY : kRobotX;
+      throw InvalidData(fmt::format("{}:1: column '{}' without '{}' (the robot's position needs "
+                                    "both; name it with --map {}=COLUMN)", name, cols.name[has],
+                                    cols.name[lacks], kFieldNames[lacks]));
     }
     return true;
   }
 
+  // TraceOptions::participant_from_path applied to one file.
+  std::string participant_from(const std::string& path) const {
+    const std::string& rule = options.participant_from_path;
+    if (path == "-") {
+      throw UsageError("--participant-from-path cannot name the participant of standard input "
+                       "(give the files by name)");
+    }
+    const fs::path p(path);
+    std::string id;
+    if (rule == "filename") {
+      id = p.filename().string();
+      const auto dot = id.find('.');
+      if (dot != std::string::npos && dot > 0) id.resize(dot);
+    } else if (rule == "dirname") {
+      id = p.parent_path().filename().string();
+    } else {
+      std::smatch m;
+      if (!std::regex_search(path, m, path_regex) || m.size() < 2 || m[1].length() == 0) {
+        throw InvalidData(fmt::format(
+            "{}: --participant-from-path '{}' does not match this path (its first group "
+            "must capture the id, e.g. 'sub-([0-9]+)')", display_name(path), rule));
+      }
+      id = m[1].str();
+    }
+    if (id.empty()) {
+      throw InvalidData(fmt::format("{}: --participant-from-path {} gives an empty id",
+                                    display_name(path), rule));
+    }
+    return id;
+  }
+  std::regex path_regex;
+
+  // A number in the file's decimal mark. The common case ('.') is the fast path.
+  [[gnu::always_inline]] std::optional<double> num(std::string_view s) {
+    if (mark == '.') return parse_number(s);
+    return num_other(s);
+  }
+  std::optional<double> num_other(std::string_view s) {
+    if (mark == 0) {  // not known yet: the first value with a mark decides
+      const bool comma = s.find(',') != std::string_view::npos;
+      if (s.find('.') != std::string_view::npos) {
+        mark = '.';
+      } else if (comma) {
+        mark = ',';
+        if (comma_files++ == 0) {
+          first_comma = {"decimal-comma", names[file_index], reader->line(), "",
+                         fmt::format("{}:{}: numbers read with a decimal comma ('{}'; the file is "
+                                     "'{}'-delimited)", names[file_index], reader->line(), s,
+                                     reader->delimiter() == '\t' ? "tab" : std::string(1, reader->delimiter()))};
+        }
+      }
+      if (mark != ',') return parse_number(s);
+    }
+    if (s.find('.') != std::string_view::npos) return std::nullopt;
+    comma_scratch.assign(s);
+    std::replace(comma_scratch.begin(), comma_scratch.end(), ',', '.');
+    return parse_number(comma_scratch);  // the same exact fast path as a decimal point
+  }
+  // Why a number cell was not read, when the decimal mark may be the reason.
+  std::string mark_hint(std::string_view s) const {
+    if (mark == ',' && s.find('.') != std::string_view::npos) {
+      return options.decimal == ','
+                 ? "; --decimal , is given, so a '.' is not allowed"
+                 : "; this file's numbers use a decimal comma (detected), so a '.' is not allowed: "
+                   "give --decimal . if the point is the decimal mark";
+    }
+    if (s.find(',') != std::string_view::npos) {
+      return "; a decimal comma? give --delimiter ';' --decimal ,";
+    }
+    return {};
+  }
+
   [[gnu::always_inline]] std::string_view get(Field f) const {
     const int i = cols.index[f];
-    if (i < 0) return {};
+    if (i < 0) return f == kParticipant ? std::string_view(file_participant) : std::string_view{};
     const auto idx = static_cast<std::size_t>(i);
     return idx < row->size() ? trim_fast((*row)[idx]) : std::string_view{};
   }
@@ -280,9 +476,14 @@ struct TraceReader::Impl {
     b.error.clear();
     b.error_line = 0;
     b.last_line = 0;
+    b.padding = 0;
+    b.padding_line = 0;
     Trial& t = b.trial;
+    t.padding_rows = 0;
     t.times.clear();
     t.pads.clear();
+    t.robot_x.clear();
+    t.robot_y.clear();
     t.rows = 0;
     t.line = reader->line();
     t.file = names[file_index];
@@ -306,8 +507,19 @@ struct TraceReader::Impl {
       invalid(b, line, fmt::format("column '{}': empty (expected the condition's name)",
                                    cols.name[kCondition]));
     }
-    if (const auto i = parse_integer(it); i && *i >= 0 && *i <= kMaxIteration) {
-      t.iteration = *i;
+    if (const auto i = parse_integer(it);
+        i && *i >= 0 && *i <= kMaxIteration - (options.iteration_base == 0 ? 1 : 0)) {
+      t.iteration = options.iteration_base == 0 ? *i + 1 : *i;
+      if (*i < min_iteration) {
+        min_iteration = *i;
+        min_iteration_at = fmt::format("{}:{}", names[file_index], line);
+      }
+      max_iteration = std::max(max_iteration, *i);
+      if (*i == 0 && options.iteration_base == 1) {
+        invalid(b, line, fmt::format("column '{}': iteration 0 with --iteration-base 1 (give "
+                                     "--iteration-base 0 if the iterations are numbered from 0)",
+                                     cols.name[kIteration]));
+      }
     } else if (i) {
       // The scores tables take iterations 0..1e9 (io/scores.hpp): what score accepts, table reads.
       invalid(b, line, fmt::format("column '{}': {} is outside 0 to 1e9 (expected an iteration "
@@ -323,7 +535,7 @@ struct TraceReader::Impl {
       t.target = 0;
     } else if (tl == "right") {
       t.target = 1;
-    } else if (const auto v = parse_double(tl)) {
+    } else if (const auto v = num(tl)) {
       if (*v < 0 || *v > 1) {
         invalid(b, line, fmt::format("column '{}': {} is outside [0, 1] (expected left, right, or "
                                      "a pad coordinate in [0, 1])", cols.name[kTarget], b.target_text));
@@ -344,7 +556,7 @@ struct TraceReader::Impl {
                                        "needs the pad speed in pad units per second; or give "
                                        "--pad-speed V)", cols.name[kPadSpeed]));
         }
-      } else if (const auto v = parse_double(b.pad_speed_text); v && *v > 0) {
+      } else if (const auto v = num(b.pad_speed_text); v && *v > 0) {
         t.pad_speed = *v;
       } else {
         invalid(b, line, fmt::format("column '{}': '{}' is not a number > 0 (pad units per second)",
@@ -358,7 +570,7 @@ struct TraceReader::Impl {
                       bool numeric) {
     if (now == first) return;
     if (numeric) {
-      const auto a = parse_double(now), c = parse_double(first);
+      const auto a = num(now), c = num(first);
       if (a && c && *a == *c) return;
       if (f == kTarget) {
         const std::string nl = to_lower(now), fl = to_lower(first);
@@ -389,29 +601,55 @@ struct TraceReader::Impl {
         check_constant(b, kPadSpeed, get(kPadSpeed), b.pad_speed_text, true);
       }
     }
-    const std::string_view ts = get(kT);
-    const auto tv = parse_number(ts);
-    if (!tv) {
-      invalid(b, line, ts.empty() ? fmt::format("column '{}': empty (expected a time in seconds)",
-                                                cols.name[kT])
-                                  : fmt::format("column '{}': '{}' is not a number (expected a "
-                                                "time in seconds, decimal point)", cols.name[kT], ts));
+    if (samples_index >= 0) {
+      add_json_samples(b, line);
       return;
     }
+    const std::string_view ts = get(kT);
     const std::string_view ps = get(kPad);
-    const auto pv = parse_number(ps);
+    const auto tv = num(ts);
+    if (!tv && is_missing(ts) && is_missing(ps)) {
+      // Padding of a fixed-length array: dropped if nothing but padding follows in this trial.
+      if (b.padding++ == 0) b.padding_line = line;
+      return;
+    }
+    if (!tv) {
+      invalid(b, line, ts.empty() ? fmt::format("column '{}': empty (expected a time in {})",
+                                                cols.name[kT], unit_name)
+                                  : fmt::format("column '{}': '{}' is not a number (expected a "
+                                                "time in {}{}){}", cols.name[kT], ts, unit_name,
+                                                mark == ',' ? ", decimal comma" : ", decimal point",
+                                                mark_hint(ts)));
+      return;
+    }
+    const auto pv = num(ps);
     if (!pv) {
       invalid(b, line, ps.empty() ? fmt::format("column '{}': empty (expected a pad position in "
                                                 "[0, 1])", cols.name[kPad])
                                   : fmt::format("column '{}': '{}' is not a number (expected a pad "
-                                                "position in [0, 1])", cols.name[kPad], ps));
+                                                "position in [0, 1]){}", cols.name[kPad], ps,
+                                                mark_hint(ps)));
       return;
     }
-    if (*pv < 0 || *pv > 1) {
+    add_sample(b, line, ts, *tv, ps, *pv);
+  }
+
+  void add_sample(Builder& b, std::uint64_t line, std::string_view ts, double tv,
+                  std::string_view ps, double pv) {
+    Trial& t = b.trial;
+    if (b.padding > 0) {
+      invalid(b, b.padding_line,
+              fmt::format("columns '{}' and '{}': no value, but a sample follows at line {} (only "
+                          "trailing rows without t and pad, the padding of fixed-length arrays, "
+                          "are dropped; a gap inside a trial is invalid)",
+                          cols.name[kT], cols.name[kPad], line));
+      return;
+    }
+    if (pv < 0 || pv > 1) {
       invalid(b, line, fmt::format("column '{}': {} is outside [0, 1]", cols.name[kPad], ps));
       return;
     }
-    const double seconds = options.time_divisor == 1 ? *tv : *tv / options.time_divisor;
+    const double seconds = options.time_divisor == 1 ? tv : tv / options.time_divisor;
     if (!t.times.empty() && !(seconds > t.times.back())) {
       invalid(b, line, fmt::format("column '{}': {} is not after the previous sample's {} (line "
                                    "{}; times must strictly increase)", cols.name[kT], ts,
@@ -419,9 +657,54 @@ struct TraceReader::Impl {
                                    b.last_line));
       return;
     }
+    if (cols.index[kRobotX] >= 0 && !read_robot(b, line)) return;
     t.times.push_back(seconds);
-    t.pads.push_back(*pv);
+    t.pads.push_back(pv);
     b.last_line = line;
+  }
+
+  // TraceOptions::samples_column: the row's cell holds the trial's samples as JSON.
+  void add_json_samples(Builder& b, std::uint64_t line) {
+    const auto idx = static_cast<std::size_t>(samples_index);
+    const std::string_view cell = idx < row->size() ? trim_fast((*row)[idx]) : std::string_view{};
+    const std::string& tk = cols.name[kT];
+    const std::string& pk = cols.name[kPad];
+    std::string error;
+    if (!detail::parse_json_samples(cell, tk, pk, json_t, json_pad, error)) {
+      invalid(b, line, fmt::format("column '{}': {}", reader->header()[idx], error));
+      return;
+    }
+    for (std::size_t k = 0; k < json_t.size() && b.error.empty(); ++k) {
+      const double tv = json_t[k], pv = json_pad[k];
+      if (std::isnan(tv) && std::isnan(pv)) {
+        if (b.padding++ == 0) b.padding_line = line;
+        continue;
+      }
+      const std::string ts = format_double(tv), ps = format_double(pv);
+      if (std::isnan(tv) || std::isnan(pv)) {
+        invalid(b, line, fmt::format("column '{}': sample {}: \"{}\" is null", reader->header()[idx],
+                                     k + 1, std::isnan(tv) ? tk : pk));
+        return;
+      }
+      add_sample(b, line, ts, tv, ps, pv);
+    }
+  }
+
+  // The robot's position on this row (both columns present): finite numbers in metres.
+  bool read_robot(Builder& b, std::uint64_t line) {
+    for (const Field f : {kRobotX, kRobotY}) {
+      const std::string_view s = get(f);
+      const auto v = num(s);  // the file's decimal mark
+      if (!v) {
+        invalid(b, line, s.empty() ? fmt::format("column '{}': empty (expected the robot's "
+                                                 "position in metres on every row)", cols.name[f])
+                                   : fmt::format("column '{}': '{}' is not a number (expected the "
+                                                 "robot's position in metres)", cols.name[f], s));
+        return false;
+      }
+      (f == kRobotX ? b.trial.robot_x : b.trial.robot_y).push_back(*v);
+    }
+    return true;
   }
 
   // Ends a trial: true when it is valid (then it is in b.trial), false when rejected.
@@ -436,6 +719,11 @@ struct TraceReader::Impl {
     }
     if (b.error.empty()) {
       rows_ok += b.trial.rows;
+      b.trial.padding_rows = b.padding;
+      if (b.padding > 0) {
+        rows_padding += b.padding;
+        ++trials_padded;
+      }
       return true;
     }
     rows_bad += b.trial.rows;
@@ -584,6 +872,39 @@ TraceReader::TraceReader(std::vector<std::string> files, TraceOptions options)
     throw UsageError(fmt::format("time divisor {} must be a number > 0", options.time_divisor));
   }
   if (files.empty()) throw UsageError("no input files given");
+  if (options.decimal != 0 && options.decimal != '.' && options.decimal != ',') {
+    throw UsageError(fmt::format("--decimal '{}': expected . or ,", options.decimal));
+  }
+  if (options.decimal == ',' && options.delimiter == ',') {
+    throw UsageError("--decimal , needs another field separator than the comma (e.g. --delimiter ';')");
+  }
+  if (options.iteration_base < -1 || options.iteration_base > 1) {
+    throw UsageError(fmt::format("--iteration-base {}: expected 0 or 1", options.iteration_base));
+  }
+  if (options.no_header && options.column_names.empty() && options.column_map.empty()) {
+    throw UsageError("--no-header needs the columns' names: --columns NAME,NAME,... (in order) or "
+                     "--map FIELD=N (N = column number from 1)");
+  }
+  const auto& rule = options.participant_from_path;
+  if (!rule.empty() && std::find(files.begin(), files.end(), "-") != files.end()) {
+    throw UsageError("--participant-from-path cannot name the participant of standard input "
+                     "(give the files by name)");
+  }
+  if (!rule.empty() && rule != "filename" && rule != "dirname") {
+    try {
+      impl_->path_regex = std::regex(rule, std::regex::ECMAScript);
+    } catch (const std::regex_error& e) {
+      throw UsageError(fmt::format("--participant-from-path '{}': not a regular expression ({})",
+                                   rule, e.what()));
+    }
+    if (impl_->path_regex.mark_count() < 1) {
+      throw UsageError(fmt::format("--participant-from-path '{}': the expression needs a group "
+                                   "(...) that captures the id, e.g. 'sub-([0-9]+)'", rule));
+    }
+  }
+  impl_->unit_name = options.time_divisor == 1      ? "seconds"
+                     : options.time_divisor == 1000 ? "milliseconds"
+                                                    : fmt::format("units of 1/{} s", options.time_divisor);
   impl_->files = std::move(files);
   for (const auto& f : impl_->files) impl_->names.push_back(display_name(f));
   impl_->options = std::move(options);
@@ -603,5 +924,35 @@ std::uint64_t TraceReader::bytes_consumed() const noexcept {
   return impl_->bytes_done + (impl_->reader ? impl_->reader->bytes_consumed() : 0);
 }
 std::size_t TraceReader::files_read() const noexcept { return impl_->next_file; }
+std::uint64_t TraceReader::rows_padding() const noexcept { return impl_->rows_padding; }
+std::uint64_t TraceReader::trials_padded() const noexcept { return impl_->trials_padded; }
+
+std::vector<Diagnostic> TraceReader::diagnostics() const {
+  const Impl& m = *impl_;
+  std::vector<Diagnostic> out;
+  if (m.comma_files > 0) {
+    Diagnostic d = m.first_comma;
+    d.message += m.comma_files > 1 ? fmt::format(", and so were {} more file(s)", m.comma_files - 1)
+                                   : std::string();
+    d.message += "; give --decimal . or --decimal , to set the decimal mark instead of detecting it";
+    out.push_back(std::move(d));
+  }
+  if (m.rows_padding > 0) {
+    out.push_back({"nan-padding", "", 0, "",
+                   fmt::format("dropped {} trailing row(s) without t and pad (NaN, NA or empty: the "
+                               "padding of fixed-length arrays) at the end of {} trial(s); they are "
+                               "counted with their trials, not rejected",
+                               m.rows_padding, m.trials_padded)});
+  }
+  if (m.options.iteration_base == -1 && m.min_iteration == 0) {
+    out.push_back({"iteration-base-0", "", 0, "",
+                   fmt::format("iterations start at 0 ({}; iterations {} to {}), as a 0-based loop "
+                               "counter (PsychoPy) writes them: kept as written; give "
+                               "--iteration-base 0 to number them from 1 as the paper does, or "
+                               "--iteration-base 1 to declare them 1-based",
+                               m.min_iteration_at, m.min_iteration, m.max_iteration)});
+  }
+  return out;
+}
 
 }  // namespace feint::io

@@ -69,6 +69,12 @@ void append_row(std::string& buf, const io::Trial& t, const TrialScore& s) {
   fmt::format_to(std::back_inserter(buf), "{},", s.reversals);
   num(s.final_pad);
   if (s.overspeed_segments >= 0) fmt::format_to(std::back_inserter(buf), "{}", s.overspeed_segments);
+  buf.push_back(',');
+  num(s.signed_area);
+  num(s.max_deviation);
+  fmt::format_to(std::back_inserter(buf), "{},", s.flips);
+  num(s.time_deceived);
+  if (!std::isnan(s.final_belief_time)) fmt::format_to(std::back_inserter(buf), "{}", s.final_belief_time);
   buf.push_back('\n');
 }
 
@@ -87,7 +93,9 @@ const std::vector<std::string>& score_columns() {
   static const std::vector<std::string> cols = {
       "participant", "condition", "iteration",     "strategy", "variant",
       "target",      "n_samples", "duration",      "error",    "confusion",
-      "reversal_time", "reversals", "final_pad", "overspeed_segments"};
+      "reversal_time", "reversals", "final_pad", "overspeed_segments",
+      // belief-trace measures (issue 16), appended so that existing readers keep their columns
+      "signed_area", "max_deviation", "flips", "time_deceived", "final_belief_time"};
   return cols;
 }
 
@@ -113,7 +121,8 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
                         const std::function<void(const io::Rejection&)>& on_reject) {
   settings.metrics.validate();
   const auto files = io::expand_inputs(inputs);
-  io::TraceOptions opt;
+  io::TraceOptions opt = settings.reading;
+  opt.on_reject = {};
   opt.column_map = settings.column_map;
   opt.delimiter = settings.delimiter;
   opt.pad_speed = settings.metrics.pad_speed;
@@ -123,6 +132,8 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
   opt.time_divisor = settings.time_unit == TimeUnit::ms ? 1000 : 1;
   ScoreSummary summary;
   std::vector<double> durations;  // 8 bytes per trial: the median for the time-unit check
+  double longest = 0;
+  std::string longest_at, longest_label;  // the longest trial, named when the unit is refused
   ScoreProgress progress;
   if (settings.on_error == OnError::skip) {
     opt.on_reject = [&](const io::Rejection& r) {
@@ -155,6 +166,11 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
       continue;
     }
     if (s.overspeed_segments > 0) ++summary.overspeed_trials;
+    if (durations.empty() || s.duration > longest) {
+      longest = s.duration;
+      longest_at = fmt::format("{}:{}", trial.file, trial.line);
+      longest_label = trial.label();
+    }
     durations.push_back(s.duration);
     on_trial(trial, s);
     ++progress.trials_scored;
@@ -183,20 +199,43 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
     if (durations.size() % 2 == 0) median = 0.5 * (median + *std::max_element(durations.begin(), mid));
     summary.median_duration = median;
     summary.max_duration = *std::max_element(durations.begin(), durations.end());
-    std::string warning;
-    if (settings.time_unit == TimeUnit::s && median > kMedianDurationHighS) {
+    const auto t_column = settings.column_map.count("t") != 0 ? settings.column_map.at("t") : "t";
+    if (settings.check_durations && settings.time_unit == TimeUnit::s && median > kMedianDurationRefuseS) {
+      throw InvalidData(fmt::format(
+          "{}: column '{}': the median trial lasts {:.4g} s ({} trials; the longest, trial {}, "
+          "{:.4g} s): these times cannot be seconds (a trial lasting more than {:.0f} s = 20 "
+          "minutes is not a round of the game); if they are milliseconds, give --time-unit ms",
+          longest_at, t_column, median, durations.size(), longest_label, summary.max_duration,
+          kMedianDurationRefuseS));
+    }
+    std::string warning, code;
+    if (!settings.check_durations) {
+      // No plausibility rule asked for.
+    } else if (settings.time_unit == TimeUnit::s && median > kMedianDurationHighS) {
+      code = "time-unit-ms-suspected";
       warning = fmt::format(
           "the median trial lasts {:.4g} s ({} trials, longest {:.4g} s): implausible for seconds; "
           "if the logs' times are in milliseconds, give --time-unit ms (every confusion and "
           "duration would otherwise be off by a factor of 1000)",
           median, durations.size(), summary.max_duration);
     } else if (settings.time_unit == TimeUnit::ms && median < kMedianDurationLowMs) {
+      code = "time-unit-s-suspected";
       warning = fmt::format(
           "with --time-unit ms the median trial lasts {:.4g} s ({} trials, longest {:.4g} s): "
           "implausibly short; are the logs' times in seconds already?",
           median, durations.size(), summary.max_duration);
     }
-    if (!warning.empty()) {
+    if (!warning.empty()) summary.diagnostics.push_back({code, "", 0, t_column, warning});
+  }
+  {
+    // The reader's notes first (how the files were read), then the time-unit check's.
+    auto notes = reader.diagnostics();
+    notes.insert(notes.end(), summary.diagnostics.begin(), summary.diagnostics.end());
+    summary.diagnostics = std::move(notes);
+  }
+  for (const auto& d : summary.diagnostics) {
+    const std::string& warning = d.message;
+    {
       summary.warnings.push_back(warning);
       if (settings.on_warning) {
         settings.on_warning(warning);
@@ -308,6 +347,7 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
     j += fmt::format("    \"trim_start\": {},\n    \"trim_end\": {},\n", io::json_number(m.trim_start),
                      io::json_number(m.trim_end));
     j += fmt::format("    \"deadband\": {},\n", io::json_number(m.deadband));
+    j += fmt::format("    \"belief_deadband\": {},\n", io::json_number(m.belief_deadband));
     j += fmt::format("    \"confusion_norm\": {},\n", io::json_quote(to_string(m.norm)));
     if (m.pad_speed) {
       j += fmt::format("    \"pad_speed\": {{\"source\": \"option\", \"value\": {}}},\n",
@@ -357,7 +397,12 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
          "\"error\": \"pad units, [0, 1]\", \"confusion\": ";
     j += m.norm == ConfusionNorm::speed ? "\"fraction of full-speed movement, [0, 1]\""
                                         : "\"pad units (paper's eq. 4, unnormalised)\"";
-    j += ", \"target\": \"pad coordinate (0 = left, 1 = right)\"}\n}\n";
+    j += ", \"target\": \"pad coordinate (0 = left, 1 = right)\", "
+         "\"signed_area\": \"pad units toward the false side, mean over the window, [-1, 1]\", "
+         "\"max_deviation\": \"pad units past 0.5 toward the false target, [-0.5, 0.5]\", "
+         "\"flips\": \"count (belief dead band)\", "
+         "\"time_deceived\": \"share of the window, [0, 1]\", "
+         "\"final_belief_time\": \"s since the trial's first sample; empty if never\"}\n}\n";
     sidecar_out = std::make_unique<io::AtomicOutput>(sidecar);
     sidecar_out->stream() << j;
   }

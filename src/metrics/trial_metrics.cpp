@@ -35,6 +35,10 @@ void MetricSettings::validate() const {
     throw UsageError(fmt::format("--trim-start + --trim-end = {} must be < 1 (nothing would be "
                                  "left of the trial)", trim_start + trim_end));
   }
+  if (!(std::isfinite(belief_deadband) && belief_deadband >= 0 && belief_deadband < 0.5)) {
+    throw UsageError(fmt::format("--belief-deadband: {} must be in [0, 0.5) (pad units: a lean "
+                                 "from the middle smaller than this is no side)", belief_deadband));
+  }
   if (!std::isfinite(deadband) || deadband < 0) {
     throw UsageError(fmt::format("--deadband: {} must be a finite number >= 0 (pad units)",
                                  deadband));
@@ -54,6 +58,106 @@ inline double abs_linear_integral(double g0, double g1, double h) {
   const double a0 = std::fabs(g0), a1 = std::fabs(g1);
   return 0.5 * h * (a0 * a0 + a1 * a1) / (a0 + a1);
 }
+
+// The belief-trace measures of docs/metrics.md, accumulated inside score_trace's two loops over
+// the samples (no pass of their own: they cost a few operations per sample). Times are in
+// score_trace's scaled unit (2^-k s since t0).
+class BeliefAccumulator {
+ public:
+  BeliefAccumulator(double target, double delta, double first_pad)
+      : defined_(target != 0.5), sigma_(target < 0.5 ? 1.0 : -1.0), target_(target),
+        delta_(delta), lo_(first_pad), hi_(first_pad), ext_(first_pad) {}
+
+  // Flips (whole trace): a hysteresis. Before the first move beyond delta the direction is unknown
+  // and the lowest and highest positions so far are kept; then `ext_` is the extreme reached in
+  // the current direction, and a move of more than delta back from it is a flip.
+  void sample(double m) noexcept {
+    if (dir_ > 0) {
+      if (m > ext_) {
+        ext_ = m;
+      } else if (ext_ - m > delta_) {
+        ++flips_;
+        dir_ = -1;
+        ext_ = m;
+      }
+    } else if (dir_ < 0) {
+      if (m < ext_) {
+        ext_ = m;
+      } else if (m - ext_ > delta_) {
+        ++flips_;
+        dir_ = 1;
+        ext_ = m;
+      }
+    } else {
+      lo_ = std::min(lo_, m);
+      hi_ = std::max(hi_, m);
+      if (m - lo_ > delta_) {
+        dir_ = 1;
+        ext_ = m;
+      } else if (hi_ - m > delta_) {
+        dir_ = -1;
+        ext_ = m;
+      }
+    }
+  }
+
+  // One segment clipped to the window: [lo, hi] with the pad going from m0 to m1 (linear).
+  void window_segment(double lo, double hi, double m0, double m1) noexcept {
+    const double l0 = sigma_ * (m0 - 0.5), l1 = sigma_ * (m1 - 0.5);  // lean toward the false side
+    max_lean_ = std::max(max_lean_, std::max(l0, l1));
+    const double h = hi - lo;
+    if (!(h > 0)) return;
+    area_ += 0.5 * sigma_ * ((m0 - target_) + (m1 - target_)) * h;  // exact: linear integrand
+    const double g0 = l0 - delta_, g1 = l1 - delta_;                 // > 0: deceived
+    if (g0 > 0 && g1 > 0) {
+      deceived_ += h;
+    } else if (g0 > 0 || g1 > 0) {  // one crossing inside: the part on the positive side
+      deceived_ += h * (g0 > 0 ? g0 : g1) / std::fabs(g1 - g0);
+    }
+  }
+
+  // Writes the five measures; `w(i)` is sample i's scaled time, [a, b] the window, 2^k the unit.
+  template <class W>
+  void finish(std::span<const double> pads, W w, double a, double b, int k, TrialScore& s) const {
+    s.flips = flips_;
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    if (!defined_) {  // T = 1/2: no false side, every side-based measure is undefined
+      s.signed_area = s.max_deviation = s.time_deceived = s.final_belief_time = nan;
+      return;
+    }
+    // + 0.0: a lean of sigma * 0 is -0 for sigma = -1; a score is never written as "-0".
+    s.signed_area = std::clamp(area_ / (b - a), -1.0, 1.0) + 0.0;
+    s.max_deviation = max_lean_ + 0.0;
+    s.time_deceived = std::clamp(deceived_ / (b - a), 0.0, 1.0);
+    // Final correct belief (whole trace): r = -lean - delta > 0 on the true side beyond delta.
+    // Scanned back from the end, so it costs the length of the final stretch only.
+    const std::size_t n = pads.size();
+    auto r = [&](std::size_t i) { return -sigma_ * (pads[i] - 0.5) - delta_; };
+    if (!(r(n - 1) > 0)) {
+      s.final_belief_time = nan;
+      return;
+    }
+    std::size_t i = n - 1;
+    while (i > 0 && r(i - 1) > 0) --i;
+    if (i == 0) {
+      s.final_belief_time = 0;  // on the true side from the first sample on
+      return;
+    }
+    // r(i - 1) <= 0 < r(i): the crossing inside segment i - 1 (at its start when r(i - 1) == 0).
+    const double r0 = r(i - 1), r1 = r(i);
+    const double x = w(i - 1) + (w(i) - w(i - 1)) * (-r0 / (r1 - r0));
+    s.final_belief_time = std::ldexp(x, k);
+  }
+
+ private:
+  bool defined_;
+  double sigma_, target_, delta_;
+  double lo_, hi_, ext_;
+  int dir_ = 0;
+  int flips_ = 0;
+  double area_ = 0, deceived_ = 0;
+  double max_lean_ = -std::numeric_limits<double>::infinity();
+};
 
 }  // namespace detail
 
@@ -117,7 +221,9 @@ TrialScore score_trace(std::span<const double> times, std::span<const double> pa
   int last_dir = 0;
   std::size_t rev_segment = n;  // none
   s.overspeed_segments = v ? 0 : -1;
+  detail::BeliefAccumulator belief(target, settings.belief_deadband, pads[0]);
   for (std::size_t i = 0; i + 1 < n; ++i) {
+    belief.sample(pads[i + 1]);
     const double d = pads[i + 1] - pads[i];
     const int dir = d > eps ? 1 : (d < -eps ? -1 : 0);
     if (dir != 0) {
@@ -149,9 +255,9 @@ TrialScore score_trace(std::span<const double> times, std::span<const double> pa
     if (x1 <= a) continue;
     if (x0 >= b) break;
     const double lo = std::max(x0, a), hi = std::min(x1, b);
-    if (hi > lo) {
-      err_integral += detail::abs_linear_integral(target - mu_at(i, lo), target - mu_at(i, hi), hi - lo);
-    }
+    const double m_lo = mu_at(i, lo), m_hi = mu_at(i, hi);
+    if (hi > lo) err_integral += detail::abs_linear_integral(target - m_lo, target - m_hi, hi - lo);
+    belief.window_segment(lo, hi, m_lo, m_hi);
     if (rev_segment < n) {
       const double cs = std::max(x0, c), ce = std::min(x1, b);
       if (ce > cs) {
@@ -174,6 +280,7 @@ TrialScore score_trace(std::span<const double> times, std::span<const double> pa
     // moving / tau in seconds: the 2^-k of the weights (squared) and of tau (once) leave one.
     s.confusion = std::ldexp(moving / tau, k);
   }
+  belief.finish(pads, w, a, b, k, s);
   // A score that is not a finite number must never be written: the trial is invalid (e.g. a
   // segment moving faster than the largest double pad units per second, for the raw confusion).
   for (const auto& [name, value] : {std::pair<const char*, double>{"error", s.error},

@@ -17,7 +17,7 @@ std::vector<std::size_t> WideDesign::group_sizes() const {
 }
 
 WideDesign make_wide_design(std::span<const Observation> observations, const std::string& metric,
-                            const std::string& source) {
+                            const std::string& source, bool drop_empty_conditions) {
   WideDesign d;
   d.source = source;
   d.metric = metric;
@@ -97,9 +97,29 @@ WideDesign make_wide_design(std::span<const Observation> observations, const std
         "repeated-measures ANOVA uses complete cases only (feint model keeps incomplete ones)",
         source, metric, d.iterations.front(), d.iterations.back()));
   }
-  // A condition whose participants were all excluded is not a level of the analysis.
+  // A condition whose participants were all excluded: stop (as afex), or drop it when asked.
   std::vector<std::size_t> sizes(d.conditions.size(), 0);
   for (std::size_t g : d.group) ++sizes[g];
+  for (std::size_t g = 0; g < d.conditions.size(); ++g) {
+    if (sizes[g] > 0) continue;
+    if (drop_empty_conditions) {
+      d.dropped_conditions.push_back(d.conditions[g]);
+      continue;
+    }
+    std::vector<std::string> who;
+    for (const std::string& name : order)
+      if (people.at(name).condition == g) who.push_back(name);
+    std::string list;
+    for (std::size_t i = 0; i < who.size() && i < 5; ++i) list += (i ? ", " : "") + who[i];
+    if (who.size() > 5) list += fmt::format(", ... ({} in all)", who.size());
+    throw InvalidData(fmt::format(
+        "{}: metric '{}': every participant of condition '{}' ({}) lacks a value for some "
+        "iteration, so the complete-case ANOVA has nobody left in '{}' and would become an "
+        "analysis of the other condition(s) only. Fill in the missing values, use `feint model` "
+        "(it keeps incomplete participants), or ask for the analysis without '{}' with "
+        "--drop-empty-conditions",
+        source, metric, d.conditions[g], list, d.conditions[g], d.conditions[g]));
+  }
   std::vector<std::size_t> remap(d.conditions.size(), 0);
   std::vector<std::string> kept;
   for (std::size_t g = 0; g < d.conditions.size(); ++g) {

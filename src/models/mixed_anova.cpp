@@ -73,6 +73,7 @@ MixedAnova mixed_anova(const WideDesign& d, SphericityCorrection correction) {
   out.iterations = d.iterations;
   out.n_participants = d.n();
   out.excluded = d.excluded;
+  out.dropped_conditions = d.dropped_conditions;
   out.correction = correction;
   const double dfe = static_cast<double>(n - a);
   if (dfe < 1) {

@@ -3,12 +3,15 @@
 #include "feint/models/mixed_model.hpp"
 
 #include <algorithm>
+#include <boost/math/distributions/normal.hpp>
+#include <boost/math/distributions/students_t.hpp>
 #include <boost/math/tools/minima.hpp>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <stdexcept>
 
 #include "mixed_model_detail.hpp"
 
@@ -47,6 +50,37 @@ Eigen::MatrixXd doolittle_lower(const Eigen::MatrixXd& x, double eps) {
   for (Eigen::Index i = 0; i < L.size(); ++i)
     if (std::abs(L.data()[i]) < eps) L.data()[i] = 0.0;
   return L;
+}
+
+int response_scale_exponent(const Eigen::VectorXd& y) {
+  if (y.size() == 0) return 0;
+  const double spread = (y.array() - y.mean()).abs().maxCoeff();
+  if (!(spread > 0) || !std::isfinite(spread)) return 0;
+  int e = 0;
+  std::frexp(spread, &e);  // spread = f 2^e, f in [0.5, 1)
+  return e;
+}
+
+double t_quantile_upper(double upper, double df) {
+  if (df > 1e10) {
+    const boost::math::normal z;
+    return boost::math::quantile(boost::math::complement(z, upper));
+  }
+  try {
+    const boost::math::students_t dist(df);
+    return boost::math::quantile(boost::math::complement(dist, upper));
+  } catch (const std::overflow_error&) {
+    return std::numeric_limits<double>::infinity();  // df -> 0: the interval is the whole line
+  }
+}
+
+double t_two_sided_p(double t, double df) {
+  if (df > 1e10) {
+    const boost::math::normal z;
+    return 2.0 * boost::math::cdf(boost::math::complement(z, std::abs(t)));
+  }
+  const boost::math::students_t dist(df);
+  return 2.0 * boost::math::cdf(boost::math::complement(dist, std::abs(t)));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -243,6 +277,20 @@ double optimise_intercept(const Problem& problem) {
     const auto r2 = boost::math::tools::brent_find_minima(f, theta * (1 - 1e-6), theta * (1 + 1e-6),
                                                           std::numeric_limits<double>::digits / 2);
     if (r2.second <= f_theta) theta = r2.first;
+    // Brent's minimum is only sqrt(eps) precise where the criterion is flat; Newton steps on
+    // the root of its (Richardson) derivative find the optimum to ~1e-10 relative.
+    auto fv = [&](const Eigen::VectorXd& v) { return f(v(0)); };
+    for (int it = 0; it < 4; ++it) {
+      Eigen::VectorXd v(1);
+      v(0) = theta;
+      const double g = numderiv_gradient(fv, v)(0);
+      const double h = numderiv_hessian(fv, v)(0, 0);
+      if (!(h > 0)) break;
+      const double step = -g / h;
+      if (!(std::abs(step) < 1e-3 * theta)) break;
+      theta += step;
+      if (std::abs(step) < 1e-13 * theta) break;
+    }
   }
   return theta;
 }
@@ -261,20 +309,25 @@ Eigen::VectorXd optimise_theta(const Problem& problem) {
   for (int restart = 0; restart < 4; ++restart)
     x = nelder_mead(f, x, restart == 0 ? 0.5 : 0.05, 4000);
   // Newton polish with Richardson derivatives (the criterion is smooth inside the domain).
-  for (int it = 0; it < 6; ++it) {
+  // Near the optimum the criterion is flat to rounding, so a step is judged by the gradient it
+  // leaves (Richardson derivatives are ~1e-10 precise), not by the noisy criterion alone.
+  Eigen::VectorXd g = numderiv_gradient(f, x);
+  for (int it = 0; it < 8; ++it) {
     const Eigen::MatrixXd H = numderiv_hessian(f, x);
-    const Eigen::VectorXd g = numderiv_gradient(f, x);
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
     if (es.eigenvalues().minCoeff() <= 0) break;
     const Eigen::VectorXd step =
         -es.eigenvectors() * (es.eigenvectors().transpose() * g).cwiseQuotient(es.eigenvalues());
     const Eigen::VectorXd xn = x + step;
-    if (f(xn) <= f(x)) {
+    const double fx = f(x), fn = f(xn);
+    const Eigen::VectorXd gn = numderiv_gradient(f, xn);
+    if (fn <= fx || (fn <= fx + 1e-10 * (1 + std::abs(fx)) && gn.norm() < g.norm())) {
       x = xn;
+      g = gn;
     } else {
       break;
     }
-    if (step.norm() < 1e-12) break;
+    if (step.norm() < 1e-13 * (1 + x.norm())) break;
   }
   // Canonical signs: diagonal of the Cholesky factor >= 0 (the criterion is invariant).
   if (x(0) < 0) {

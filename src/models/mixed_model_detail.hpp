@@ -43,6 +43,29 @@ struct Problem {
 
 Eigen::VectorXd optimise_theta(const Problem& problem);
 
+/// Kenward-Roger's pieces (pbkrtest's vcovAdj_internal): the marginal covariance is
+/// S = sum_r gamma_r G_r with gamma = (the entries of D's lower triangle, sigma^2) and G_r the
+/// matching Z E_r Z' (E_r symmetric unit) or I; all products are formed per participant (S is
+/// block diagonal), never as n x n matrices.
+struct KenwardRogerParts {
+  Eigen::MatrixXd phi_adj;            ///< Phi_A = Phi + 2 Phi U Phi
+  std::vector<Eigen::MatrixXd> P;     ///< P_r = -X' S^-1 G_r S^-1 X
+  Eigen::MatrixXd W;                  ///< 2 IE2^-1 (generalised inverse when IE2 is singular)
+};
+KenwardRogerParts kenward_roger_parts(const Problem& problem, const Eigen::MatrixXd& D,
+                                      double sigma2, const Eigen::MatrixXd& Phi);
+
+/// The exponent k of the power of two 2^k nearest the spread (largest |y - mean|) of y; the fit
+/// works on y / 2^k so that it is scale-free and multiplying back is exact.
+int response_scale_exponent(const Eigen::VectorXd& y);
+
+/// qt(1 - upper, df), upper in (0, 1): Student's t upper quantile, the normal one when df is so
+/// large that Boost's quantile would overflow (df > 1e10, where they agree to 1e-10).
+double t_quantile_upper(double upper, double df);
+
+/// 2 P(T_df > |t|) (the normal tail when df > 1e10).
+double t_two_sided_p(double t, double df);
+
 Eigen::VectorXd numderiv_gradient(const std::function<double(const Eigen::VectorXd&)>& f,
                                   const Eigen::VectorXd& x);
 Eigen::MatrixXd numderiv_hessian(const std::function<double(const Eigen::VectorXd&)>& f,

@@ -234,11 +234,18 @@ Contrast contrast(const MixedModelFit& fit, const Eigen::VectorXd& L, double con
   r.mu = 0.0;
   r.statistic_name = "t";
   const double est = L.dot(fit.beta);
-  const double var = L.dot(fit.vcov_beta * L);
-  Eigen::VectorXd g(static_cast<Eigen::Index>(fit.jac_vcov_beta.size()));
-  for (std::size_t k = 0; k < fit.jac_vcov_beta.size(); ++k)
-    g(static_cast<Eigen::Index>(k)) = L.dot(fit.jac_vcov_beta[k] * L);
-  const double df = 2.0 * var * var / g.dot(fit.vcov_varpar * g);
+  double var = 0, df = 0;
+  if (fit.spec.ddf == DdfMethod::kenward_roger) {
+    r.method = "Linear mixed model contrast (REML, Kenward-Roger df)";
+    var = L.dot(fit.vcov_beta_adj * L);
+    df = kenward_roger_df(fit, L.transpose()).ddf;
+  } else {
+    var = L.dot(fit.vcov_beta * L);
+    Eigen::VectorXd g(static_cast<Eigen::Index>(fit.jac_vcov_beta.size()));
+    for (std::size_t k = 0; k < fit.jac_vcov_beta.size(); ++k)
+      g(static_cast<Eigen::Index>(k)) = L.dot(fit.jac_vcov_beta[k] * L);
+    df = 2.0 * var * var / g.dot(fit.vcov_varpar * g);
+  }
   r.estimate = est;
   if (!(var > 0) || !std::isfinite(df) || !(df > 0)) {
     r.computed = false;
@@ -250,8 +257,7 @@ Contrast contrast(const MixedModelFit& fit, const Eigen::VectorXd& L, double con
   r.statistic = est / se;
   r.df = df;
   r.p_value = two_sided_t_p(est / se, df);
-  boost::math::students_t dist(df);
-  const double q = boost::math::quantile(boost::math::complement(dist, (1 - conf_level) / 2));
+  const double q = detail::t_quantile_upper((1 - conf_level) / 2, df);
   r.conf_low = est - q * se;
   r.conf_high = est + q * se;
   out.std_error = se;
@@ -277,6 +283,23 @@ AnovaTerm contrast_md(const MixedModelFit& fit, const Eigen::MatrixXd& L) {
     out.p = boost::math::cdf(boost::math::complement(dist, F));
     return out;
   };
+  if (fit.spec.ddf == DdfMethod::kenward_roger) {
+    // lmerTest's contestMD with ddf = "Kenward-Roger": pbkrtest::KRmodcomp(model, L)$test; the
+    // table's Mean Sq is the unscaled Wald F (with Phi_A) times sigma^2, F is it times the scaling.
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(L);
+    const double q = static_cast<double>(lu.rank());
+    const Eigen::VectorXd Lb = L * fit.beta;
+    const Eigen::MatrixXd LAL = L * fit.vcov_beta_adj * L.transpose();
+    const double wald = Lb.dot(LAL.ldlt().solve(Lb));
+    const KenwardRogerDf kr = kenward_roger_df(fit, L);
+    const double fu = wald / q;
+    table(fu * kr.f_scaling, q, kr.ddf);
+    if (out.computed) {
+      out.mean_sq = fu * s2;
+      out.sum_sq = fu * s2 * q;
+    }
+    return out;
+  }
   if (L.rows() == 1) {
     const stats::TestResult c = contrast(fit, L.row(0).transpose()).test;
     if (!c.computed) return table(std::nan(""), 1, std::nan(""));
@@ -358,8 +381,10 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
     }
   }
   if (fit.participants.size() < 2)
-    throw InvalidData(fmt::format("{}: the mixed model needs at least 2 participants, got {}",
-                                  spec.response, fit.participants.size()));
+    throw InvalidData(fmt::format(
+        "metric '{}': {} participant ({}): the mixed model needs at least 2 participants (the "
+        "variance between participants cannot be estimated from one)",
+        spec.response, fit.participants.size(), fit.participants.empty() ? "" : fit.participants[0]));
   if (!spec.group_levels.empty()) {
     fit.group_levels = spec.group_levels;
   } else {
@@ -389,6 +414,58 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
                       "model cannot be fitted",
                       spec.response, y0));
   }
+  // lme4's checks (check.nobs.vs.nlev, check.nobs.vs.nRE): with no participant observed twice,
+  // or no more trials than random effects, the participant variance cannot be told apart from the
+  // residual one (the REML criterion is flat along a line of (theta, sigma)).
+  if (n <= fit.participants.size())
+    throw InvalidData(fmt::format(
+        "metric '{}': {} trials of {} participants: every participant has a single trial{}, so the "
+        "variance between participants cannot be told apart from the residual variance; the mixed "
+        "model needs participants with at least two trials{}",
+        spec.response, n, fit.participants.size(),
+        fit.time_levels.size() == 1 ? fmt::format(" (one {}, {})", spec.time,
+                                                  level_text(fit.time_levels[0]))
+                                    : "",
+        fit.time_levels.size() == 1 && spec.time == "iteration"
+            ? " (for a single iteration, compare the conditions with `feint table`)"
+            : ""));
+  {
+    // No variation within any participant: the residual variance is 0 and REML drives theta to
+    // infinity (lme4 converges to a boundary with meaningless df); refuse, as the ANOVA does.
+    std::map<std::string, std::pair<double, double>> range;
+    for (std::size_t i = 0; i < n; ++i) {
+      auto [it, fresh] = range.try_emplace(data.participant[i], data.y[i], data.y[i]);
+      if (!fresh) {
+        it->second.first = std::min(it->second.first, data.y[i]);
+        it->second.second = std::max(it->second.second, data.y[i]);
+      }
+    }
+    if (std::all_of(range.begin(), range.end(),
+                    [](const auto& r) { return r.second.first == r.second.second; }))
+      throw InvalidData(fmt::format(
+          "metric '{}': no variation within any participant (each participant's trials all "
+          "have the same value): the residual variance is 0 and the mixed model is degenerate",
+          spec.response));
+  }
+  if (spec.random_slope && n <= 2 * fit.participants.size())
+    throw InvalidData(fmt::format(
+        "metric '{}': {} trials of {} participants are not more than the {} random effects of "
+        "(1 + {} | {}): the random slopes and the residual variance cannot both be estimated; drop "
+        "--random-slope",
+        spec.response, n, fit.participants.size(), 2 * fit.participants.size(), spec.time,
+        spec.participant));
+  if (group_between && fit.group_levels.size() > 1 &&
+      fit.participants.size() <= fit.group_levels.size())
+    throw InvalidData(fmt::format(
+        "metric '{}': {} participants in {} {}s: with one participant per {}, {} is confounded "
+        "with participant (no participant variance left to test it against); the mixed model "
+        "needs more participants than {}s",
+        spec.response, fit.participants.size(), fit.group_levels.size(), spec.group, spec.group,
+        spec.group, spec.group));
+  if (spec.time_scale == TimeScale::factor && fit.time_levels.size() < 2)
+    throw InvalidData(fmt::format(
+        "metric '{}': one {} ({}): the model of {} as a factor needs at least two", spec.response,
+        spec.time, level_text(fit.time_levels[0]), spec.time));
   const Layout lay = make_layout(fit);
   if (spec.time_scale == TimeScale::factor && lay.has_group) {
     std::vector<std::size_t> count(lay.n_group * fit.time_levels.size(), 0);
@@ -396,13 +473,16 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
     for (std::size_t j = 0; j < fit.time_levels.size(); ++j)
       for (std::size_t k = 0; k < lay.n_group; ++k)
         if (count[j * lay.n_group + k] == 0)
-          throw InvalidData(
-              fmt::format("{}: no observation of {} '{}' at {} {}: every {} x {} cell needs data",
-                          spec.response, spec.group, fit.group_levels[k], spec.time,
-                          level_text(fit.time_levels[j]), spec.group, spec.time));
+          throw InvalidData(fmt::format(
+              "metric '{}': no observation of {} '{}' at {} {}: with {} as a factor every {} x {} "
+              "cell needs data (the interaction is not estimable); drop that {}, or model {} as "
+              "a linear trend (--trend)",
+              spec.response, spec.group, fit.group_levels[k], spec.time,
+              level_text(fit.time_levels[j]), spec.time, spec.group, spec.time, spec.time,
+              spec.time));
   }
   if (spec.time_scale == TimeScale::linear && fit.time_levels.size() < 2)
-    throw InvalidData(fmt::format("{}: a trend in {} needs at least two distinct values",
+    throw InvalidData(fmt::format("metric '{}': a trend in {} needs at least two distinct values",
                                   spec.response, spec.time));
 
   // Design, rows grouped by participant (stable: file order within a participant).
@@ -434,24 +514,36 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
     if (r + 1 == n || pidx[data.participant[order[r + 1]]] != pi) start.push_back(r + 1);
   }
   if (static_cast<Eigen::Index>(n) <= p)
-    throw InvalidData(
-        fmt::format("{}: {} observations cannot estimate {} fixed effects", spec.response, n, p));
+    throw InvalidData(fmt::format(
+        "metric '{}': {} trials cannot estimate {} fixed effects (and the residual variance)",
+        spec.response, n, p));
   {
     Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(X);
     qr.setThreshold(1e-9);
     if (qr.rank() < p)
-      throw InvalidData(
-          fmt::format("{}: the fixed-effects design is rank deficient", spec.response));
+      throw InvalidData(fmt::format(
+          "metric '{}': the fixed-effects design is rank deficient (a {} x {} combination is "
+          "confounded with another)",
+          spec.response, spec.group, spec.time));
   }
   fit.coef_names = lay.coef_names;
 
-  detail::Problem problem(X, Z, y, start);
+  // Scale invariance: the response is divided by a power of two near its spread, so that every
+  // step below (optimiser, numerical derivatives, tolerances) sees numbers of order 1 whatever the
+  // unit of the response, and multiplying back is exact. y * 2^k gives bit-identical F, df and p.
+  const int scale_exp = detail::response_scale_exponent(y);
+  const Eigen::VectorXd ys = y.unaryExpr([&](double v) { return std::ldexp(v, -scale_exp); });
+  detail::Problem problem(X, Z, ys, start);
   fit.theta = detail::optimise_theta(problem);
   const detail::Evaluation ev = problem.evaluate(fit.theta);
   const double nn = static_cast<double>(n), pp = static_cast<double>(p);
-  fit.sigma = std::sqrt(ev.r2 / (nn - pp));
-  fit.beta = ev.beta;
-  fit.reml_criterion = problem.profiled_reml(fit.theta);
+  const double sigma_s = std::sqrt(ev.r2 / (nn - pp));  // in the units of ys
+  auto up = [&](double v, int power) { return std::ldexp(v, power * scale_exp); };
+  fit.sigma = up(sigma_s, 1);
+  fit.beta = ev.beta.unaryExpr([&](double v) { return up(v, 1); });
+  // REMLcrit of y: (n - p) log(r2) gains (n - p) log(2^(2k)).
+  fit.reml_criterion = problem.profiled_reml(fit.theta) +
+                       (nn - pp) * 2.0 * static_cast<double>(scale_exp) * std::log(2.0);
   fit.vcov_beta = fit.sigma * fit.sigma * ev.xthx_chol.solve(Eigen::MatrixXd::Identity(p, p));
   const Eigen::MatrixXd Lam = problem.lambda(fit.theta);
   const Eigen::MatrixXd Sb = fit.sigma * fit.sigma * Lam * Lam.transpose();
@@ -466,21 +558,52 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
     fit.variance.icc = Sb(0, 0) / (Sb(0, 0) + fit.variance.residual);
   }
 
-  // Satterthwaite (lmerTest's as_lmerModLT).
-  fit.varpar.resize(fit.theta.size() + 1);
-  fit.varpar << fit.theta, fit.sigma;
+  // Satterthwaite (lmerTest's as_lmerModLT), in a scale-free parametrisation: varpar = (theta,
+  // sigma) with sigma = u * sigma_hat, derivatives taken at u = 1 (numDeriv's steps are then
+  // relative in sigma, as lmerTest's are for sigma >= 1.8e-5, and never the absolute 1e-4 that
+  // ruins lmerTest's df in small units), then carried back to (theta, sigma) by the chain rule.
+  const Eigen::Index nv = fit.theta.size() + 1;
+  Eigen::VectorXd vp_u(nv);
+  vp_u << fit.theta, 1.0;
+  auto to_sigma = [&](const Eigen::VectorXd& v) {
+    Eigen::VectorXd w = v;
+    w(nv - 1) *= sigma_s;
+    return w;
+  };
   const Eigen::MatrixXd H = detail::numderiv_hessian(
-      [&](const Eigen::VectorXd& v) { return problem.reml_deviance(v); }, fit.varpar);
+      [&](const Eigen::VectorXd& v) { return problem.reml_deviance(to_sigma(v)); }, vp_u);
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
-  fit.vcov_varpar = Eigen::MatrixXd::Zero(H.rows(), H.cols());
-  for (Eigen::Index i = 0; i < H.rows(); ++i) {
+  Eigen::MatrixXd A_u = Eigen::MatrixXd::Zero(nv, nv);
+  for (Eigen::Index i = 0; i < nv; ++i) {
     const double ev_i = es.eigenvalues()(i);
-    if (ev_i > 1e-8)
-      fit.vcov_varpar += es.eigenvectors().col(i) * es.eigenvectors().col(i).transpose() / ev_i;
+    if (ev_i > 1e-8) A_u += es.eigenvectors().col(i) * es.eigenvectors().col(i).transpose() / ev_i;
   }
-  fit.vcov_varpar *= 2.0;
-  fit.jac_vcov_beta = detail::numderiv_jacobian(
-      [&](const Eigen::VectorXd& v) { return problem.vcov_beta(v); }, fit.varpar);
+  A_u *= 2.0;
+  std::vector<Eigen::MatrixXd> J_u = detail::numderiv_jacobian(
+      [&](const Eigen::VectorXd& v) { return problem.vcov_beta(to_sigma(v)); }, vp_u);
+  // Back to the units of y: d sigma = sigma_y d u; vcov(beta) scales by 2^(2k).
+  fit.varpar.resize(nv);
+  fit.varpar << fit.theta, fit.sigma;
+  Eigen::VectorXd D = Eigen::VectorXd::Ones(nv);
+  D(nv - 1) = fit.sigma;
+  fit.vcov_varpar = D.asDiagonal() * A_u * D.asDiagonal();
+  fit.jac_vcov_beta.clear();
+  for (Eigen::Index k = 0; k < nv; ++k)
+    fit.jac_vcov_beta.push_back(J_u[static_cast<std::size_t>(k)].unaryExpr([&](double v) {
+      return up(v, 2);
+    }) / D(k));
+
+  if (spec.ddf == DdfMethod::kenward_roger) {
+    // In the units of ys (scale-free), then back: Phi_A scales by 2^(2k), P_r by 2^(-4k) and W by
+    // 2^(4k) (exact).
+    const Eigen::MatrixXd Phi_s =
+        sigma_s * sigma_s * ev.xthx_chol.solve(Eigen::MatrixXd::Identity(p, p));
+    const detail::KenwardRogerParts kr = detail::kenward_roger_parts(
+        problem, sigma_s * sigma_s * Lam * Lam.transpose(), sigma_s * sigma_s, Phi_s);
+    fit.vcov_beta_adj = kr.phi_adj.unaryExpr([&](double v) { return up(v, 2); });
+    for (const auto& P : kr.P) fit.kr_P.push_back(P.unaryExpr([&](double v) { return up(v, -4); }));
+    fit.kr_W = kr.W.unaryExpr([&](double v) { return up(v, 4); });
+  }
 
   // Type-III ANOVA.
   const CompleteDesign cd = complete_design(fit, lay, sgi, sti, time);

@@ -101,6 +101,24 @@ Style series_style(std::size_t i) noexcept {
   return {okabe_ito(colours[i % 7]), dashes[i % 4], markers[i % 5]};
 }
 
+Style condition_style(std::size_t i) noexcept {
+  // Blue, orange, bluish green, reddish purple (Okabe-Ito indices 5, 1, 3, 7).
+  static constexpr std::size_t colours[] = {5, 1, 3, 7};
+  static constexpr Dash dashes[] = {Dash::solid, Dash::dashed, Dash::dotted, Dash::dash_dot};
+  static constexpr Marker markers[] = {Marker::circle, Marker::square, Marker::triangle,
+                                       Marker::diamond};
+  return {okabe_ito(colours[i % 4]), dashes[i % 4], markers[i % 4]};
+}
+
+Colour strategy_colour(std::size_t i) noexcept {
+  // Bluish green, yellow, dark grey, reddish purple, sky blue, vermillion: not the conditions'
+  // blue and orange, and the first four of distinct lightness (greyscale).
+  static constexpr Colour dark_grey{0.3, 0.3, 0.3};
+  static constexpr std::size_t colours[] = {3, 4, 0, 7, 2, 6};
+  const std::size_t k = colours[i % 6];
+  return k == 0 ? dark_grey : okabe_ito(k);
+}
+
 namespace detail {
 
 std::vector<double> nice_ticks(double lo, double hi, int target) {
@@ -186,8 +204,12 @@ Scale make_scale(const Axis& axis, Range data) {
     data.hi += 0.5;
   }
   const double pad = categorical ? 0.0 : 0.04 * (data.hi - data.lo);
-  s.min = axis.min.value_or(data.lo - pad);
-  s.max = axis.max.value_or(data.hi + pad);
+  double lo = data.lo - pad, hi = data.hi + pad;
+  // Never beyond the metric's range (the padding either).
+  if (axis.bound_min) lo = std::max(lo, *axis.bound_min);
+  if (axis.bound_max) hi = std::min(hi, *axis.bound_max);
+  s.min = axis.min.value_or(lo);
+  s.max = axis.max.value_or(hi);
   if (s.max <= s.min) s.max = s.min + 1;
   if (categorical) {
     for (const auto& [pos, name] : axis.categories) {
@@ -211,6 +233,26 @@ Scale make_scale(const Axis& axis, Range data) {
   return s;
 }
 
+// A value clipped to an axis' bounds (the metric's range).
+double clip(const Axis& a, double v) {
+  if (std::isnan(v)) return v;
+  if (a.bound_min) v = std::max(v, *a.bound_min);
+  if (a.bound_max) v = std::min(v, *a.bound_max);
+  return v;
+}
+
+// Whether a reference widens the axis: inside the data widened by kReferenceReach of their span,
+// or inside the axis' fixed limits.
+bool reference_on_axis(const Axis& a, const Range& data, double v) {
+  if (a.min && a.max) return v >= *a.min && v <= *a.max;
+  if (data.empty()) return true;
+  const double reach = kReferenceReach * std::max(data.hi - data.lo, 1e-9);
+  const double lo = a.min.value_or(data.lo - reach), hi = a.max.value_or(data.hi + reach);
+  return v >= lo && v <= hi;
+}
+
+bool outside(const Scale& s, double v) { return v < s.min - 1e-12 || v > s.max + 1e-12; }
+
 void data_ranges(const Panel& p, Range& x, Range& y) {
   for (const auto& l : p.lines) {
     for (std::size_t i = 0; i < l.x.size(); ++i) {
@@ -218,12 +260,13 @@ void data_ranges(const Panel& p, Range& x, Range& y) {
       if (i < l.y.size()) y.add(l.y[i]);
       const bool intervals = l.band || l.error_bars != ErrorBars::none;
       if (!intervals) continue;
-      Range& r = l.error_bars == ErrorBars::horizontal ? x : y;
-      if (i < l.lo.size()) r.add(l.lo[i]);
-      if (i < l.hi.size()) r.add(l.hi[i]);
+      const bool horizontal = l.error_bars == ErrorBars::horizontal;
+      Range& r = horizontal ? x : y;
+      const Axis& a = horizontal ? p.x : p.y;
+      if (i < l.lo.size()) r.add(clip(a, l.lo[i]));
+      if (i < l.hi.size()) r.add(clip(a, l.hi[i]));
     }
   }
-  for (const auto& ref : p.refs) (ref.vertical ? x : y).add(ref.value);
   if (p.bars) {
     const Bars& b = *p.bars;
     Range& cat = b.horizontal ? y : x;
@@ -240,6 +283,17 @@ void data_ranges(const Panel& p, Range& x, Range& y) {
     }
   }
   for (double m : p.marks) x.add(m);
+}
+
+// The references that widen the axes (after the data are known).
+void reference_ranges(const Panel& p, Range& x, Range& y) {
+  const Range x0 = x, y0 = y;
+  for (const auto& ref : p.refs) {
+    if (ref.vertical ? reference_on_axis(p.x, x0, ref.value)
+                     : reference_on_axis(p.y, y0, ref.value)) {
+      (ref.vertical ? x : y).add(ref.value);
+    }
+  }
 }
 
 // cairo objects with their destructors.
@@ -404,6 +458,7 @@ struct Layout {
 };
 
 double legend_sample_width(const LegendEntry& e) {
+  if (e.kind == LegendEntry::Kind::text) return -3.0;  // no sample, no gap
   return e.kind == LegendEntry::Kind::line || e.kind == LegendEntry::Kind::band ? 18.0 : 8.0;
 }
 
@@ -503,6 +558,8 @@ void draw_legend(cairo_t* cr, const Figure& f, const Layout& L) {
           cairo_rectangle(cr, x, y - 3.5, 7, 7);
           cairo_fill(cr);
           break;
+        case LegendEntry::Kind::text:
+          break;
         case LegendEntry::Kind::asterisk:
           cairo_set_source_rgb(cr, 0, 0, 0);
           set_font(cr, kFontSize + 2, true);
@@ -511,7 +568,14 @@ void draw_legend(cairo_t* cr, const Figure& f, const Layout& L) {
           break;
       }
       cairo_set_source_rgb(cr, 0, 0, 0);
-      draw_text(cr, e.label, x + sw + 3, y, 0);
+      if (e.kind == LegendEntry::Kind::text) {
+        // A heading ("Strategy:") in bold, a remark in plain text.
+        set_font(cr, kFontSize, !e.label.empty() && e.label.back() == ':');
+        draw_text(cr, e.label, x, y, 0);
+        set_font(cr, kFontSize);
+      } else {
+        draw_text(cr, e.label, x + sw + 3, y, 0);
+      }
       x += L.legend_entry_width[i];
     }
     y += kFontSize * 1.45;
@@ -556,6 +620,7 @@ void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, d
   }
 
   for (const auto& ref : p.refs) {
+    if (outside(ref.vertical ? xs : ys, ref.value)) continue;  // an arrow at the edge, below
     cairo_set_source_rgb(cr, 0.4, 0.4, 0.4);
     cairo_set_line_width(cr, 0.7);
     const double d[] = {2.0, 2.0};
@@ -581,8 +646,10 @@ void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, d
         ++j;
       if (j > i) {
         cairo_new_path(cr);
-        for (std::size_t k = i; k < j; ++k) cairo_line_to(cr, X(l.x[k]), clampy(l.hi[k]));
-        for (std::size_t k = j; k-- > i;) cairo_line_to(cr, X(l.x[k]), clampy(l.lo[k]));
+        for (std::size_t k = i; k < j; ++k) {
+          cairo_line_to(cr, X(l.x[k]), clampy(clip(p.y, l.hi[k])));
+        }
+        for (std::size_t k = j; k-- > i;) cairo_line_to(cr, X(l.x[k]), clampy(clip(p.y, l.lo[k])));
         cairo_close_path(cr);
         cairo_fill(cr);
       }
@@ -611,6 +678,14 @@ void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, d
         }
         open = true;
       }
+      if (l.halo) {
+        cairo_save(cr);
+        cairo_set_source_rgb(cr, 1, 1, 1);
+        cairo_set_dash(cr, nullptr, 0, 0);
+        cairo_set_line_width(cr, l.line_width + 2.0);
+        cairo_stroke_preserve(cr);
+        cairo_restore(cr);
+      }
       cairo_stroke(cr);
       cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
     }
@@ -620,7 +695,8 @@ void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, d
       for (std::size_t i = 0; i < l.x.size() && i < l.lo.size() && i < l.hi.size(); ++i) {
         if (std::isnan(l.lo[i]) || std::isnan(l.hi[i]) || !std::isfinite(l.y[i])) continue;
         if (l.error_bars == ErrorBars::vertical) {
-          const double x = X(l.x[i]), y0 = clampy(l.lo[i]), y1 = clampy(l.hi[i]);
+          const double x = X(l.x[i]), y0 = clampy(clip(p.y, l.lo[i])),
+                       y1 = clampy(clip(p.y, l.hi[i]));
           cairo_move_to(cr, x, y0);
           cairo_line_to(cr, x, y1);
           for (double yy : {y0, y1}) {
@@ -628,7 +704,8 @@ void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, d
             cairo_line_to(cr, x + 1.8, yy);
           }
         } else {
-          const double y = Y(l.y[i]), x0 = clampx(l.lo[i]), x1 = clampx(l.hi[i]);
+          const double y = Y(l.y[i]), x0 = clampx(clip(p.x, l.lo[i])),
+                       x1 = clampx(clip(p.x, l.hi[i]));
           cairo_move_to(cr, x0, y);
           cairo_line_to(cr, x1, y);
           for (double xx : {x0, x1}) {
@@ -651,6 +728,34 @@ void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, d
   set_font(cr, kTickFontSize);
   cairo_set_source_rgb(cr, 0.35, 0.35, 0.35);
   for (const auto& ref : p.refs) {
+    if (outside(ref.vertical ? xs : ys, ref.value)) {
+      // Beyond the data: an arrow at the edge pointing towards it, with its label.
+      const bool high = ref.value > (ref.vertical ? xs.max : ys.max);
+      const double a = 3.2;  // arrow half-width, pt
+      cairo_new_path(cr);
+      if (ref.vertical) {
+        const double x = high ? px + pw - 1 : px + 1, y = py + 5, d = high ? 1 : -1;
+        cairo_move_to(cr, x, y);
+        cairo_line_to(cr, x - d * 2 * a, y - a);
+        cairo_line_to(cr, x - d * 2 * a, y + a);
+        cairo_close_path(cr);
+        cairo_fill(cr);
+        if (!ref.label.empty()) {
+          draw_text_halo(cr, ref.label, x - d * (2 * a + 2), y, high ? 1 : 0);
+        }
+      } else {
+        const double x = px + pw - a - 1, y = high ? py + 4 : py + ph - 4, d = high ? 1 : -1;
+        cairo_move_to(cr, x, y);
+        cairo_line_to(cr, x - a, y + d * 2 * a);
+        cairo_line_to(cr, x + a, y + d * 2 * a);
+        cairo_close_path(cr);
+        cairo_fill(cr);
+        if (!ref.label.empty()) {
+          draw_text_halo(cr, ref.label + (high ? " (above)" : " (below)"), x - a - 2, y + d * a, 1);
+        }
+      }
+      continue;
+    }
     if (ref.label.empty()) continue;
     if (ref.vertical) {
       draw_text_halo(cr, ref.label, X(ref.value) + 2, py + 4, 0);
@@ -722,16 +827,87 @@ void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, d
 void draw(cairo_t* cr, const Figure& f, const Layout& L,
           const std::vector<std::pair<Scale, Scale>>& scales) {
   draw_legend(cr, f, L);
+  // Small multiples in several rows with one y label: drawn once, centred on the rows (a long
+  // label does not fit beside one short panel).
+  bool one_ylabel = f.shared_axes && L.rows > 1 && !f.panels.empty();
+  for (const auto& p : f.panels) one_ylabel = one_ylabel && p.y.label == f.panels[0].y.label;
   for (std::size_t i = 0; i < f.panels.size(); ++i) {
     const std::size_t col = i % L.columns, row = i / L.columns;
     const double px = kMargin + L.left + static_cast<double>(col) * L.cell_width;
     const double oy = kMargin + L.legend_height + static_cast<double>(row) * L.cell_height;
     const bool last_in_column = i + L.columns >= f.panels.size();
     draw_panel(cr, f.panels[i], scales[i].first, scales[i].second, px, oy, L,
-               !f.shared_axes || col == 0, !f.shared_axes || last_in_column,
+               !one_ylabel && (!f.shared_axes || col == 0), !f.shared_axes || last_in_column,
                px - L.left + kFontSize * 0.6);
   }
+  if (one_ylabel && !f.panels[0].y.label.empty()) {
+    const double top = kMargin + L.legend_height + L.top;
+    const double bottom = kMargin + L.legend_height +
+                          static_cast<double>(L.rows - 1) * L.cell_height + L.top + L.plot_height;
+    cairo_set_source_rgb(cr, 0, 0, 0);
+    set_font(cr, kFontSize);
+    draw_text(cr, f.panels[0].y.label, kMargin + kFontSize * 0.6, (top + bottom) / 2, 0.5,
+              -M_PI / 2);
+  }
 }
+
+// The scales of every panel: data ranges (intervals clipped to the axis' bounds), widened by the
+// references near the data; small multiples share their scales, so that panels compare at a
+// glance.
+std::vector<std::pair<Scale, Scale>> make_scales(const Figure& figure) {
+  std::vector<std::pair<Range, Range>> ranges;
+  Range all_x, all_y;
+  for (const auto& p : figure.panels) {
+    Range x, y;
+    data_ranges(p, x, y);
+    ranges.emplace_back(x, y);
+    for (double v : {x.lo, x.hi}) all_x.add(v);
+    for (double v : {y.lo, y.hi}) all_y.add(v);
+  }
+  if (figure.shared_axes) {
+    Range x = all_x, y = all_y;
+    for (const auto& p : figure.panels) {
+      Range px = all_x, py = all_y;
+      reference_ranges(p, px, py);
+      for (double v : {px.lo, px.hi}) x.add(v);
+      for (double v : {py.lo, py.hi}) y.add(v);
+    }
+    all_x = x;
+    all_y = y;
+  } else {
+    for (std::size_t i = 0; i < figure.panels.size(); ++i) {
+      reference_ranges(figure.panels[i], ranges[i].first, ranges[i].second);
+    }
+  }
+  std::vector<std::pair<Scale, Scale>> scales;
+  for (std::size_t i = 0; i < figure.panels.size(); ++i) {
+    const Range& x = figure.shared_axes ? all_x : ranges[i].first;
+    const Range& y = figure.shared_axes ? all_y : ranges[i].second;
+    scales.emplace_back(make_scale(figure.panels[i].x, x), make_scale(figure.panels[i].y, y));
+  }
+  return scales;
+}
+
+}  // namespace
+
+std::vector<PanelAxes> axis_ranges(const Figure& figure) {
+  const auto scales = make_scales(figure);
+  std::vector<PanelAxes> out;
+  for (std::size_t i = 0; i < scales.size(); ++i) {
+    PanelAxes a;
+    a.x = {scales[i].first.min, scales[i].first.max, scales[i].first.ticks};
+    a.y = {scales[i].second.min, scales[i].second.max, scales[i].second.ticks};
+    for (const auto& ref : figure.panels[i].refs) {
+      if (outside(ref.vertical ? scales[i].first : scales[i].second, ref.value)) {
+        a.off_axis.push_back(ref);
+      }
+    }
+    out.push_back(std::move(a));
+  }
+  return out;
+}
+
+namespace {
 
 // cairo and fontconfig keep font caches for the life of the process; releasing them at exit keeps
 // leak checkers (the ASan build) quiet about memory that is not really lost.
@@ -750,22 +926,7 @@ void release_font_caches_at_exit() {
 
 std::string render(const Figure& figure, Width width, FileFormat format) {
   release_font_caches_at_exit();
-  std::vector<std::pair<Scale, Scale>> scales;
-  std::vector<std::pair<Range, Range>> ranges;
-  Range all_x, all_y;
-  for (const auto& p : figure.panels) {
-    Range x, y;
-    data_ranges(p, x, y);
-    ranges.emplace_back(x, y);
-    for (double v : {x.lo, x.hi}) all_x.add(v);
-    for (double v : {y.lo, y.hi}) all_y.add(v);
-  }
-  for (std::size_t i = 0; i < figure.panels.size(); ++i) {
-    // Small multiples share their scales, so that panels compare at a glance.
-    const Range& x = figure.shared_axes ? all_x : ranges[i].first;
-    const Range& y = figure.shared_axes ? all_y : ranges[i].second;
-    scales.emplace_back(make_scale(figure.panels[i].x, x), make_scale(figure.panels[i].y, y));
-  }
+  const std::vector<std::pair<Scale, Scale>> scales = make_scales(figure);
   // Measure text on a scratch surface: the layout depends on label widths.
   SurfacePtr scratch(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, 1, 1));
   ContextPtr measure(cairo_create(scratch.get()));

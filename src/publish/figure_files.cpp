@@ -37,14 +37,14 @@ plot::Figure figure_from_files(const FigureRequest& a, const analysis::ResolvedR
                                 : plot::likert_means_figure(analysis);
   }
   if (a.figure == "strategies") {
-    return plot::occurrence_figure(plot::strategy_occurrence(plot::read_trial_labels(a.input)));
+    return plot::occurrence_figure(plot::strategy_occurrence(metrics::read_trial_labels(a.input)));
   }
   if (a.figure == "traces") {
     if (a.logs.empty()) {
       throw UsageError("--figure traces needs the pad-trace logs: --logs DIR (or files, globs)");
     }
-    const auto curves = plot::mean_traces(io::expand_inputs(a.logs), io::TraceOptions{},
-                                          plot::read_trial_labels(a.input), r.test.conf_level);
+    const auto curves = metrics::mean_traces(io::expand_inputs(a.logs), io::TraceOptions{},
+                                          metrics::read_trial_labels(a.input), r.test.conf_level);
     if (curves.empty()) throw InvalidData("no trial of the logs appears in the scores file");
     return plot::traces_figure(curves, r.test.conf_level);
   }

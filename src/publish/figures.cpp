@@ -79,7 +79,8 @@ DrawnFigures draw_figures(const analysis::StudyResults& r, const std::vector<std
     const plot::MetricFigureData d = plot::metric_figure_data(t, comparison, m.column);
     std::string caption = fmt::format(
         "Mean {} per iteration and condition with its {} confidence interval (the one-sample "
-        "t-tests of Table 1), against the reference R = {:g} (dashed). Filled markers: the mean "
+        "t-tests of Table 1), against the reference R = {:g} (dashed; an arrow at the edge when "
+        "far from the data). Filled markers: the mean "
         "differs from R (p < {:g}, {}); hollow: no difference found.",
         m.column, level, m.reference, t.options.alpha, adjustment_words(t.options.p_adjust));
     if (comparison != nullptr) {
@@ -98,11 +99,11 @@ DrawnFigures draw_figures(const analysis::StudyResults& r, const std::vector<std
   for (const auto& m : t.options.metrics) {
     w.add("participants-" + m.column, capitalised(m.column) + " of each participant",
           fmt::format("Line chart, one panel per condition: each participant's {} over the "
-                      "iterations as thin lines, the condition mean as a thick line.",
+                      "iterations as faint lines, the condition mean with its band on top.",
                       m.column),
-          fmt::format("Each participant's {} over the iterations (thin grey lines), one panel per "
-                      "condition, with the condition's mean from Table 1 (thick line). A "
-                      "participant who stopped playing or an outlier stands out.",
+          fmt::format("Each participant's {} over the iterations (faint lines), one panel per "
+                      "condition, with the condition's mean and its interval from Table 1 (thick "
+                      "line and band). A participant who stopped playing or an outlier stands out.",
                       m.column),
           plot::participants_figure(r.scores, m.column, &t));
   }
@@ -116,7 +117,7 @@ DrawnFigures draw_figures(const analysis::StudyResults& r, const std::vector<std
           "Share of participants who saw each strategy, per iteration and condition (the logs' "
           "strategy column, as scored). The paper's Fig. 5/7 show the selection algorithms' "
           "expectation; this is what the study's participants actually saw.",
-          plot::occurrence_figure(analysis::strategy_occurrence(r.figures.labels)));
+          plot::occurrence_figure(plot::strategy_occurrence(r.figures.labels)));
     if (r.figures.traces.empty()) {
       w.out.notes.push_back("No trace figure: no scored trial was found again in the logs.");
     } else {

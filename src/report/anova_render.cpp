@@ -3,7 +3,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "feint/io/number.hpp"
 
@@ -94,14 +96,37 @@ std::vector<models::Observation> observations(const io::ScoresTable& scores,
 }
 
 AnovaReport build_anova_report(const io::ScoresTable& scores,
-                               models::SphericityCorrection correction) {
+                               models::SphericityCorrection correction,
+                               bool drop_empty_conditions, const AnovaEmmOptions& emm) {
   AnovaReport report;
   report.source = scores.path;
   report.correction = correction;
+  report.emm_options = emm;
   for (const auto& metric : scores.metrics) {
     const auto obs = observations(scores, metric);
-    const models::WideDesign d = models::make_wide_design(obs, metric, scores.path);
+    const models::WideDesign d =
+        models::make_wide_design(obs, metric, scores.path, drop_empty_conditions);
     report.analyses.push_back(models::mixed_anova(d, correction));
+    std::vector<models::EmmTable> tables;
+    if (emm.emmeans)
+      for (const auto term :
+           {models::EmmTerm::cells, models::EmmTerm::condition, models::EmmTerm::iteration}) {
+        if (term != models::EmmTerm::iteration && d.conditions.size() < 2) continue;
+        tables.push_back(
+            {models::to_string(term), "", models::estimated_means(d, term, emm.conf_level)});
+      }
+    for (const auto family : emm.families) {
+      const bool is_poly = family == models::EmmFamily::poly_iteration ||
+                           family == models::EmmFamily::poly_in_condition;
+      const bool by_condition = family == models::EmmFamily::pairwise_condition ||
+                                family == models::EmmFamily::condition_at_iteration;
+      if (d.conditions.size() < 2 && by_condition) continue;
+      const models::EmmAdjust adj =
+          emm.adjust ? *emm.adjust : (is_poly ? models::EmmAdjust::none : models::EmmAdjust::tukey);
+      tables.push_back({models::to_string(family), models::to_string(adj),
+                        models::emm_contrasts(d, family, adj, emm.conf_level)});
+    }
+    report.emm.push_back(std::move(tables));
   }
   return report;
 }
@@ -147,6 +172,9 @@ namespace {
 
 std::string effect_note(const models::MixedAnova& a, const models::AnovaEffect& e) {
   std::vector<std::string> notes;
+  if (!a.dropped_conditions.empty())
+    notes.push_back("condition " + join(a.dropped_conditions, ", ") +
+                    " dropped (every participant had a missing value; --drop-empty-conditions)");
   if (!e.correction_note.empty())
     notes.push_back(e.correction_note + "; df and p assume sphericity");
   if (e.within && a.iterations.size() == 2)
@@ -251,6 +279,12 @@ TextTable people_table(const AnovaReport& r, bool apa) {
       n += fmt::format(" Excluded for a missing value (as afex): {} ({}).", a.excluded.size(),
                        join(a.excluded, ", "));
     }
+    if (!a.dropped_conditions.empty())
+      n += fmt::format(
+          " Dropped on request (--drop-empty-conditions): condition {} (every participant had a "
+          "missing value){}.",
+          join(a.dropped_conditions, ", "),
+          a.one_way() ? "; this is the one-way analysis of the remaining condition" : "");
     if (!a.sphericity_note.empty()) n += " (a) " + a.sphericity_note + ".";
     t.notes.push_back(n);
   }
@@ -272,16 +306,139 @@ TextTable people_table(const AnovaReport& r, bool apa) {
 
 }  // namespace
 
+namespace {
+
+// After afex's columns; the unadjusted p of a mean or contrast goes in afex's `p.value`.
+constexpr std::string_view kEmmColumns[] = {"term",     "level",     "group",      "contrast",
+                                            "estimate", "std.error", "df",         "statistic",
+                                            "p.adjusted", "conf.low", "conf.high", "adjust"};
+
+TextTable emm_means_table(const AnovaReport& r, const models::MixedAnova& a,
+                          const std::vector<models::EmmTable>& tables) {
+  TextTable t;
+  const std::string ci = io::format_double(std::round(r.emm_options.conf_level * 1e6) / 1e4) + "% CI";
+  t.caption = a.metric + ": estimated marginal means (emmeans on the ANOVA, multivariate model)";
+  t.header = {"Means of", "Level", "EMM", "SE", "df", ci};
+  t.right_align = {false, false, true, true, true, true};
+  for (const auto& tab : tables) {
+    if (!tab.adjust.empty()) continue;
+    for (const auto& e : tab.rows) {
+      t.rows.push_back({{tab.term, e.label, fmt::format("{:.4f}", e.estimate),
+                         e.computed ? fmt::format("{:.4f}", e.std_error) : "",
+                         e.computed ? df_text(e.df) : "",
+                         e.computed ? fmt::format("[{:.4f}, {:.4f}]", e.conf_low, e.conf_high) : ""},
+                        false});
+      t.latex_cells.push_back(std::vector<std::string>(6));
+    }
+  }
+  return t;
+}
+
+TextTable emm_contrast_table(const AnovaReport& r, const models::MixedAnova& a,
+                             const models::EmmTable& tab) {
+  TextTable t;
+  const std::string ci = io::format_double(std::round(r.emm_options.conf_level * 1e6) / 1e4) + "% CI";
+  t.caption = fmt::format("{}: contrasts {} (p adjustment: {})", a.metric, tab.term, tab.adjust);
+  t.header = {"By", "Contrast", "Estimate", "SE", "df", ci, "t", "p"};
+  t.right_align = {false, false, true, true, true, true, true, true};
+  for (const auto& e : tab.rows) {
+    t.rows.push_back({{e.by, e.label, fmt::format("{:.4f}", e.estimate),
+                       e.computed ? fmt::format("{:.4f}", e.std_error) : "",
+                       e.computed ? df_text(e.df) : "",
+                       e.computed ? fmt::format("[{:.4f}, {:.4f}]", e.conf_low, e.conf_high) : "",
+                       e.computed ? fmt::format("{:.2f}", e.statistic) : "",
+                       e.computed ? format_p(e.p_value) : std::string(kNotComputable)},
+                      false});
+    std::vector<std::string> latex(8);
+    if (e.computed) latex[7] = format_p(e.p_value, PStyle::latex);
+    t.latex_cells.push_back(std::move(latex));
+  }
+  return t;
+}
+
+}  // namespace
+
 std::string render_anova(const AnovaReport& r, OutputFormat format, bool apa,
                          const TablePresentation& presentation) {
+  const bool with_emm = r.emm_options.any();
   if (format == OutputFormat::csv || format == OutputFormat::json) {
-    const auto cols = anova_columns(apa);
-    const auto recs = tidy(r, apa);
+    auto cols = anova_columns(apa);
+    auto recs = tidy(r, apa);
+    if (with_emm) {
+      // A `table` column first (anova, emmean, emm_contrast), and emmeans' columns after afex's.
+      cols.insert(cols.begin(), "table");
+      const std::size_t n_anova = cols.size();
+      const auto p_col = static_cast<std::size_t>(
+          std::find(cols.begin(), cols.end(), std::string_view("p.value")) - cols.begin());
+      cols.insert(cols.end(), std::begin(kEmmColumns), std::end(kEmmColumns));
+      for (auto& rec : recs) {
+        rec.insert(rec.begin(), Cell::str("anova"));
+        rec.resize(cols.size());
+      }
+      for (std::size_t i = 0; i < r.analyses.size() && i < r.emm.size(); ++i)
+        for (const auto& tab : r.emm[i])
+          for (const auto& e : tab.rows) {
+            Record rec(cols.size());
+            const bool means = tab.adjust.empty();
+            rec[0] = Cell::str(means ? "emmean" : "emm_contrast");
+            rec[1] = Cell::str(r.analyses[i].metric);
+            auto at = [&](std::size_t k) -> Cell& { return rec[n_anova + k]; };
+            at(0) = Cell::str(tab.term);
+            if (means) {
+              at(1) = Cell::str(e.label);
+            } else {
+              if (!e.by.empty()) at(2) = Cell::str(e.by);
+              at(3) = Cell::str(e.label);
+              at(11) = Cell::str(tab.adjust);
+            }
+            at(4) = Cell::num(e.estimate);
+            if (e.computed) {
+              at(5) = Cell::num(e.std_error);
+              at(6) = Cell::num(e.df);
+              at(7) = Cell::num(e.statistic);
+              rec[p_col] = Cell::num(e.p_unadjusted);
+              if (!means) at(8) = Cell::num(e.p_value);
+              at(9) = Cell::num(e.conf_low);
+              at(10) = Cell::num(e.conf_high);
+            }
+            recs.push_back(std::move(rec));
+          }
+    }
     return format == OutputFormat::csv ? write_csv(cols, recs) : write_json(cols, recs);
   }
   TextTable t = people_table(r, apa);
   apply_presentation(t, presentation, "tab:feint-anova");
-  return render_table(t, format);
+  std::string out = render_table(t, format);
+  if (with_emm) {
+    const std::string base = presentation.label.empty() ? "tab:feint-anova" : presentation.label;
+    for (std::size_t i = 0; i < r.analyses.size() && i < r.emm.size(); ++i) {
+      const std::string id = latex_label_part(r.analyses[i].metric);
+      std::vector<TextTable> tables;
+      if (r.emm_options.emmeans) {
+        tables.push_back(emm_means_table(r, r.analyses[i], r.emm[i]));
+        tables.back().latex_label = base + "-emmeans-" + id;
+      }
+      std::size_t k = 0;
+      for (const auto& tab : r.emm[i])
+        if (!tab.adjust.empty()) {
+          tables.push_back(emm_contrast_table(r, r.analyses[i], tab));
+          tables.back().latex_label = base + "-emm-contrasts-" + id + "-" + std::to_string(++k);
+        }
+      if (!tables.empty())
+        tables.back().notes.push_back(
+            "Estimated marginal means and contrasts as emmeans on the afex::aov_ez object with "
+            "its default multivariate model: cell means of the complete participants, each "
+            "contrast's SE from the covariance of the iterations pooled within conditions, df = "
+            "N - a. Equal weights over the cells; each by-group is one family for the "
+            "adjustment; Holm gives Bonferroni intervals (as emmeans); Tukey uses exact "
+            "studentized-range quantiles.");
+      for (auto& tt : tables) {
+        tt.latex_wide = presentation.wide;
+        out += "\n" + render_table(tt, format);
+      }
+    }
+  }
+  return out;
 }
 
 }  // namespace feint::report

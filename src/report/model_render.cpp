@@ -166,7 +166,12 @@ ModelAnalysis build_model_analysis(const io::ScoresTable& scores, const ModelOpt
     spec.time_scale =
         options.exposure || options.trend ? models::TimeScale::linear : models::TimeScale::factor;
     spec.random_slope = options.random_slope;
-    mm.fit = models::fit_mixed_model(d, spec, !options.exposure);
+    spec.ddf = options.ddf;
+    try {
+      mm.fit = models::fit_mixed_model(d, spec, !options.exposure);
+    } catch (const InvalidData& e) {
+      throw InvalidData(fmt::format("{}: {}", scores.path, e.what()));  // name the file
+    }
     const auto& fit = mm.fit;
     const bool one_group = fit.group_levels.size() < 2;
     const std::string rhs = one_group ? spec.time : fmt::format("{} * {}", spec.group, spec.time);
@@ -215,6 +220,30 @@ ModelAnalysis build_model_analysis(const io::ScoresTable& scores, const ModelOpt
         mm.contrasts.push_back(std::move(c));
       }
     }
+    if (options.emmeans || !options.contrast_families.empty()) {
+      if (options.exposure || options.trend)
+        throw UsageError(
+            "--emmeans and --contrasts need iteration as a factor (not --trend or --exposure)");
+      if (options.emmeans)
+        for (const auto term :
+             {models::EmmTerm::cells, models::EmmTerm::condition, models::EmmTerm::iteration}) {
+          if (term != models::EmmTerm::iteration && one_group) continue;
+          mm.emmeans.push_back(
+              {models::to_string(term), "", models::estimated_means(fit, term, options.conf_level)});
+        }
+      for (const auto family : options.contrast_families) {
+        const bool is_poly = family == models::EmmFamily::poly_iteration ||
+                             family == models::EmmFamily::poly_in_condition;
+        const bool by_condition = family == models::EmmFamily::pairwise_condition ||
+                                  family == models::EmmFamily::condition_at_iteration;
+        if (one_group && by_condition) continue;  // one condition: nothing to contrast
+        const models::EmmAdjust adj =
+            options.adjust ? *options.adjust
+                           : (is_poly ? models::EmmAdjust::none : models::EmmAdjust::tukey);
+        mm.emm_contrasts.push_back({models::to_string(family), models::to_string(adj),
+                                    models::emm_contrasts(fit, family, adj, options.conf_level)});
+      }
+    }
     std::vector<std::optional<double>> ps;
     for (const auto& c : mm.contrasts) ps.push_back(c.contrast.test.p_value);
     const auto adj = stats::p_adjust(ps, options.p_adjust);
@@ -250,9 +279,15 @@ std::vector<std::string> model_notes(const ModelAnalysis& a, const MetricModel& 
       "Linear mixed model {} ({}; R's treatment coding), fitted by REML as lme4::lmer (REML "
       "criterion {:.4f}).",
       m.formula, time_text, fit.reml_criterion));
+  const bool kr = o.ddf == models::DdfMethod::kenward_roger;
   notes.push_back(
-      "Type III F tests with Satterthwaite's denominator degrees of freedom, as "
-      "lmerTest::anova(m) (its type-III hypotheses do not depend on the contrast coding).");
+      kr ? "Type III F tests with Kenward-Roger's adjusted covariance, denominator degrees of "
+           "freedom and F scaling (Kenward & Roger 1997), as lmerTest::anova(m, ddf = "
+           "\"Kenward-Roger\") / pbkrtest::KRmodcomp; Sum Sq and Mean Sq are lmerTest's "
+           "(unscaled Wald F times sigma^2)."
+         : "Type III F tests with Satterthwaite's denominator degrees of freedom, as "
+           "lmerTest::anova(m) (its type-III hypotheses do not depend on the contrast coding).");
+  const std::string df_name = kr ? "Kenward-Roger" : "Satterthwaite";
   if (o.trend && fit.group_levels.size() > 1)
     notes.push_back(
         "With a linear trend, the condition term tests the difference of the lines at iteration 0 "
@@ -299,18 +334,26 @@ std::vector<std::string> model_notes(const ModelAnalysis& a, const MetricModel& 
     if (o.exposure) {
       notes.push_back(fmt::format(
           "Slope of exposure per strategy: the change of {} per earlier exposure to the same "
-          "strategy, with Satterthwaite df and {}% interval (lmerTest::contest); {}.",
-          m.metric, percent(o.conf_level), adj));
+          "strategy, with {} df and {}% interval (lmerTest::contest); {}.",
+          m.metric, df_name, percent(o.conf_level), adj));
     } else {
       notes.push_back(fmt::format(
           "Contrasts A - B at each iteration from the model, as emmeans(m, pairwise ~ condition | "
-          "iteration, lmer.df = \"satterthwaite\"){}; two-sided, {}% intervals; {}. A = {}, B = "
+          "iteration, lmer.df = \"{}\"){}; two-sided, {}% intervals; {}. A = {}, B = "
           "{}. "
           "Labels at alpha = {}: A>B / A<B significant, A\u2248B not significantly different.",
-          o.trend ? " at each observed iteration of the trend" : "", percent(o.conf_level), adj,
+          kr ? "kenward-roger" : "satterthwaite", o.trend ? " at each observed iteration of the trend" : "", percent(o.conf_level), adj,
           m.group1, m.group2, io::format_double(o.alpha)));
     }
   }
+  if (!m.emmeans.empty() || !m.emm_contrasts.empty())
+    notes.push_back(fmt::format(
+        "Estimated marginal means and contrasts as emmeans (lmer.df = \"{}\"): a mean averages "
+        "the condition x iteration cells with equal weights; each by-group is one family for "
+        "the adjustment; Holm adjusts p and gives Bonferroni intervals (as emmeans); Tukey uses "
+        "the studentized range with the family's number of means (exact quantiles; R's qtukey "
+        "is precise to about 1e-4); polynomial contrasts use emmeans' integer coefficients.",
+        kr ? "kenward-roger" : "satterthwaite"));
   if (o.apa) {
     for (const auto& t : fit.anova) notes.push_back(fmt::format("{}: {}", t.term, anova_apa(t)));
     for (const auto& c : m.contrasts)
@@ -339,7 +382,9 @@ struct Builder {
 TextTable anova_table(const MetricModel& m) {
   Builder b;
   b.table.caption =
-      fmt::format("Linear mixed model of {}: type III ANOVA (Satterthwaite's df)", m.metric);
+      fmt::format("Linear mixed model of {}: type III ANOVA ({}'s df)", m.metric,
+                  m.fit.spec.ddf == models::DdfMethod::kenward_roger ? "Kenward-Roger"
+                                                                    : "Satterthwaite");
   b.table.header = {"Term", "Sum Sq", "Mean Sq", "NumDF", "DenDF", "F", "p"};
   b.table.right_align = {false, true, true, true, true, true, true};
   b.p_columns = {6};
@@ -411,6 +456,43 @@ TextTable contrast_table(const ModelAnalysis& a, const MetricModel& m) {
     if (!slopes) cells.push_back(c.label);
     b.add(std::move(cells), {t.p_value, t.p_adjusted});
   }
+  return b.table;
+}
+
+TextTable emm_table(const ModelAnalysis& a, const MetricModel& m) {
+  Builder b;
+  const std::string ci = percent(a.options.conf_level) + "% CI";
+  b.table.caption = fmt::format("{}: estimated marginal means ({} df)", m.metric,
+                                m.fit.spec.ddf == models::DdfMethod::kenward_roger
+                                    ? "Kenward-Roger"
+                                    : "Satterthwaite");
+  b.table.header = {"Means of", "Level", "EMM", "SE", "df", ci};
+  b.table.right_align = {false, false, true, true, true, true};
+  for (const auto& t : m.emmeans)
+    for (const auto& r : t.rows)
+      b.add(std::vector<std::string>{t.term, r.label, fmt::format("{:.4f}", r.estimate),
+             r.computed ? fmt::format("{:.4f}", r.std_error) : "",
+             r.computed ? fmt::format("{:.1f}", r.df) : "",
+             r.computed ? fmt::format("[{:.4f}, {:.4f}]", r.conf_low, r.conf_high) : ""},
+            std::vector<std::optional<double>>{});
+  return b.table;
+}
+
+TextTable emm_contrast_table(const ModelAnalysis& a, const MetricModel& m, const EmmTable& t) {
+  Builder b;
+  const std::string ci = percent(a.options.conf_level) + "% CI";
+  b.table.caption = fmt::format("{}: contrasts {} (p adjustment: {})", m.metric, t.term, t.adjust);
+  b.table.header = {"By", "Contrast", "Estimate", "SE", "df", ci, "t", "p"};
+  b.table.right_align = {false, false, true, true, true, true, true, true};
+  b.p_columns = {7};
+  for (const auto& r : t.rows)
+    b.add(std::vector<std::string>{r.by, r.label, fmt::format("{:.4f}", r.estimate),
+           r.computed ? fmt::format("{:.4f}", r.std_error) : "",
+           r.computed ? fmt::format("{:.1f}", r.df) : "",
+           r.computed ? fmt::format("[{:.4f}, {:.4f}]", r.conf_low, r.conf_high) : "",
+           r.computed ? fmt::format("{:.2f}", r.statistic) : "",
+           r.computed ? format_p(r.p_value) : std::string(kNotComputable)},
+          {r.computed ? std::optional<double>(r.p_value) : std::nullopt});
   return b.table;
 }
 
@@ -496,6 +578,33 @@ std::vector<Record> tidy(const ModelAnalysis& a) {
       if (a.options.apa) b.set("apa", Cell::str(c.apa));
       out.push_back(std::move(b.r));
     }
+    // emmeans: table = emmean (term = the means' factor(s), level) and emm_contrast (term = the
+    // family, group = its by level, contrast, label = the adjustment; p.value from t, p.adjusted
+    // with the family's adjustment, conf.low/high adjusted as emmeans).
+    auto emm = [&](const std::string& table, const EmmTable& t, const models::EmmRow& r) {
+      RecordBuilder b;
+      b.set("metric", Cell::str(m.metric)).set("table", Cell::str(table));
+      b.set("term", Cell::str(t.term));
+      if (table == "emmean") {
+        b.set("level", Cell::str(r.label));
+      } else {
+        if (!r.by.empty()) b.set("group", Cell::str(r.by));
+        b.set("contrast", Cell::str(r.label)).set("label", Cell::str(t.adjust));
+      }
+      b.set("estimate", Cell::num(r.estimate));
+      if (r.computed) {
+        b.set("std.error", Cell::num(r.std_error)).set("df", Cell::num(r.df));
+        b.set("statistic", Cell::num(r.statistic));
+        b.set("p.value", Cell::num(r.p_unadjusted));
+        if (table != "emmean") b.set("p.adjusted", Cell::num(r.p_value));
+        b.set("conf.low", Cell::num(r.conf_low)).set("conf.high", Cell::num(r.conf_high));
+      }
+      out.push_back(std::move(b.r));
+    };
+    for (const auto& t : m.emmeans)
+      for (const auto& r : t.rows) emm("emmean", t, r);
+    for (const auto& t : m.emm_contrasts)
+      for (const auto& r : t.rows) emm("emm_contrast", t, r);
   }
   return out;
 }
@@ -530,6 +639,14 @@ std::string render_model(const ModelAnalysis& a, OutputFormat format,
     tables[1].latex_label = base + "-random-" + id;
     if (tables.size() > 2)
       tables[2].latex_label = base + (a.options.exposure ? "-slopes-" : "-contrasts-") + id;
+    if (!m.emmeans.empty()) {
+      tables.push_back(emm_table(a, m));
+      tables.back().latex_label = base + "-emmeans-" + id;
+    }
+    for (std::size_t k = 0; k < m.emm_contrasts.size(); ++k) {
+      tables.push_back(emm_contrast_table(a, m, m.emm_contrasts[k]));
+      tables.back().latex_label = base + "-emm-contrasts-" + id + "-" + std::to_string(k + 1);
+    }
     for (auto& t : tables) t.latex_wide = presentation.wide;
     if (&m == &a.models.front()) apply_presentation(tables[0], presentation, tables[0].latex_label);
     tables.back().notes = model_notes(a, m);

@@ -3,10 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <optional>
 
 #include <fmt/format.h>
 
 #include "feint/error.hpp"
+#include "feint/io/number.hpp"
+#include "feint/models/goal_inference.hpp"
 
 namespace feint::sim {
 
@@ -27,12 +31,102 @@ void validate(const ObserverParams& p) {
   positive(p.learning_shape, "learning_shape");
   positive(p.recognition_time, "recognition_time");
   positive(p.capture_radius, "capture_radius");
+  nonneg(p.beta, "beta");
+  nonneg(p.recognition_logodds, "recognition_logodds");
   if (!(p.memory_decay >= 0 && p.memory_decay <= 1)) {
     throw UsageError(fmt::format("observer: memory_decay must be in [0, 1], got {}", p.memory_decay));
   }
   if (!(p.optimal_suspicion >= 0 && p.optimal_suspicion <= 1)) {
     throw UsageError(fmt::format("observer: optimal_suspicion must be in [0, 1], got {}", p.optimal_suspicion));
   }
+}
+
+namespace {
+struct NamedParameter {
+  std::string_view name;
+  double ObserverParams::*field;
+};
+constexpr NamedParameter kParameters[] = {
+    {"beta", &ObserverParams::beta},
+    {"recognition_logodds", &ObserverParams::recognition_logodds},
+    {"reaction_delay", &ObserverParams::reaction_delay},
+    {"decision_interval", &ObserverParams::decision_interval},
+    {"noise_sd", &ObserverParams::noise_sd},
+    {"pad_speed", &ObserverParams::pad_speed},
+    {"move_threshold", &ObserverParams::move_threshold},
+    {"inference_gain", &ObserverParams::inference_gain},
+    {"half_familiarity", &ObserverParams::half_familiarity},
+    {"learning_shape", &ObserverParams::learning_shape},
+    {"memory_decay", &ObserverParams::memory_decay},
+    {"recognition_time", &ObserverParams::recognition_time},
+    {"optimal_suspicion", &ObserverParams::optimal_suspicion},
+    {"capture_radius", &ObserverParams::capture_radius},
+};
+}  // namespace
+
+ObserverParams goal_inference_observer() noexcept {
+  ObserverParams p;
+  p.model = ParticipantModel::goal_inference;
+  p.beta = 0.3;
+  p.recognition_logodds = 5.0;
+  p.half_familiarity = 4.0;
+  return p;
+}
+
+void set_parameter(ObserverParams& p, std::string_view key, double value) {
+  for (const auto& np : kParameters) {
+    if (np.name == key) {
+      p.*(np.field) = value;
+      return;
+    }
+  }
+  std::string names;
+  for (const auto& np : kParameters) names += fmt::format("{}{}", names.empty() ? "" : ", ", np.name);
+  throw UsageError(fmt::format("unknown observer parameter '{}': expected one of {}", key, names));
+}
+
+namespace {
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+}  // namespace
+
+void set_parameter(ObserverParams& p, std::string_view assignment) {
+  const auto eq = assignment.find('=');
+  const auto value = eq == std::string_view::npos ? std::nullopt
+                                                  : io::parse_double(trim(assignment.substr(eq + 1)));
+  if (!value) {
+    throw UsageError(fmt::format("observer parameter '{}': expected NAME=NUMBER, e.g. beta=0.3", assignment));
+  }
+  set_parameter(p, trim(assignment.substr(0, eq)), *value);
+}
+
+void read_parameters(ObserverParams& p, const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw IoError(fmt::format("{}: cannot open the observer parameter file", path));
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    const auto hash = line.find('#');
+    const std::string_view text = trim(std::string_view(line).substr(0, hash));
+    if (text.empty()) continue;
+    try {
+      set_parameter(p, text);
+    } catch (const UsageError& e) {
+      throw UsageError(fmt::format("{}:{}: {}", path, number, e.what()));
+    }
+  }
+}
+
+ParticipantModel parse_participant_model(std::string_view name) {
+  if (name == "heuristic") return ParticipantModel::heuristic;
+  if (name == "goal-inference" || name == "goal_inference") return ParticipantModel::goal_inference;
+  throw UsageError(fmt::format("participant model '{}': expected heuristic or goal-inference", name));
+}
+
+std::string_view to_string(ParticipantModel m) noexcept {
+  return m == ParticipantModel::heuristic ? "heuristic" : "goal-inference";
 }
 
 Observer::Observer(ObserverParams params) : params_(params) { validate(params_); }
@@ -80,8 +174,27 @@ std::vector<PadSample> Observer::watch(const std::vector<TrajectorySample>& path
   } else {
     w_other = familiarity(s, v == Variant::main ? Variant::v2 : Variant::main) * (1 - w_same);
   }
+  // goal_inference: familiarity with the seen version argues for the true target, familiarity
+  // with the other version (for optimal: with exaggerating, which starts alike) for the false one.
+  const double f_same = familiarity(s, v);
+  const double f_other = s == Strategy::optimal
+                             ? P.optimal_suspicion * familiarity(Strategy::exaggerating, Variant::main)
+                             : familiarity(s, v == Variant::main ? Variant::v2 : Variant::main);
   const double half = g.target_distance / 2;
+  const models::Goals goals{{-half, g.target_height}, {half, g.target_height}};
+  const models::Position start{path.front().x, path.front().y};
+  auto bayes_belief = [&](double t) {
+    // Path evidence in log-odds (feint/models/goal_inference.hpp), plus the learned prior: a
+    // recognised strategy shifts the log-odds toward the target its ending is remembered to reach.
+    const Point seen = position_at(path, t - P.reaction_delay);
+    const double r = std::clamp((t - P.reaction_delay) / P.recognition_time, 0.0, 1.0);
+    const double toward_true = 2 * T - 1;
+    const double learned = P.recognition_logodds * r * (f_same - f_other) * toward_true;
+    const double z = models::belief_logit(start, {seen.x, seen.y}, goals, P.beta, 0.5) + learned;
+    return z >= 0 ? 1 / (1 + std::exp(-z)) : std::exp(z) / (1 + std::exp(z));
+  };
   auto belief = [&](double t) {
+    if (P.model == ParticipantModel::goal_inference) return bayes_belief(t);
     const Point seen = position_at(path, t - P.reaction_delay);
     const double naive = 0.5 + 0.5 * std::tanh(P.inference_gain * seen.x / half);
     const double r = std::clamp((t - P.reaction_delay) / P.recognition_time, 0.0, 1.0);

@@ -13,6 +13,7 @@
 #include "feint/error.hpp"
 #include "feint/io/number.hpp"
 #include "feint/io/output.hpp"
+#include "feint/sim/robot_path.hpp"
 
 namespace feint::sim {
 
@@ -94,18 +95,29 @@ std::vector<ParticipantRecord> write_study(const StudySettings& settings, const 
   std::vector<ParticipantRecord> all;
   for (int i = 0; i < 2 * settings.participants; ++i) {
     ParticipantRecord p = simulate_participant(settings, i);
-    std::string text = "participant,condition,iteration,strategy,variant,target,t,pad,pad_speed\n";
+    std::string text =
+        "participant,condition,iteration,strategy,variant,target,t,pad,pad_speed,robot_x,robot_y\n";
     const std::string cond(to_string(p.condition));
+    std::vector<double> times;
     for (const auto& tr : p.trials) {
       const std::string key = fmt::format("{},{},{},{},{},{},", p.id, cond, tr.iteration,
                                           to_string(tr.strategy), to_string(tr.variant), to_string(tr.target));
-      for (const auto& s : tr.pad) {
+      // The robot's position at each pad sample (formats.md "Robot path"), to 0.1 mm.
+      times.clear();
+      for (const auto& s : tr.pad) times.push_back(s.t - tr.pad.front().t);
+      const auto robot = robot_positions(tr.strategy, tr.variant, tr.target, settings.geometry, times);
+      for (std::size_t k = 0; k < tr.pad.size(); ++k) {
+        const auto& s = tr.pad[k];
         text += key;
         text += io::format_double(s.t);
         text += ',';
         text += io::format_double(s.pad);
         text += ',';
         text += pad_speed;
+        text += ',';
+        text += format_metres(robot[k].x);
+        text += ',';
+        text += format_metres(robot[k].y);
         text += '\n';
       }
     }

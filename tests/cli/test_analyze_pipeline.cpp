@@ -88,7 +88,7 @@ TEST(AnalyzePipeline, ReportListsExclusionsAndTheMixedModel) {
   EXPECT_NE(r.err.find("feint: warning:"), std::string::npos) << r.err;
   const std::string md = read_text(dir / "out" / "report.md");
   EXPECT_NE(md.find("## Accounting: data read, excluded and warned about"), std::string::npos);
-  EXPECT_NE(md.find("Read 60 log files (218488 rows); 1200 trials scored, 0 trials rejected."),
+  EXPECT_NE(md.find("Read 60 log files (219587 rows); 1200 trials scored, 0 trials rejected."),
             std::string::npos)
       << md;
   EXPECT_NE(md.find("scoring: "), std::string::npos) << "the scoring warning is listed";

@@ -226,3 +226,121 @@ TEST(AnovaCli, LatexOfAnovaAndPowerCompilesInAPaper) {
 }
 
 }  // namespace
+
+namespace {
+
+// Issue #18: when every participant of a condition has a missing value, `feint anova` stops
+// (exit 65, as afex) instead of silently running the one-way ANOVA of the other condition;
+// --drop-empty-conditions asks for that analysis and the note says what was dropped.
+TEST(AnovaCli, ConditionWithEveryParticipantExcludedStopsUnlessAsked) {
+  TempDir dir;
+  std::string text = "participant,condition,iteration,error\n";
+  for (int k = 0; k < 8; ++k)
+    for (int j = 1; j <= 3; ++j) {
+      const bool b = k >= 4;
+      const bool missing = b && j == 1 + k % 3;
+      text += "P" + std::to_string(k) + "," + (b ? "b" : "a") + "," + std::to_string(j) + "," +
+              (missing ? "" : std::to_string(0.3 + 0.05 * j + 0.01 * ((k * 5 + j) % 7))) + "\n";
+    }
+  const auto p = dir.path() / "s.csv";
+  write_text(p, text);
+  const RunResult r = run_feint("anova " + shell_quote(p.string()) + " --metric error");
+  EXPECT_EQ(r.exit_code, 65) << r.out;
+  EXPECT_NE(r.err.find("every participant of condition 'b' (P4, P5, P6, P7) lacks a value"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("--drop-empty-conditions"), std::string::npos) << r.err;
+  EXPECT_TRUE(r.out.empty());
+
+  const RunResult one =
+      run_feint("anova " + shell_quote(p.string()) + " --metric error --drop-empty-conditions");
+  EXPECT_EQ(one.exit_code, 0) << one.err;
+  std::string flat = one.out;  // the note is wrapped
+  for (char& c : flat)
+    if (c == '\n') c = ' ';
+  EXPECT_NE(flat.find("one-way repeated measures"), std::string::npos) << one.out;
+  EXPECT_NE(flat.find("Dropped on request (--drop-empty-conditions): condition b"),
+            std::string::npos)
+      << one.out;
+  const RunResult csv = run_feint("anova " + shell_quote(p.string()) +
+                                  " --metric error --drop-empty-conditions --format csv");
+  EXPECT_NE(csv.out.find("condition b dropped"), std::string::npos) << csv.out;
+}
+
+}  // namespace
+
+namespace {
+
+// feint anova --emmeans / --contrasts / --adjust: emmeans on the afex object (multivariate model,
+// anova_emm_golden.R) through the tidy CSV; the tables in text, Markdown and LaTeX.
+TEST(AnovaCli, EmmeansAndContrastsMatchEmmeansOnAfex) {
+  TempDir dir;
+  const auto p = dir.path() / "s.csv";
+  std::string text = "participant,condition,iteration,error\n";
+  {
+    std::ifstream in(kGolden + "anova_data.csv");
+    std::string line;
+    std::getline(in, line);
+    while (std::getline(in, line)) {
+      const auto f = feint::io::split_csv_line(line);
+      if (f[0] == "unbalanced_nonspherical")
+        text += f[1] + "," + f[2] + "," + f[3] + "," + (f.size() > 4 ? f[4] : "") + "\n";
+    }
+  }
+  write_text(p, text);
+  std::map<std::string, double> g;
+  {
+    std::ifstream in(kGolden + "anova_emm_golden.csv");
+    std::string line;
+    while (std::getline(in, line)) {
+      const auto f = feint::io::split_csv_line(line);
+      if (f.size() == 4 && f[0] == "unbalanced_nonspherical") g[f[1] + "/" + f[2]] = std::stod(f[3]);
+    }
+  }
+  const RunResult r = run_feint("anova " + shell_quote(p.string()) +
+                                " --metric error --emmeans --contrasts simple --adjust holm --format csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::stringstream in(r.out);
+  std::string line;
+  std::getline(in, line);
+  const auto header = feint::io::split_csv_line(line);
+  std::map<std::string, std::size_t> col;
+  for (std::size_t i = 0; i < header.size(); ++i) col.emplace(header[i], i);
+  int means = 0, holm = 0;
+  while (std::getline(in, line)) {
+    const auto f = feint::io::split_csv_line(line);
+    if (f[0] == "emmean" && f[col.at("term")] == "condition:iteration") {
+      const std::string lv = f[col.at("level")];
+      const std::string name = lv.substr(0, lv.find('|')) + "|X" + lv.substr(lv.find('|') + 1);
+      EXPECT_NEAR(std::stod(f[col.at("estimate")]), g.at("cells.estimate/" + name), 1e-9) << name;
+      EXPECT_NEAR(std::stod(f[col.at("std.error")]), g.at("cells.SE/" + name), 1e-9) << name;
+      EXPECT_NEAR(std::stod(f[col.at("conf.low")]), g.at("cells.lower/" + name), 1e-9) << name;
+      ++means;
+    } else if (f[0] == "emm_contrast" && f[col.at("term")] == "pairwise ~ iteration | condition") {
+      std::string c = f[col.at("contrast")];
+      for (std::size_t k; (k = c.find("iteration")) != std::string::npos;) c.replace(k, 9, "X");
+      const std::string name = c + "|" + f[col.at("group")];
+      EXPECT_EQ(f[col.at("adjust")], "holm");
+      EXPECT_NEAR(std::stod(f[col.at("p.adjusted")]), g.at("it_by_cond.holm.p/" + name),
+                  1e-6 * std::max(1e-3, g.at("it_by_cond.holm.p/" + name)))
+          << name;
+      EXPECT_NEAR(std::stod(f[col.at("conf.high")]), g.at("it_by_cond.holm.upper/" + name), 1e-9);
+      ++holm;
+    }
+  }
+  EXPECT_EQ(means, 10);
+  EXPECT_EQ(holm, 20);
+  for (const std::string fmt : {"text", "markdown", "latex"}) {
+    const RunResult t = run_feint("anova " + shell_quote(p.string()) +
+                                  " --metric error --emmeans --contrasts poly --format " + fmt);
+    ASSERT_EQ(t.exit_code, 0) << t.err;
+    EXPECT_NE(t.out.find("estimated marginal means"), std::string::npos) << fmt;
+    EXPECT_NE(t.out.find("(p adjustment: none)"), std::string::npos) << fmt;
+  }
+  EXPECT_EQ(run_feint("anova " + shell_quote(p.string()) + " --metric error --contrasts poly --adjust tukey")
+                .exit_code,
+            64);
+  EXPECT_EQ(run_feint("anova " + shell_quote(p.string()) + " --metric error --adjust none").exit_code, 64);
+}
+
+}  // namespace

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <map>
@@ -262,4 +263,287 @@ TEST(ModelCli, LatexCompilesAsAFragmentOfAPaperWithoutOverfullLines) {
   EXPECT_EQ(std::system(cmd.c_str()), 0) << feint::test::read_text(dir.path() / "out.txt");
   EXPECT_EQ(feint::test::read_text(dir.path() / "paper.log").find("Overfull \\hbox"),
             std::string::npos);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Issue #18: degenerate designs exit 65 with a message (never a crash), and scale invariance.
+
+std::string fmt_g17(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string five_by(int participants, int iterations, const std::string& skip = "") {
+  std::string body;
+  for (int k = 0; k < participants; ++k)
+    for (int j = 1; j <= iterations; ++j) {
+      const std::string id = "P" + std::to_string(k);
+      const std::string cond = k % 2 == 0 ? "a" : "b";
+      if (!skip.empty() && skip == cond + std::to_string(j)) continue;
+      body += id + "," + cond + "," + std::to_string(j) + "," +
+              std::to_string(0.3 + 0.01 * ((k * 7 + j * 3) % 11) + 0.02 * k) + "\n";
+    }
+  return scores(body);
+}
+
+feint::test::RunResult model_of(const TempDir& dir, const std::string& text,
+                                const std::string& options = "") {
+  const auto p = dir.path() / "s.csv";
+  write_text(p, text);
+  return run_feint("model " + shell_quote(p.string()) + " --metric error " + options);
+}
+
+TEST(ModelCli, OneIterationExits65InsteadOfCrashing) {
+  TempDir dir;
+  const auto r = model_of(dir, five_by(8, 1));
+  EXPECT_EQ(r.exit_code, 65) << r.err;
+  EXPECT_NE(r.err.find("s.csv: metric 'error': 8 trials of 8 participants: every participant has "
+                       "a single trial (one iteration, 1)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("`feint table`"), std::string::npos) << r.err;
+  EXPECT_EQ(model_of(dir, five_by(8, 1), "--trend").exit_code, 65);
+  // One condition, one iteration.
+  std::string one;
+  for (int k = 0; k < 6; ++k) one += "P" + std::to_string(k) + ",a,1,0." + std::to_string(k + 1) + "\n";
+  EXPECT_EQ(model_of(dir, scores(one)).exit_code, 65);
+}
+
+TEST(ModelCli, OneParticipantExits65) {
+  TempDir dir;
+  const auto r = model_of(dir, scores("P1,a,1,0.1\nP1,a,2,0.3\nP1,a,3,0.2\n"));
+  EXPECT_EQ(r.exit_code, 65);
+  EXPECT_NE(r.err.find("1 participant (P1): the mixed model needs at least 2 participants"),
+            std::string::npos)
+      << r.err;
+}
+
+TEST(ModelCli, OneParticipantPerConditionExits65) {
+  TempDir dir;
+  const auto r = model_of(dir, five_by(2, 5), "--trend --random-slope");
+  EXPECT_EQ(r.exit_code, 65) << r.out;
+  EXPECT_NE(r.err.find("condition is confounded with participant"), std::string::npos) << r.err;
+}
+
+TEST(ModelCli, OneConditionFitsTheOneWayModel) {
+  TempDir dir;
+  std::string body;
+  for (int k = 0; k < 6; ++k)
+    for (int j = 1; j <= 3; ++j)
+      body += "P" + std::to_string(k) + ",a," + std::to_string(j) + "," +
+              std::to_string(0.2 + 0.05 * j + 0.01 * ((k * 5 + j) % 7)) + "\n";
+  const auto r = model_of(dir, scores(body), "--format csv");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const Tidy t = tidy(r.out);
+  int anova_rows = 0;
+  for (const auto& row : t.rows)
+    if (t.str(row, "table") == "anova") {
+      ++anova_rows;
+      EXPECT_EQ(t.str(row, "term"), "iteration");
+    }
+  EXPECT_EQ(anova_rows, 1);
+}
+
+TEST(ModelCli, ParticipantWithASingleTrialIsKept) {
+  TempDir dir;
+  std::string text = five_by(10, 4);
+  // P3 keeps only iteration 2.
+  std::string kept;
+  std::stringstream in(text);
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("P3,", 0) != 0 || line.rfind("P3,b,2,", 0) == 0) kept += line + "\n";
+  const auto r = model_of(dir, kept);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("3 participant x iteration trials without a value of error"), std::string::npos)
+      << r.out;
+}
+
+TEST(ModelCli, EveryParticipantWithASingleTrialExits65) {
+  TempDir dir;
+  std::string body;
+  for (int k = 0; k < 8; ++k)
+    body += "P" + std::to_string(k) + "," + (k % 2 ? "b" : "a") + "," + std::to_string(1 + k / 2 % 2) +
+            ",0." + std::to_string(k + 1) + "\n";
+  const auto r = model_of(dir, scores(body), "--trend");
+  EXPECT_EQ(r.exit_code, 65) << r.out;
+  EXPECT_NE(r.err.find("8 trials of 8 participants: every participant has a single trial"),
+            std::string::npos)
+      << r.err;
+}
+
+TEST(ModelCli, EmptyConditionIterationCellExits65AndTrendFitsIt) {
+  TempDir dir;
+  const std::string text = five_by(10, 4, "a3");
+  const auto r = model_of(dir, text);
+  EXPECT_EQ(r.exit_code, 65);
+  EXPECT_NE(r.err.find("no observation of condition 'a' at iteration 3"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--trend"), std::string::npos) << r.err;
+  EXPECT_EQ(model_of(dir, text, "--trend").exit_code, 0);
+}
+
+TEST(ModelCli, RandomSlopeWithTwoTrialsPerParticipantExits65) {
+  TempDir dir;
+  const auto r = model_of(dir, five_by(10, 2), "--trend --random-slope");
+  EXPECT_EQ(r.exit_code, 65) << r.out;
+  EXPECT_NE(r.err.find("drop --random-slope"), std::string::npos) << r.err;
+}
+
+// The demo study, scored, with its error multiplied by 1e-9 ... 1e6: F, df and p of every term
+// unchanged to 1e-8 relative, Sum Sq scaled by c^2 (at 1e-9 feint exited 70 before issue #18).
+TEST(ModelCli, DemoIsScaleInvariantFrom1e9To1e6) {
+  TempDir dir;
+  const auto scored = dir.path() / "demo.csv";
+  const auto s = run_feint("score " + shell_quote(std::string(FEINT_SOURCE_DIR) + "/data/demo/logs") +
+                           " -o " + shell_quote(scored.string()));
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  const auto rows = parse_csv(feint::test::read_text(scored));
+  std::size_t ec = 0;
+  while (rows[0][ec] != "error") ++ec;
+  auto anova = [&](double c, const std::string& options) {
+    std::string text;
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      for (std::size_t i = 0; i < rows[r].size(); ++i) {
+        if (i) text += ",";
+        text += (r > 0 && i == ec && !rows[r][i].empty())
+                    ? fmt_g17(std::stod(rows[r][i]) * c)
+                    : rows[r][i];
+      }
+      text += "\n";
+    }
+    const auto p = dir.path() / "scaled.csv";
+    write_text(p, text);
+    const auto m = run_feint("model " + shell_quote(p.string()) + " --metric error --format csv " + options);
+    EXPECT_EQ(m.exit_code, 0) << "scale " << c << ": " << m.err;
+    std::map<std::string, std::vector<double>> out;  // term -> F, DenDF, p, sumsq
+    const Tidy t = tidy(m.out);
+    for (const auto& row : t.rows)
+      if (t.str(row, "table") == "anova")
+        out[t.str(row, "term")] = {t.num(row, "statistic"), t.num(row, "DenDF"),
+                                   t.num(row, "p.value"), t.num(row, "sumsq")};
+    return out;
+  };
+  for (const std::string options : {"", "--trend --random-slope"}) {
+    const auto ref = anova(1.0, options);
+    ASSERT_EQ(ref.size(), 3u);
+    for (const double c : {1e-9, 1e-6, 1e-3, 1e6}) {
+      const auto got = anova(c, options);
+      for (const auto& [term, v] : ref) {
+        const std::string at = term + " at " + std::to_string(c) + " " + options;
+        expect_rel(got.at(term)[0], v[0], "F " + at, 1e-8);
+        expect_rel(got.at(term)[1], v[1], "DenDF " + at, 1e-8);
+        expect_rel(got.at(term)[2], v[2], "p " + at, 1e-8);
+        expect_rel(got.at(term)[3], v[3] * c * c, "Sum Sq " + at, 1e-8);
+      }
+    }
+  }
+}
+
+// --ddf kenward-roger: the tidy CSV carries lmerTest::anova(m, ddf = "Kenward-Roger") and
+// emmeans' Kenward-Roger contrasts (kr_emm_golden.R) for the data set with a single-trial
+// participant; --ddf with another value is a usage error.
+TEST(ModelCli, KenwardRogerDdfMatchesPbkrtest) {
+  std::map<std::string, std::map<std::string, double>> g;
+  for (const auto& r : parse_csv(feint::test::read_text(kGolden + "kr_emm_golden.csv")))
+    if (r.size() == 5 && r[0] == "single_trial" && r[1] == "Kenward-Roger") g[r[2]][r[3]] = std::stod(r[4]);
+  const auto r = run_feint("model " + shell_quote(kGolden + "lmm_single_trial.csv") +
+                           " --metric error --ddf kenward-roger --format csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Tidy t = tidy(r.out);
+  int anova = 0, contrasts = 0;
+  for (const auto& row : t.rows) {
+    if (t.str(row, "table") == "anova") {
+      const std::string term = t.str(row, "term");
+      expect_rel(t.num(row, "statistic"), g["F"][term], "F " + term, 1e-6);
+      expect_rel(t.num(row, "DenDF"), g["DenDF"][term], "DenDF " + term, 1e-6);
+      expect_rel(t.num(row, "p.value"), g["p"][term], "p " + term, 1e-6);
+      expect_rel(t.num(row, "sumsq"), g["SumSq"][term], "SumSq " + term, 1e-6);
+      ++anova;
+    } else if (t.str(row, "table") == "contrast") {
+      const std::string name = "adaptive - random|" + t.str(row, "iteration");
+      expect_rel(t.num(row, "df"), g["cond_by_it.df"][name], "df " + name, 1e-6);
+      expect_rel(t.num(row, "std.error"), g["cond_by_it.SE"][name], "SE " + name, 1e-6);
+      expect_rel(t.num(row, "p.value"), g["cond_by_it.p"][name], "p " + name, 1e-6);
+      ++contrasts;
+    }
+  }
+  EXPECT_EQ(anova, 3);
+  EXPECT_EQ(contrasts, 4);
+  const auto text = run_feint("model " + shell_quote(kGolden + "lmm_single_trial.csv") +
+                              " --metric error --ddf kenward-roger");
+  EXPECT_NE(text.out.find("type III ANOVA (Kenward-Roger's df)"), std::string::npos) << text.out;
+  EXPECT_EQ(run_feint("model " + shell_quote(kGolden + "lmm_single_trial.csv") +
+                      " --metric error --ddf kr")
+                .exit_code,
+            64);
+}
+
+// --emmeans / --contrasts / --adjust: the tidy CSV carries emmeans' numbers (kr_emm_golden.R,
+// the data set with a single-trial participant, Kenward-Roger df), every format renders the
+// tables, and impossible combinations are usage errors.
+TEST(ModelCli, EmmeansAndContrastsMatchEmmeans) {
+  std::map<std::string, std::map<std::string, double>> g;
+  for (const auto& r : parse_csv(feint::test::read_text(kGolden + "kr_emm_golden.csv")))
+    if (r.size() == 5 && r[0] == "single_trial" && r[1] == "Kenward-Roger") g[r[2]][r[3]] = std::stod(r[4]);
+  const std::string in = shell_quote(kGolden + "lmm_single_trial.csv");
+  const auto r = run_feint("model " + in +
+                           " --metric error --ddf kenward-roger --emmeans --contrasts simple "
+                           "--contrasts poly --adjust holm --format csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Tidy t = tidy(r.out);
+  int means = 0, holm = 0, poly = 0;
+  for (const auto& row : t.rows) {
+    const std::string table = t.str(row, "table");
+    if (table == "emmean" && t.str(row, "term") == "condition:iteration") {
+      const std::string name = t.str(row, "level");
+      expect_rel(t.num(row, "estimate"), g["cells.emmean"][name], "emmean " + name, 1e-7);
+      expect_rel(t.num(row, "std.error"), g["cells.SE"][name], "SE " + name, 1e-6);
+      expect_rel(t.num(row, "df"), g["cells.df"][name], "df " + name, 1e-6);
+      expect_rel(t.num(row, "conf.low"), g["cells.lower"][name], "lower " + name, 1e-6);
+      ++means;
+    } else if (table == "emm_contrast" && t.str(row, "term") == "pairwise ~ iteration | condition") {
+      const std::string name = t.str(row, "contrast") + "|" + t.str(row, "group");
+      EXPECT_EQ(t.str(row, "label"), "holm");
+      expect_rel(t.num(row, "p.adjusted"), g["it_by_cond.holm.p"][name], "holm p " + name, 1e-6);
+      expect_rel(t.num(row, "conf.high"), g["it_by_cond.holm.upper"][name], "upper " + name, 1e-6);
+      ++holm;
+    } else if (table == "emm_contrast" && t.str(row, "term") == "poly ~ iteration | condition") {
+      // --adjust holm applies to poly too (emmeans' default for poly would be none).
+      const std::string name = t.str(row, "contrast") + "|" + t.str(row, "group");
+      EXPECT_NEAR(t.num(row, "estimate"), g["poly_by_cond.estimate"][name], 1e-8) << name;
+      expect_rel(t.num(row, "p.value"), g["poly_by_cond.p"][name], "poly p " + name, 1e-6);
+      ++poly;
+    }
+  }
+  EXPECT_EQ(means, 8);
+  EXPECT_EQ(holm, 12);
+  EXPECT_EQ(poly, 6);
+
+  for (const std::string f : {"text", "markdown", "latex", "json"}) {
+    // Tukey (a studentized-range quantile per contrast) only in one format, to keep the test fast.
+    const auto out = run_feint("model " + in + " --metric error --emmeans --contrasts " +
+                               (f == "text" ? "pairwise" : "poly") + " --format " + f);
+    ASSERT_EQ(out.exit_code, 0) << f << out.err;
+    if (f == "json") {
+      EXPECT_NE(out.out.find("\"table\": \"emm_contrast\""), std::string::npos);
+      EXPECT_NE(out.out.find("\"label\": \"none\""), std::string::npos);
+    } else {
+      EXPECT_NE(out.out.find("estimated marginal means"), std::string::npos) << f;
+      if (f == "text") {
+        EXPECT_NE(out.out.find("pairwise ~ iteration (p adjustment: tukey)"), std::string::npos);
+      } else {
+        EXPECT_NE(out.out.find("(p adjustment: none)"), std::string::npos) << f;
+      }
+    }
+    if (f == "latex") {
+      EXPECT_NE(out.out.find("\\label{tab:feint-model-emmeans-error}"), std::string::npos);
+      EXPECT_NE(out.out.find("\\label{tab:feint-model-emm-contrasts-error-2}"), std::string::npos);
+      EXPECT_NE(out.out.find("\\begin{tabular}"), std::string::npos);
+    }
+  }
+  EXPECT_EQ(run_feint("model " + in + " --metric error --emmeans --trend").exit_code, 64);
+  EXPECT_EQ(run_feint("model " + in + " --metric error --contrasts poly --adjust tukey").exit_code, 64);
+  EXPECT_EQ(run_feint("model " + in + " --metric error --contrasts all").exit_code, 64);
+  EXPECT_EQ(run_feint("model " + in + " --metric error --adjust holm").exit_code, 64);
 }

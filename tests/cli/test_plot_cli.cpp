@@ -90,7 +90,7 @@ TEST(AnalyzeFigures, ReportIsOneSelfContainedPageWithEveryFigureAndTable) {
   EXPECT_EQ(figures, 8u);
   for (const char* part :
        {"<svg", "Table 1 per condition", "Comparison", "Questionnaire", "Accounting",
-        "Rows read</dt><dd>218488", "Welch two-sample", "Wilcoxon", "feint analyze",
+        "Rows read</dt><dd>219587", "Welch two-sample", "Wilcoxon", "feint analyze",
         "compare = &quot;adaptive,random&quot;", "@media print"}) {
     EXPECT_NE(html.find(part), std::string::npos) << part;
   }

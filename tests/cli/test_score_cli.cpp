@@ -108,7 +108,8 @@ TEST(ScoreCli, ScoresWorkedExamplesAndWritesSidecar) {
   ASSERT_EQ(rows.size(), 3U);
   const std::string header = read_text(d / "scores.csv").substr(0, read_text(d / "scores.csv").find('\n'));
   EXPECT_EQ(header, "participant,condition,iteration,strategy,variant,target,n_samples,duration,error,"
-                    "confusion,reversal_time,reversals,final_pad,overspeed_segments");
+                    "confusion,reversal_time,reversals,final_pad,overspeed_segments,signed_area,"
+                    "max_deviation,flips,time_deceived,final_belief_time");
   EXPECT_EQ(rows[0].at("participant"), "P01");
   EXPECT_EQ(rows[0].at("condition"), "adaptive");
   EXPECT_EQ(rows[0].at("iteration"), "1");
@@ -123,11 +124,20 @@ TEST(ScoreCli, ScoresWorkedExamplesAndWritesSidecar) {
   EXPECT_EQ(rows[1].at("confusion"), "0");
   EXPECT_EQ(rows[1].at("reversal_time"), "");  // never reverses
   EXPECT_EQ(rows[2].at("condition"), "random");
+  // The belief-trace measures (docs/metrics.md worked examples B and A, dead band 0.05).
+  EXPECT_NEAR(num(rows[0].at("signed_area")), 115.0 / 144, 1e-12);
+  EXPECT_EQ(rows[0].at("max_deviation"), "0.5");
+  EXPECT_EQ(rows[0].at("flips"), "1");
+  EXPECT_NEAR(num(rows[0].at("time_deceived")), 73.0 / 90, 1e-12);
+  EXPECT_NEAR(num(rows[0].at("final_belief_time")), 41.0 / 5, 1e-12);
+  EXPECT_EQ(rows[1].at("max_deviation"), "-0.125");
+  EXPECT_NEAR(num(rows[1].at("final_belief_time")), 0.2, 1e-12);
   // The summary line accounts for the run.
   EXPECT_NE(r.err.find("33 rows read from 1 file(s), 3 trials scored, 0 rejected"), std::string::npos)
       << r.err;
   const auto meta = read_text(d / "scores.csv.meta.json");
   for (const char* s : {"\"trim_start\": 0.05", "\"trim_end\": 0.05", "\"deadband\": 1e-09",
+                        "\"belief_deadband\": 0.05",
                         "\"confusion_norm\": \"speed\"", "\"source\": \"column\"", "\"min\": 0.25",
                         "\"feint_version\": ", "\"trials_scored\": 3", "\"rows_read\": 33",
                         "log.csv"}) {
@@ -195,6 +205,7 @@ TEST(ScoreCli, ExitCodesForUsageAndIoErrors) {
   EXPECT_EQ(run_feint("score " + in + out + " --trim 0.1 --trim-start 0.1").exit_code, 64);
   EXPECT_EQ(run_feint("score " + in + out + " --trim-start 0.6 --trim-end 0.5").exit_code, 64);
   EXPECT_EQ(run_feint("score " + in + out + " --deadband -1").exit_code, 64);
+  EXPECT_EQ(run_feint("score " + in + out + " --belief-deadband 0.5").exit_code, 64);
   EXPECT_EQ(run_feint("score " + in + out + " --pad-speed 0").exit_code, 64);
   EXPECT_EQ(run_feint("score " + in + out + " --confusion-norm fancy").exit_code, 64);
   EXPECT_EQ(run_feint("score " + in + out + " --on-error maybe").exit_code, 64);

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 #include "cli/cli_helpers.hpp"
@@ -41,14 +42,28 @@ TEST(ScoreTrustCli, TimeUnitMsConvertsAndASecondsReadingOfMsWarnsOnce) {
   EXPECT_NE(read_text(out).find(",5,4,0.46296296296296"), std::string::npos) << read_text(out);
   EXPECT_NE(read_text(out + ".meta.json").find("\"time_unit\": \"ms\""), std::string::npos);
 
-  r = run_feint("score " + shell_quote(log) + " -o " + shell_quote(out));
+  // Read as seconds, these 4 s trials last 4000 s: they cannot be seconds (issue 18): exit 65,
+  // no table, the message names the file, line, column and the option.
+  const auto refused = (d.path() / "refused.csv").string();
+  r = run_feint("score " + shell_quote(log) + " -o " + shell_quote(refused));
+  EXPECT_EQ(r.exit_code, 65) << r.err;
+  EXPECT_NE(r.err.find("ms.csv:2: column 't': the median trial lasts 4000 s (2 trials; the "
+                       "longest, trial P1/A/1, 4000 s): these times cannot be seconds"),
+            std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("give --time-unit ms"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(refused));
+
+  // 0.6 s trials logged in ms read as 600 s: implausible, not impossible: one warning.
+  const auto slow = (d.path() / "slow.csv").string();
+  write_text(slow, kHeader + example_e("P1,A,1", 150) + example_e("P2,A,1", 150));
+  r = run_feint("score " + shell_quote(slow) + " -o " + shell_quote(out));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto first = r.err.find("feint: warning: the median trial lasts 4000 s (2 trials, longest "
-                                "4000 s): implausible for seconds");
+  const auto first = r.err.find("feint: warning: the median trial lasts 600 s (2 trials, longest "
+                                "600 s): implausible for seconds");
   EXPECT_NE(first, std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("feint: warning:", first + 1), std::string::npos) << "warned twice: " << r.err;
   EXPECT_NE(read_text(out + ".meta.json").find("\"time_unit\": \"s\""), std::string::npos);
-  EXPECT_NE(read_text(out + ".meta.json").find("\"warnings\": [\"the median trial lasts 4000 s"),
+  EXPECT_NE(read_text(out + ".meta.json").find("\"warnings\": [\"the median trial lasts 600 s"),
             std::string::npos);
 
   EXPECT_EQ(run_feint("score " + shell_quote(log) + " -o " + shell_quote(out) + " --time-unit h")

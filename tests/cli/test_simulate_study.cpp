@@ -43,8 +43,10 @@ TEST(SimulateStudyCli, WritesOneGzippedLogPerParticipantAndAQuestionnaire) {
     ASSERT_TRUE(std::filesystem::exists(log)) << log;
     feint::io::CsvReader csv(log.string());
     EXPECT_TRUE(csv.compressed());
-    ASSERT_EQ(csv.header().size(), 9u);
+    ASSERT_EQ(csv.header().size(), 11u);
     EXPECT_EQ(csv.header()[7], "pad");
+    EXPECT_EQ(csv.header()[9], "robot_x");  // the robot's path (formats.md "Robot path")
+    EXPECT_EQ(csv.header()[10], "robot_y");
     std::vector<std::string> iterations;
     while (csv.next()) {
       EXPECT_EQ(csv.field(0), id);

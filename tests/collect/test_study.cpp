@@ -89,11 +89,12 @@ TEST(CollectRounds, SavedRoundsAreAppendedInTheFormatsLayout) {
   EXPECT_EQ(status.rounds_saved, 6);
   const auto log = lines(slurp(dir / "logs" / "P01.csv"));
   ASSERT_GT(log.size(), 6u);
-  EXPECT_EQ(log[0], "participant,condition,iteration,strategy,variant,target,t,pad,pad_speed");
+  EXPECT_EQ(log[0],
+            "participant,condition,iteration,strategy,variant,target,t,pad,pad_speed,robot_x,robot_y");
   std::set<std::string> iterations;
   for (std::size_t i = 1; i < log.size(); ++i) {
     const auto f = io::split_csv_line(log[i]);
-    ASSERT_EQ(f.size(), 9u);
+    ASSERT_EQ(f.size(), 11u);
     EXPECT_EQ(f[0], "P01");
     EXPECT_EQ(f[1], st.condition);
     EXPECT_EQ(f[8], "0.8");
@@ -272,7 +273,7 @@ TEST(CollectRestart, ARoundCutShortByACrashIsSetAsideNeverTruncated) {
   // A crash in the middle of round 2: some complete rows, then half a line.
   const auto rows = lines(good);
   const std::string partial = std::string("P1,") + io::split_csv_line(rows[1])[1] +
-                              ",2,optimal,main,left,0,0.5,0.8\nP1,x,2,optimal,main,left,0.01";
+                              ",2,optimal,main,left,0,0.5,0.8,0,0\nP1,x,2,optimal,main,left,0.01";
   {
     std::ofstream out(log, std::ios::app | std::ios::binary);
     out << partial;

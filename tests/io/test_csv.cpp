@@ -266,3 +266,46 @@ TEST(CsvReader, BlankLinesBeforeTheHeaderKeepDelimiterDetection) {
   ASSERT_EQ(tab.header().size(), 3u);
   EXPECT_EQ(tab.header()[1], "a");
 }
+
+// Issue 18: a headerless (MATLAB) file, and column lookup that prefers the exact case.
+TEST(CsvReader, NoHeaderNamesColumnsByPositionOrByTheGivenNames) {
+  const auto p = temp_file("noheader.csv", "1,2,3\n4,5,6\n");
+  CsvOptions opt;
+  opt.no_header = true;
+  CsvReader r(p.string(), opt);
+  EXPECT_EQ(r.header(), (std::vector<std::string>{"1", "2", "3"}));
+  EXPECT_EQ(r.column("2"), 1);
+  ASSERT_TRUE(r.next());
+  EXPECT_EQ(r.line(), 1u);  // the first row is data
+  EXPECT_EQ(r.field(2), "3");
+  ASSERT_TRUE(r.next());
+  EXPECT_EQ(r.line(), 2u);
+  EXPECT_EQ(r.field(0), "4");
+  EXPECT_FALSE(r.next());
+  EXPECT_EQ(r.records(), 2u);
+  opt.column_names = {"participant", "t"};  // the rest keep their numbers
+  CsvReader named(p.string(), opt);
+  EXPECT_EQ(named.header(), (std::vector<std::string>{"participant", "t", "3"}));
+  opt.skip_rows = 1;  // skipping starts with the first row
+  EXPECT_EQ(read_all(p, opt), (std::vector<std::vector<std::string>>{{"4", "5", "6"}}));
+}
+
+TEST(CsvReader, ColumnPrefersExactCaseAndRefusesAmbiguity) {
+  const auto p = temp_file("case.csv", "T,t,Pad,PAD,Error\n1,2,3,4,5\n");
+  CsvReader r(p.string());
+  EXPECT_EQ(r.column("t"), 1);
+  EXPECT_EQ(r.column("T"), 0);
+  EXPECT_EQ(r.column(" t "), 1);
+  EXPECT_EQ(r.column("error"), 4);  // one case-insensitive match
+  EXPECT_EQ(r.column("PAD"), 3);
+  EXPECT_EQ(r.column("x"), -1);
+  try {
+    (void)r.column("pad", "use --map pad=COLUMN");
+    FAIL();
+  } catch (const feint::InvalidData& e) {
+    EXPECT_NE(std::string(e.what()).find("case.csv:1: columns 'Pad' (column 3) and 'PAD' (column "
+                                         "4) differ only in case and none is exactly 'pad': "
+                                         "ambiguous; use --map pad=COLUMN"),
+              std::string::npos) << e.what();
+  }
+}

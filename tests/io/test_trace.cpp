@@ -238,7 +238,7 @@ TEST(TraceRejects, MissingColumnsAndPadSpeed) {
   TraceOptions opt;
   opt.column_map = {{"condition", "block"}};
   msg = strict_error(kHeader + row("P1,a,1", "right", "0", "0.5"), opt);
-  EXPECT_NE(msg.find("no column 'block' (given by --map condition=block;"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("no column 'block' (given by --map condition=block) (the header has:"), std::string::npos) << msg;
   TraceOptions need;
   need.require_pad_speed = true;
   const auto p = write("nospeed.csv", "participant,iteration,target,t,pad\nP1,1,left,0,0.5\n");

@@ -192,6 +192,7 @@ TEST_F(ScoreLib, ExtremeDurationsScoreAsTheUnscaledTrace) {
     for (const auto norm : {feint::metrics::ConfusionNorm::speed, feint::metrics::ConfusionNorm::raw}) {
       ScoreSettings st;
       st.metrics.norm = norm;
+      st.check_durations = false;  // no round of the game lasts 1e263 s: this checks the numerics
       std::vector<feint::metrics::TrialScore> got;
       feint::metrics::score_each({in}, st, [&](const feint::io::Trial&,
                                                const feint::metrics::TrialScore& sc) {
@@ -284,18 +285,44 @@ TEST_F(ScoreLib, TimeUnitMsConvertsToSecondsAndIsRecorded) {
   EXPECT_EQ(summary.median_duration, 4.0);
   EXPECT_NE(read(out + ".meta.json").find("\"time_unit\": \"ms\""), std::string::npos);
 
-  // The same log read as seconds: a 4000 s trial. One warning, with the figures and the fix.
+  // The same log read as seconds: a 4000 s trial cannot be seconds (over 20 minutes): refused,
+  // naming the file, line, column and the option (issue 18).
   got.clear();
   ScoreSettings secs;
   secs.on_warning = st.on_warning;
-  feint::metrics::score_each({in}, secs, collect);
+  try {
+    feint::metrics::score_each({in}, secs, collect);
+    FAIL() << "expected InvalidData";
+  } catch (const feint::InvalidData& e) {
+    EXPECT_NE(std::string(e.what()).find("ms.csv:2: column 't': the median trial lasts 4000 s (1 "
+                                         "trials; the longest, trial P1/A/1, 4000 s): these times "
+                                         "cannot be seconds"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("give --time-unit ms"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(warnings.empty());
+
+  // A 600 "s" trial (600 ms read as seconds) is implausible, not impossible: one warning, also
+  // as a structured diagnostic.
+  std::string slow = kHeader;
+  for (int i = 0; i < 5; ++i) {  // example E slowed down 150 times: 0.6 s read as 600 s
+    slow += "P1,A,1,right," + feint::io::format_double(t[i] * 0.15) + "," +
+            feint::io::format_double(mu[i]) + ",1\n";
+  }
+  const auto slow_in = write("slow.csv", slow);
+  got.clear();
+  const auto summary2 = feint::metrics::score_each({slow_in}, secs, collect);
   ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_NE(warnings[0].find("the median trial lasts 4000 s (1 trials, longest 4000 s)"),
+  EXPECT_NE(warnings[0].find("the median trial lasts 600 s (1 trials, longest 600 s)"),
             std::string::npos) << warnings[0];
   EXPECT_NE(warnings[0].find("--time-unit ms"), std::string::npos) << warnings[0];
-  // The pad speed is in pad units per second: read as seconds, every movement looks 1000 times
-  // slower than it was, and the confusion is 1000 times too small (what the warning prevents).
-  EXPECT_NEAR(got[0].confusion, 287.0 / 1440 / 1000, 1e-15);
+  ASSERT_EQ(summary2.diagnostics.size(), 1u);
+  EXPECT_EQ(summary2.diagnostics[0].code, "time-unit-ms-suspected");
+  EXPECT_EQ(summary2.diagnostics[0].column, "t");
+  EXPECT_EQ(summary2.diagnostics[0].message, warnings[0]);
+  // The pad speed is in pad units per second: read 150 times too slow, every movement looks 150
+  // times slower than it was, and the confusion is 150 times too small (what the warning prevents).
+  ASSERT_EQ(got.size(), 1u);
+  EXPECT_NEAR(got[0].confusion, 287.0 / 1440 / 150, 1e-15);
 }
 
 TEST_F(ScoreLib, TimeUnitMsOnALogInSecondsWarns) {

@@ -151,3 +151,40 @@ TEST(SphericityCorrection, ParsesAfexNamesCaseInsensitively) {
 
 }  // namespace
 }  // namespace feint::models
+
+namespace feint::models {
+namespace {
+
+// Issue #18: every participant of one condition excluded (a missing value each). afex stops; so
+// does feint, naming the condition and the way out, and the one-way analysis of the rest runs
+// only when asked for.
+TEST(WideDesign, ConditionWithEveryParticipantExcludedStops) {
+  auto obs = grid(3, 4);
+  for (auto& o : obs)
+    if (o.condition == "random" && o.iteration == (o.participant == "P1_1" ? 3 : 1))
+      o.value.reset();
+  const std::string e = error_of(obs);
+  EXPECT_NE(e.find("scores.csv: metric 'error': every participant of condition 'random' (P1_0, "
+                   "P1_1, P1_2) lacks a value for some iteration"),
+            std::string::npos)
+      << e;
+  EXPECT_NE(e.find("--drop-empty-conditions"), std::string::npos) << e;
+  EXPECT_NE(e.find("feint model"), std::string::npos) << e;
+
+  const WideDesign d = make_wide_design(obs, "error", "scores.csv", true);
+  EXPECT_EQ(d.dropped_conditions, (std::vector<std::string>{"random"}));
+  EXPECT_EQ(d.conditions, (std::vector<std::string>{"adaptive"}));
+  const MixedAnova a = mixed_anova(d);
+  EXPECT_TRUE(a.one_way());
+  EXPECT_EQ(a.dropped_conditions, (std::vector<std::string>{"random"}));
+  // The one-way analysis of the remaining condition: the same as its data alone.
+  std::vector<Observation> only;
+  for (const auto& o : obs)
+    if (o.condition == "adaptive") only.push_back(o);
+  const MixedAnova b = mixed_anova(make_wide_design(only, "error", "scores.csv"));
+  ASSERT_EQ(a.effects.size(), b.effects.size());
+  EXPECT_DOUBLE_EQ(a.effects[0].f, b.effects[0].f);
+}
+
+}  // namespace
+}  // namespace feint::models

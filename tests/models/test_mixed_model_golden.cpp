@@ -228,3 +228,42 @@ TEST(MixedModelGolden, ExposureSlopesPerStrategyMatchLmerTestContest) {
     EXPECT_NEAR(*r.conf_high, g["s.upper"][lv], 1e-8) << lv;
   }
 }
+
+// Issue #18: at any scale of the response feint gives lmerTest's answer at scale 1 (where
+// lmerTest is right); lmerTest's own DenDF collapse below ~1e-5 (scale_golden.R: numDeriv's
+// absolute step on sigma). The R values at small scales are asserted too, to document the drift.
+TEST(MixedModelGolden, ScaleInvariantWhereLmerTestDrifts) {
+  const auto rows = read_csv(kDir + "scale_golden.csv");
+  // r[case][scale][term] = {F, DenDF, p}
+  std::map<std::string, std::map<std::string, std::map<std::string, std::vector<double>>>> r;
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    r[rows[i][0]][rows[i][1]][rows[i][2]] = {std::stod(rows[i][3]), std::stod(rows[i][4]),
+                                             std::stod(rows[i][5])};
+  for (const std::string c : {"unbalanced4_missing", "trend_slope"}) {
+    ModelSpec spec;
+    if (c == "trend_slope") {
+      spec.time_scale = TimeScale::linear;
+      spec.random_slope = true;
+    }
+    const double tol = c == "trend_slope" ? 1e-6 : 2e-7;
+    const Data d = load(c);
+    for (const auto& [scale_text, terms] : r[c]) {
+      LongData ld = d.long_data;
+      const double scale = std::stod(scale_text);
+      for (double& v : ld.y) v *= scale;
+      const MixedModelFit fit = feint::models::fit_mixed_model(ld, spec, true);
+      for (const auto& a : fit.anova) {
+        const auto& exact = r[c]["1"][a.term];
+        const std::string at = c + " " + a.term + " at " + scale_text;
+        expect_rel(a.f, exact[0], "F " + at, tol);
+        expect_rel(a.den_df, exact[1], "DenDF " + at, tol);
+        expect_rel(a.p, exact[2], "p " + at, tol);
+      }
+    }
+    // lmerTest's drift: at 1e-6 its DenDF are below 2.5 where the right ones are above 20.
+    for (const auto& [term, v] : r[c]["1e-06"]) {
+      EXPECT_LT(v[1], 2.5) << c << " " << term;
+      EXPECT_GT(r[c]["1"][term][1], 20.0) << c << " " << term;
+    }
+  }
+}

@@ -162,7 +162,7 @@ TEST(MetricFigure, UnknownMetricIsInvalidData) {
 
 TEST(Occurrence, SharesPerIterationAndConditionSumToOne) {
   const fs::path p = temp_file("labels.csv", scores_csv());
-  const auto labels = plot::read_trial_labels(p.string());
+  const auto labels = metrics::read_trial_labels(p.string());
   EXPECT_EQ(labels.size(), 2u * 12 * 6);
   const plot::Occurrence o = plot::strategy_occurrence(labels);
   EXPECT_EQ(o.conditions, (std::vector<std::string>{"A", "B"}));
@@ -190,7 +190,7 @@ TEST(Occurrence, SharesPerIterationAndConditionSumToOne) {
 
 TEST(Occurrence, ScoresWithoutStrategyAreInvalidData) {
   const fs::path p = temp_file("nostrategy.csv", "participant,iteration,error\nP1,1,0.5\n");
-  EXPECT_THROW(plot::read_trial_labels(p.string()), InvalidData);
+  EXPECT_THROW(metrics::read_trial_labels(p.string()), InvalidData);
 }
 
 namespace {
@@ -217,7 +217,7 @@ report::LikertAnalysis likert_analysis() {
 
 TEST(LikertFigures, MeansAreTheOneSampleTTestRows) {
   const report::LikertAnalysis a = likert_analysis();
-  const auto means = plot::likert_means_data(a);
+  const auto means = plot::likert_means_data(a).means;
   std::size_t rows = 0;
   for (const auto& row : a.rows) {
     if (row.result.test != "one_sample_t") continue;
@@ -240,7 +240,7 @@ TEST(LikertFigures, MeansAreTheOneSampleTTestRows) {
 
 TEST(LikertFigures, DistributionIsCentredOnTheNeutralPoint) {
   const report::LikertAnalysis a = likert_analysis();
-  const auto bars = plot::likert_distribution_data(a);
+  const auto bars = plot::likert_distribution_data(a).bars;
   ASSERT_EQ(bars.size(), 4u);
   for (const auto& b : bars) {
     double sum = 0;
@@ -293,7 +293,7 @@ TEST(Traces, MeanOfMirroredResampledTraces) {
                                                 {"P1", "A", 2, "o", "main"},
                                                 {"P1", "A", 3, "s", "main"},
                                                 {"P2", "A", 1, "s", "main"}};
-  const auto curves = plot::mean_traces({log.string()}, io::TraceOptions{}, labels);
+  const auto curves = metrics::mean_traces({log.string()}, io::TraceOptions{}, labels);
   ASSERT_EQ(curves.size(), 3u);  // o first; s first; s later
   EXPECT_EQ(curves[0].strategy, "o");
   EXPECT_TRUE(curves[1].first_exposure);
@@ -301,7 +301,7 @@ TEST(Traces, MeanOfMirroredResampledTraces) {
   EXPECT_EQ(curves[1].trials, 2u);
   EXPECT_FALSE(curves[2].first_exposure);
   EXPECT_EQ(curves[2].trials, 1u);
-  const std::size_t mid = (plot::kTracePoints - 1) / 2, end = plot::kTracePoints - 1;
+  const std::size_t mid = (metrics::kTracePoints - 1) / 2, end = metrics::kTracePoints - 1;
   // First exposures: both move linearly to the true target (0.5 -> 0.9 mirrored).
   EXPECT_NEAR(curves[1].mean[0], 0.5, 1e-12);
   EXPECT_NEAR(curves[1].mean[mid], 0.7, 1e-12);

@@ -23,12 +23,21 @@ namespace feint::analysis {
 struct ScoreOptions {
   std::optional<double> trim, trim_start, trim_end;
   double deadband = 1e-9;
+  double belief_deadband = 0.05;
   std::string norm = "speed";
   std::optional<double> pad_speed;
   std::vector<std::string> maps;  ///< NAME=COLUMN
   std::string delimiter;          ///< "" = detect
   std::string on_error = "strict";
   std::string time_unit = "s";
+  // Other labs' exports (docs/formats.md "Files from other labs").
+  std::string decimal;
+  bool no_header = false;
+  std::string columns;
+  std::string iteration_base;
+  std::string participant_from_path;
+  std::string samples_column;
+  bool single_condition = false;
 };
 
 /// Typed scoring settings; throws UsageError naming the option for a value it cannot take.

@@ -35,6 +35,10 @@
 
 namespace feint::collect {
 
+namespace detail {
+class GroupCommitter;
+}
+
 /// One experimental condition: its name in the logs and the selection algorithm behind it.
 struct Condition {
   std::string name;  // e.g. "adaptive", "random", "adaptive-0.3"
@@ -150,6 +154,18 @@ class Study {
   /// Records a rejected request or any other event (append + fdatasync).
   void record_event(const std::string& participant, const std::string& event,
                     const std::string& detail);
+  /// The same, written and synced with the next group but not waited for: for audit lines that
+  /// acknowledge nothing (a round shown, a client's address). A crash may lose the last of them.
+  void note_event(const std::string& participant, const std::string& event,
+                  const std::string& detail);
+
+  /// Syncs so far and the appends they covered (group commit: several appends per sync when
+  /// requests arrive together).
+  struct CommitStats {
+    std::uint64_t syncs = 0;
+    std::uint64_t appends = 0;
+  };
+  CommitStats commit_stats() const;
 
   std::optional<ParticipantStatus> status(const std::string& id) const;
   std::vector<ParticipantStatus> overview() const;
@@ -168,9 +184,11 @@ class Study {
   Settings settings_;
   mutable std::mutex mu_;  // participants_, assignment file, id generation
   std::map<std::string, std::shared_ptr<Participant>> participants_;
+  std::mutex assignment_mu_;  // new participants are assigned (and their rows written) in turn
   std::mutex events_mu_;
   std::mutex questionnaire_mu_;
   std::uint64_t generated_ = 0;
+  std::unique_ptr<detail::GroupCommitter> committer_;  // every durable append goes through it
 };
 
 }  // namespace feint::collect

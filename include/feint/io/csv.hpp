@@ -23,6 +23,11 @@ struct CsvOptions {
   /// Number of leading rows (after the header) to skip, e.g. Qualtrics' two extra header rows.
   /// Skipped rows still count for line numbers.
   std::size_t skip_rows = 0;
+  /// The file has no header row (a MATLAB `writematrix`/`csvwrite` export): the first row is data.
+  /// Columns are then named by `column_names` (in order; a file with more columns names the rest
+  /// by position) or, without names, by their 1-based position: `1`, `2`, ...
+  bool no_header = false;
+  std::vector<std::string> column_names;
 };
 
 class CsvReader {
@@ -36,15 +41,20 @@ class CsvReader {
   CsvReader(CsvReader&&) noexcept;
   CsvReader& operator=(CsvReader&&) noexcept;
 
-  /// Column names as written in the header (BOM removed, not trimmed or lower-cased).
+  /// Column names as written in the header (BOM removed, not trimmed or lower-cased); with
+  /// no_header, the given names or `1`, `2`, ...
   const std::vector<std::string>& header() const noexcept;
-  /// Index of a column, matched case-insensitively after trimming; -1 when absent.
-  int column(std::string_view name) const noexcept;
+  /// Index of a column (after trimming): the column spelled exactly `name` if there is one, else
+  /// the one column equal to it ignoring case; -1 when absent. Two or more columns that equal it
+  /// only ignoring case (`Pad` and `PAD` for `pad`) are ambiguous: InvalidData naming the file and
+  /// both columns, followed by `hint` (e.g. "name one exactly with --map pad=COLUMN").
+  int column(std::string_view name, std::string_view hint = {}) const;
 
   /// Reads the next non-empty record; false at end of input. Throws InvalidData on an unterminated
   /// quote, text after a closing quote, a stray quote, or (by default) a wrong field count.
   bool next();
-  /// Fields of the current record; views into the reader's buffer, valid until next().
+  /// Fields of the current record; views into the reader's buffer, valid until next(). With
+  /// no_header, before the first next() they are the first row (which next() then hands out).
   const std::vector<std::string_view>& fields() const noexcept;
   std::string_view field(std::size_t i) const noexcept;
 

@@ -24,6 +24,14 @@ struct ScoresOptions {
   std::string participant_column = "participant";
   std::string iteration_column = "iteration";
   std::string condition_column = "condition";  ///< optional: absent = one condition ("")
+  /// Field separator (0 = detected from the header, as io::CsvReader) and decimal mark of the
+  /// metric values ('.', or ',' for a European export; 0 = '.' in a `,`-delimited file, else the
+  /// first value holding a `,` or `.` decides).
+  char delimiter = 0;
+  char decimal = 0;
+  /// The study's conditions (settings, --compare): with two or more, a table without the
+  /// condition column is invalid instead of pooled into one condition.
+  std::vector<std::string> expected_conditions;
 };
 
 /// One row of a scores table: a participant's values in one condition and iteration.

@@ -23,7 +23,10 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
+
+#include "feint/io/diagnostic.hpp"
 
 namespace feint::io {
 
@@ -38,9 +41,14 @@ struct Trial {
   std::optional<double> pad_speed;  // pad units per second; the --pad-speed override if given
   std::vector<double> times;        // t_i in seconds, strictly increasing, size >= 2
   std::vector<double> pads;         // mu_i in [0, 1], same size as times
+  /// The robot's position (m, the study's geometry) at each sample, from the optional robot_x and
+  /// robot_y columns; empty when the log has neither (then sim::robot_path rebuilds the path).
+  std::vector<double> robot_x;
+  std::vector<double> robot_y;
   std::string file;                 // file of the trial's first row (`<stdin>` for `-`)
   std::uint64_t line = 0;           // physical line of its first row (header = line 1)
-  std::uint64_t rows = 0;           // rows read for this trial (== times.size() when valid)
+  std::uint64_t rows = 0;           // rows read for this trial (== times.size() + padding_rows when valid)
+  std::uint64_t padding_rows = 0;   // trailing all-NaN t/pad rows dropped (fixed-length arrays)
 
   /// `participant/condition/iteration` (or `participant/iteration` without conditions), as used
   /// in every message.
@@ -59,7 +67,8 @@ struct Rejection {
 };
 
 /// The column names the loader looks for (formats.md), matched case-insensitively.
-/// Keys: participant, condition, iteration, strategy, variant, target, t, pad, pad_speed.
+/// Keys: participant, condition, iteration, strategy, variant, target, t, pad, pad_speed, robot_x,
+/// robot_y (the last two optional, read together).
 const std::vector<std::string>& trace_field_names();
 
 struct TraceOptions {
@@ -78,9 +87,50 @@ struct TraceOptions {
   /// The unit of the `t` column: times are divided by this to give seconds (1 = seconds, 1000 =
   /// milliseconds; `--time-unit`). Messages quote the times as written.
   double time_divisor = 1;
+  /// Read the optional robot_x / robot_y columns into Trial::robot_x / robot_y (both or neither;
+  /// every row a finite number). Off by default: scoring and the figures do not use the robot's
+  /// path, so for them the columns are ignored like any extra column and cost nothing.
+  bool read_robot_path = false;
   /// Lenient mode: called for each invalid trial instead of throwing.
   std::function<void(const Rejection&)> on_reject;
+
+  // ---- other labs' exports (issue 18; docs/formats.md "Files from other labs") ----
+  /// Decimal mark of the numbers (t, pad, target, pad_speed): '.', ',' or 0 = per file: '.' in a
+  /// `,`-delimited file; in any other, the first number (target, pad_speed, t, pad) holding a `,`
+  /// or a `.` decides
+  /// (`0,033` = decimal comma; a "decimal-comma" diagnostic says so). With a decimal comma, a `.`
+  /// in a number is invalid (it would be a thousands separator).
+  char decimal = 0;
+  /// A file without a header row (MATLAB): CsvOptions::no_header and column_names. Without names,
+  /// columns are called `1`, `2`, ... so `--map t=3` reads the third column.
+  bool no_header = false;
+  std::vector<std::string> column_names;
+  /// -1 = iterations as written (a data set whose smallest iteration is 0 gets an
+  /// "iteration-base-0" diagnostic); 0 = 0-based, 1 is added (PsychoPy's 0..19 become 1..20);
+  /// 1 = 1-based, an iteration 0 is invalid.
+  int iteration_base = -1;
+  /// The participant id from each file's path instead of a column: "filename" (the file name
+  /// without its extensions), "dirname" (the parent folder's name), or an ECMAScript regular
+  /// expression searched in the path whose first capture group is the id.
+  std::string participant_from_path;
+  /// A column holding each trial's samples as JSON (jsPsych): `[{"t":0,"pad":0.5},...]` or
+  /// `{"t":[...],"pad":[...]}`; the keys are the t and pad names (`--map t=KEY`). The t and pad
+  /// columns are then not read.
+  std::string samples_column;
+  /// The study's conditions (settings, --compare): two or more make a file without a condition
+  /// column invalid instead of pooling them.
+  std::vector<std::string> expected_conditions;
+  /// Pool every trial into one condition although a column looks like a condition (`group`,
+  /// `cond...`, `arm`, `treatment`); without it such a file is refused.
+  bool single_condition = false;
 };
+
+namespace detail {
+/// Reads a JSON samples cell (TraceOptions::samples_column); false with `error` set when malformed.
+/// JSON null is NaN (padding).
+bool parse_json_samples(std::string_view cell, std::string_view t_key, std::string_view pad_key,
+                        std::vector<double>& times, std::vector<double>& pads, std::string& error);
+}  // namespace detail
 
 /// Expands command-line inputs into a list of files, in command-line order: a file as given, a
 /// directory as every *.csv, *.tsv, *.txt (optionally .gz) below it (sorted by path), a pattern
@@ -112,6 +162,12 @@ class TraceReader {
   std::uint64_t bytes_consumed() const noexcept;
   /// Files opened so far.
   std::size_t files_read() const noexcept;
+  /// Trailing all-NaN rows dropped so far (counted in rows_in_trials) and the trials they ended.
+  std::uint64_t rows_padding() const noexcept;
+  std::uint64_t trials_padded() const noexcept;
+  /// What the reader noticed about the input so far (decimal comma detected, NaN padding dropped,
+  /// iterations starting at 0); complete once next() has returned false.
+  std::vector<Diagnostic> diagnostics() const;
 
  private:
   struct Impl;

@@ -32,6 +32,10 @@ std::optional<TimeUnit> parse_time_unit(std::string_view text);
 /// trial duration above this many seconds suggests milliseconds; with milliseconds, a median below
 /// kMedianDurationLowMs (converted to seconds) suggests the times were seconds already.
 inline constexpr double kMedianDurationHighS = 300;
+/// Above this median trial duration (20 minutes) with `--time-unit s`, the times cannot be
+/// seconds (a round of the game lasts seconds): the run is refused (InvalidData) naming the
+/// longest trial and --time-unit ms, instead of warning.
+inline constexpr double kMedianDurationRefuseS = 1200;
 inline constexpr double kMedianDurationLowMs = 0.05;
 
 /// Progress, reported after every trial (scored or rejected).
@@ -49,6 +53,13 @@ struct ScoreSettings {
   std::map<std::string, std::string> column_map;
   char delimiter = 0;  // 0 = detect per file
   TimeUnit time_unit = TimeUnit::s;  // of the `t` column; converted to seconds when read
+  /// Other labs' exports: decimal mark, headerless files, iteration base, ids from the path,
+  /// JSON samples, expected conditions (io::TraceOptions' fields of those names; the fields set
+  /// above and below take precedence over the copies here).
+  io::TraceOptions reading;
+  /// Apply the time-unit plausibility rule (kMedianDuration*): warn, or refuse above 20 minutes.
+  /// Off only for a library caller whose trials are not rounds of the game (e.g. numerical tests).
+  bool check_durations = true;
   /// Called with each warning (e.g. trial durations implausible for the time unit); when empty,
   /// warnings go to standard error as `feint: warning: ...`.
   std::function<void(const std::string&)> on_warning;
@@ -78,6 +89,8 @@ struct ScoreSummary {
   double median_duration = 0;  // of the scored trials, in seconds (after --time-unit)
   double max_duration = 0;
   std::vector<std::string> warnings;  // as passed to on_warning (recorded in the sidecar)
+  /// The same notes, structured (the reader's and the time-unit check's), for a report to show.
+  std::vector<io::Diagnostic> diagnostics;
   std::string output_path;
   std::string sidecar_path;  // empty when none was written
   std::string rejects_path;  // empty in strict mode

@@ -12,6 +12,18 @@
 //                      D = (w(b)^2 - w(a)^2)/2                       (in [0, 1])
 //     raw:     1/tau * sum |dmu_i|/dt_i * (w(e_i)^2 - w(s_i)^2)/2    (the paper's eq. 4 literally)
 //   No reversal: confusion = 0.
+//
+// Belief-trace measures (docs/metrics.md "Belief-trace measures"; mousetrap-style), with the false
+// side sigma = +1 when T < 1/2, -1 when T > 1/2 (undefined, so empty, when T = 1/2), the lean
+// toward the false target g(t) = sigma (mu(t) - 1/2) and the belief dead band delta:
+//   signed_area        1/(b - a) * integral_a^b sigma (mu(t) - T) dt        (exact trapezoids)
+//   max_deviation      max over [a, b] of g(t)                               (in [-1/2, 1/2])
+//   flips              direction changes of mu over the whole trace, a change counting only once
+//                      the pad has moved more than delta back from its last extreme (hysteresis)
+//   time_deceived      1/(b - a) * |{t in [a, b] : g(t) > delta}|            (crossings interpolated)
+//   final_belief_time  the last time (s since t0) at which -g(t) rises above delta for good (the pad
+//                      reaches the true side beyond the dead band and stays there to the end);
+//                      empty when the trace ends inside the dead band or on the false side.
 #pragma once
 
 #include <cstdint>
@@ -39,6 +51,9 @@ struct MetricSettings {
   double trim_start = 0.05;  // f_s: fraction of tau cut at the start, in [0, 1)
   double trim_end = 0.05;    // f_e: fraction of tau cut at the end, in [0, 1); f_s + f_e < 1
   double deadband = 1e-9;    // eps (pad units): |dmu| <= eps is "no direction"
+  /// delta (pad units) of the belief-trace measures: flips smaller than this are ignored, and the
+  /// pad counts as on a side of 1/2 only beyond it (time_deceived, final_belief_time). In [0, 1/2).
+  double belief_deadband = 0.05;
   ConfusionNorm norm = ConfusionNorm::speed;
   /// Pad speed v (pad units per second) for every trial; overrides Trial::pad_speed.
   std::optional<double> pad_speed;
@@ -57,7 +72,15 @@ struct TrialScore {
   double final_pad = 0;      // mu_{n-1}
   /// Segments faster than v (1 + 1e-6), over the whole trace; -1 when v is unknown (raw norm).
   int overspeed_segments = 0;
+  // Belief-trace measures (see the top of this file). NaN = not defined (written empty): every one
+  // but flips when T = 1/2; final_belief_time also when the pad does not end on the true side.
+  double signed_area = 0;        // mean signed distance from T toward the false side, [-1, 1]
+  double max_deviation = 0;      // largest lean toward the false target past 1/2, [-1/2, 1/2]
+  int flips = 0;                 // direction changes larger than the belief dead band
+  double time_deceived = 0;      // share of the window on the false side beyond the dead band
+  double final_belief_time = 0;  // seconds since t0
 };
+
 
 /// Scores one trace. `pad_speed` is used only when `settings.pad_speed` is empty. Throws
 /// InvalidData (message without file/line: the loader already checked them) when n < 2, a time is

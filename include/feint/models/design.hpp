@@ -37,6 +37,9 @@ struct WideDesign {
   std::vector<std::size_t> group;         ///< condition index of each participant
   std::vector<double> y;                  ///< participants x iterations, row-major
   std::vector<std::string> excluded;      ///< participants left out for a missing iteration/value
+  /// Conditions whose every participant was excluded, dropped from the analysis (only when asked
+  /// for with `drop_empty_conditions`; otherwise make_wide_design refuses them).
+  std::vector<std::string> dropped_conditions;
 
   std::size_t n() const noexcept { return participants.size(); }
   std::size_t k() const noexcept { return iterations.size(); }
@@ -53,8 +56,12 @@ struct WideDesign {
 ///  - an iteration with no value of `metric` for anybody,
 ///  - fewer than two iterations,
 ///  - no participant left with every iteration,
-///  - a metric with no variance (every value equal).
+///  - a metric with no variance (every value equal),
+///  - a condition whose every participant is excluded for a missing value, unless
+///    `drop_empty_conditions` (then the condition is dropped and named in `dropped_conditions`;
+///    with one condition left the analysis is the one-way repeated-measures ANOVA). afex stops
+///    there too; silently analysing the other conditions would answer another question.
 WideDesign make_wide_design(std::span<const Observation> observations, const std::string& metric,
-                            const std::string& source);
+                            const std::string& source, bool drop_empty_conditions = false);
 
 }  // namespace feint::models

@@ -76,6 +76,8 @@ struct MixedAnova {
   std::vector<long long> iterations;
   std::size_t n_participants = 0;     ///< complete cases used
   std::vector<std::string> excluded;  ///< participants left out (missing values)
+  /// Conditions dropped because all their participants were excluded (--drop-empty-conditions).
+  std::vector<std::string> dropped_conditions;
   SphericityCorrection correction = SphericityCorrection::GG;
   std::vector<AnovaEffect> effects;     ///< condition (when > 1 condition), iteration, interaction
   std::vector<MauchlyTest> sphericity;  ///< empty for 2 iterations (sphericity holds trivially)

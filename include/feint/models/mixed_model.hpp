@@ -34,6 +34,12 @@ enum class TimeScale {
   linear,  ///< a numeric covariate (linear trend)
 };
 
+/// Denominator degrees of freedom of the F and t tests (lmerTest's `ddf`).
+enum class DdfMethod {
+  satterthwaite,  ///< lmerTest's default (Kuznetsova, Brockhoff & Christensen 2017)
+  kenward_roger,  ///< Kenward & Roger (1997) as pbkrtest: adjusted vcov(beta), scaled F
+};
+
 struct ModelSpec {
   std::string response = "y";  ///< names used in term labels and notes
   std::string group = "condition";
@@ -44,6 +50,7 @@ struct ModelSpec {
   /// Order of the group levels (the first is the reference of the treatment coding). Empty: sorted
   /// as R's factor() sorts ASCII names (byte order).
   std::vector<std::string> group_levels;
+  DdfMethod ddf = DdfMethod::satterthwaite;
 };
 
 /// One row of lmerTest's type-III ANOVA table.
@@ -92,6 +99,14 @@ struct MixedModelFit {
   Eigen::MatrixXd vcov_varpar;
   std::vector<Eigen::MatrixXd> jac_vcov_beta;
 
+  // Kenward-Roger (spec.ddf == kenward_roger; pbkrtest's vcovAdj): the adjusted covariance
+  // Phi_A = Phi + 2 Phi U Phi of beta, and the P_r = -X' S^-1 G_r S^-1 X and W = 2 IE2^-1 that
+  // the df and the F scaling use (S the marginal covariance, G_r its derivative in the r-th
+  // variance parameter).
+  Eigen::MatrixXd vcov_beta_adj;
+  std::vector<Eigen::MatrixXd> kr_P;
+  Eigen::MatrixXd kr_W;
+
   /// The design row (fixed effects) of the cell (group level, time value).
   Eigen::VectorXd cell_row(std::size_t group_level, double time) const;
 };
@@ -109,11 +124,21 @@ struct Contrast {
   double std_error = 0;
 };
 
-/// A linear function L'beta with Satterthwaite's df, as lmerTest::contest1D(m, L, confint = TRUE):
+/// A linear function L'beta with Satterthwaite's df, as lmerTest::contest1D(m, L, confint = TRUE)
+/// (with spec.ddf == kenward_roger: SE from Phi_A and Kenward-Roger's df, as lmerTest's get_KR1D
+/// and emmeans with lmer.df = "kenward-roger"):
 /// estimate, SE = sqrt(L' V L), df = 2 (L'VL)^2 / (g' A g) with g_k = L' dV/dvarpar_k L and A the
 /// covariance of the variance parameters; t = estimate / SE; two-sided p; interval estimate -+
 /// qt(1 - (1 - conf)/2, df) SE.
 Contrast contrast(const MixedModelFit& fit, const Eigen::VectorXd& L, double conf_level = 0.95);
+
+/// pbkrtest's Lb_ddf(L, Phi, Phi_A): Kenward-Roger's denominator df of the hypothesis L beta = 0
+/// (rows of L), and the F scaling factor lambda of .KR_adjust (F = lambda * Wald_A / q).
+struct KenwardRogerDf {
+  double ddf = 0;
+  double f_scaling = 1;
+};
+KenwardRogerDf kenward_roger_df(const MixedModelFit& fit, const Eigen::MatrixXd& L);
 
 /// lmerTest::contestMD(m, L): the Wald F of the rows of L (F = sum of the squared t of the
 /// eigen-components of L V L' / q) with the Satterthwaite denominator df of lmerTest.

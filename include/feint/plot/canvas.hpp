@@ -54,6 +54,17 @@ struct Style {
 /// yellow of the palette is skipped (too light on white).
 Style series_style(std::size_t i) noexcept;
 
+/// The colour code of every figure: the i-th condition (in the study's order) is blue, solid,
+/// circles; the second orange, dashed, squares (Okabe-Ito's blue and orange differ in lightness
+/// too, so they survive greyscale); further conditions bluish green / dotted / triangles and
+/// reddish purple / dash-dot / diamonds. No other series uses blue or orange.
+Style condition_style(std::size_t i) noexcept;
+/// The second palette, for strategies drawn as filled areas (stacked bars): bluish green, yellow,
+/// dark grey, reddish purple, sky blue, vermillion; the first four differ in lightness too
+/// (greyscale).
+/// Figures that use it say so in the legend ("Strategy:").
+Colour strategy_colour(std::size_t i) noexcept;
+
 enum class ErrorBars { none, vertical, horizontal };
 
 /// A series of points, joined or not, with optional markers, band and error bars. A NaN in y
@@ -69,17 +80,25 @@ struct Line {
   bool connect = true;
   double line_width = 1.0;  ///< pt
   double opacity = 1.0;
+  /// A white outline under the line, so that it stands out over faint lines (means over
+  /// participants).
+  bool halo = false;
   /// Per point: filled (true) or hollow (false) marker; empty = all filled.
   std::vector<bool> filled;
 };
 
 /// A horizontal (vertical = false) or vertical reference line, dashed grey, with a label at its
-/// end.
+/// end. A reference does not stretch the axis far beyond the data: it is drawn as a line when it
+/// lies inside the data's range widened by kReferenceReach of its span (or inside the axis's
+/// fixed min/max); otherwise as an arrow at the plot's edge pointing towards it, with its label.
 struct RefLine {
   double value = 0;
   bool vertical = false;
   std::string label;
 };
+/// See RefLine: how far beyond the data (a fraction of the data's span) a reference still widens
+/// the axis.
+inline constexpr double kReferenceReach = 0.25;
 
 /// Stacked bars on a categorical axis: bar k sits at `positions[k]` and its segments follow each
 /// other along the value axis from `start[k]` (0 when empty).
@@ -95,6 +114,9 @@ struct Bars {
 struct Axis {
   std::string label;  ///< with units, e.g. "Error (pad units)"
   std::optional<double> min, max;
+  /// The metric's range (e.g. [0, 1] for error and confusion): the fitted axis never goes beyond
+  /// it, and bands and error bars are clipped to it. Unset = unbounded.
+  std::optional<double> bound_min, bound_max;
   /// Tick positions; empty = round numbers chosen from the range.
   std::vector<double> ticks;
   /// Category names at positions (replaces numeric tick labels).
@@ -116,7 +138,7 @@ struct Panel {
 };
 
 struct LegendEntry {
-  enum class Kind { line, box, asterisk, band, marker };
+  enum class Kind { line, box, asterisk, band, marker, text };  ///< text: a heading, no sample
   Kind kind = Kind::line;
   std::string label;
   Style style;
@@ -141,6 +163,18 @@ struct Figure {
 /// Draws `figure` at `width` in `format`; returns the file's bytes. Throws std::runtime_error when
 /// cairo fails (a bug or out of memory).
 std::string render(const Figure& figure, Width width, FileFormat format);
+
+/// The limits and ticks render() draws a panel's axes with, and the references it draws as edge
+/// arrows (outside the axis), so tests can check them.
+struct AxisRange {
+  double min = 0, max = 1;
+  std::vector<double> ticks;
+};
+struct PanelAxes {
+  AxisRange x, y;
+  std::vector<RefLine> off_axis;  ///< references drawn as arrows at the edge
+};
+std::vector<PanelAxes> axis_ranges(const Figure& figure);
 
 /// render() and an atomic write to `path` (IoError when it cannot be written).
 void render_to_file(const Figure& figure, Width width, const std::string& path);

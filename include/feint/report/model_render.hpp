@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "feint/io/scores.hpp"
+#include "feint/models/emmeans.hpp"
 #include "feint/models/mixed_model.hpp"
 #include "feint/report/writers.hpp"
 #include "feint/stats/p_adjust.hpp"
@@ -30,7 +31,17 @@ struct ModelOptions {
   double conf_level = 0.95;
   stats::PAdjustMethod p_adjust = stats::PAdjustMethod::none;  ///< over the iterations (strategies)
   bool apa = false;
+  /// Denominator df of the F tests and contrasts: Satterthwaite (default) or Kenward-Roger.
+  models::DdfMethod ddf = models::DdfMethod::satterthwaite;
+  /// --emmeans: the estimated marginal means (cells, conditions, iterations), as emmeans.
+  bool emmeans = false;
+  /// --contrasts pairwise|simple|poly: emmeans contrast families.
+  std::vector<models::EmmFamily> contrast_families;
+  /// --adjust; empty = emmeans' defaults (tukey for pairwise families, none for polynomials).
+  std::optional<models::EmmAdjust> adjust;
 };
+
+using models::EmmTable;
 
 /// A contrast (or slope) row: what it compares and its test.
 struct ModelContrast {
@@ -53,6 +64,8 @@ struct MetricModel {
   std::vector<ModelContrast>
       contrasts;               ///< per iteration (A - B), or per strategy (exposure slope)
   std::string group1, group2;  ///< A and B of the contrasts
+  std::vector<EmmTable> emmeans;        ///< --emmeans
+  std::vector<EmmTable> emm_contrasts;  ///< --contrasts
 };
 
 struct ModelAnalysis {

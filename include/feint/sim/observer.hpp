@@ -21,6 +21,8 @@
 #pragma once
 
 #include <array>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "feint/rng.hpp"
@@ -29,7 +31,18 @@
 
 namespace feint::sim {
 
+/// How a simulated participant infers the robot's goal from the path seen so far.
+///   heuristic       the naive tanh of the robot's x (feint 0.1's model; kept for comparison);
+///   goal_inference  the Bayesian goal-inference observer of feint/models/goal_inference.hpp
+///                   (Dragan & Srinivasa 2013): P(right | path) with rationality `beta`, and
+///                   learning as a change in the prior: a recognised strategy adds
+///                   `recognition_logodds` x (w_same (2T-1) + w_other (1-2T)) to the log-odds.
+enum class ParticipantModel { heuristic, goal_inference };
+
 struct ObserverParams {
+  ParticipantModel model = ParticipantModel::heuristic;
+  double beta = 1.5;                // goal_inference: rationality (1/m)
+  double recognition_logodds = 3.0; // goal_inference: prior shift (log-odds) of full recognition
   double reaction_delay = 0.3;     // s
   double decision_interval = 0.2;  // s between pad-goal decisions
   double noise_sd = 0.08;          // pad units, on each decided goal
@@ -44,8 +57,30 @@ struct ObserverParams {
   double capture_radius = 1.0;     // m: near a target, the observer sees where the robot ends
 };
 
+/// The calibrated goal-inference participant (docs/paper-scale.md): beta 0.3 /m,
+/// recognition_logodds 5, half_familiarity 4, the rest as ObserverParams' defaults. With these the
+/// demo study reproduces the paper's Table 1 on its own (raw confusion) scale.
+ObserverParams goal_inference_observer() noexcept;
+
 /// Throws UsageError naming the parameter when a setting is out of range.
 void validate(const ObserverParams& p);
+
+/// Sets the numeric parameter named `key` (a field name of ObserverParams, e.g. "beta",
+/// "noise_sd"); throws UsageError listing the names when `key` is unknown.
+void set_parameter(ObserverParams& p, std::string_view key, double value);
+
+/// Applies one "NAME=VALUE" assignment (spaces around '=' allowed), e.g. "beta=0.3"; throws
+/// UsageError for a malformed assignment, an unknown name or a value that is not a number.
+void set_parameter(ObserverParams& p, std::string_view assignment);
+
+/// Applies every `name = value` line of a parameter file (blank lines and '#' comments skipped),
+/// e.g. one written from a fit to a pilot study. Throws IoError when the file cannot be read and
+/// UsageError naming the file and line for a bad line.
+void read_parameters(ObserverParams& p, const std::string& path);
+
+/// "heuristic" or "goal-inference" (also "goal_inference"); throws UsageError otherwise.
+ParticipantModel parse_participant_model(std::string_view name);
+std::string_view to_string(ParticipantModel m) noexcept;
 
 struct PadSample {
   double t = 0;

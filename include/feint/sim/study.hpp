@@ -25,7 +25,7 @@ struct StudySettings {
   double lambda = 0.5;    // of the adaptive condition
   std::uint64_t seed = 1;
   Geometry geometry;
-  ObserverParams observer;
+  ObserverParams observer = goal_inference_observer();
 };
 
 struct TrialRecord {
@@ -57,7 +57,8 @@ ParticipantRecord simulate_participant(const StudySettings& settings, int index)
 inline constexpr std::array<Algorithm, 2> kStudyConditions = {Algorithm::adaptive, Algorithm::random};
 
 /// Writes DIR/logs/<participant>.csv.gz (columns participant, condition, iteration, strategy,
-/// variant, target, t, pad, pad_speed) and DIR/questionnaire.csv (participant, condition,
+/// variant, target, t, pad, pad_speed, robot_x, robot_y: the robot's position in metres at each
+/// sample, formats.md "Robot path") and DIR/questionnaire.csv (participant, condition,
 /// entertainment, deception, intelligence, trust). Files are written to temporaries and renamed.
 /// Returns the participants (for a summary). Throws IoError when a file cannot be written.
 std::vector<ParticipantRecord> write_study(const StudySettings& settings, const std::string& dir);

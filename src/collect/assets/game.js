@@ -20,9 +20,12 @@
         const r = await fetch(path, { method: 'POST', body: body || '', cache: 'no-store',
                                       headers: { 'Content-Type': 'text/plain' } });
         const json = await r.json().catch(() => ({}));
-        if (r.status < 500) return { status: r.status, json };
-      } catch (e) { /* network error: retry */ }
-      $('status').textContent = 'Connection problem: retrying…';
+        if (r.status < 500) { delete document.body.dataset.saveProblem; return { status: r.status, json }; }
+        // 503: the server could not write (disk full...); nothing was saved, so wait and retry.
+        $('status').textContent = r.status === 503 ? 'Could not save, please wait…'
+                                                   : 'Connection problem: retrying…';
+      } catch (e) { $('status').textContent = 'Connection problem: retrying…'; }
+      document.body.dataset.saveProblem = '1';
       await new Promise((res) => setTimeout(res, wait));
       wait = Math.min(wait * 2, 4000);
     }

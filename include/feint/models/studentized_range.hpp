@@ -1,0 +1,25 @@
+// feint/models/studentized_range.hpp - the studentized range distribution (Tukey's HSD), which
+// Boost 1.74 lacks: ptukey and qtukey as R's, from the integral of Copenhaver & Holland (1988),
+// "Computation of the distribution of the maximum studentized range statistic with application to
+// multiple significance testing of simple effects", J. Stat. Comput. Simul. 30, 1-15.
+//
+//   P(range of k iid N(0,1) <= w) = k * int phi(z) [Phi(z + w) - Phi(z)]^(k-1) dz
+//   ptukey(q, k, df) = int_0^inf P(range <= q s) f_df(s) ds,  s = sqrt(chi2_df / df),
+//   f_df(s) = 2 (df/2)^(df/2) s^(df-1) exp(-df s^2 / 2) / Gamma(df/2)
+//
+// Both integrals by piecewise 20-point Gauss-Legendre rules (~1e-12); the complement
+// Phi is used where Phi is near 1 (no cancellation). qtukey inverts ptukey by bracketing and
+// TOMS 748 to ~1e-12 relative. R's qtukey stops its secant iteration at |dq| < 1e-4, so it is only
+// that precise (docs/mixed-model.md); feint's is exact to the quadrature.
+#pragma once
+
+namespace feint::models {
+
+/// P(Q <= q) for the range of `nmeans` >= 2 means studentized by an independent estimate with
+/// `df` > 0 degrees of freedom (df = infinity: the range of normals). q <= 0 gives 0.
+double ptukey(double q, double nmeans, double df);
+
+/// The quantile: the q with ptukey(q, nmeans, df) = p, p in (0, 1).
+double qtukey(double p, double nmeans, double df);
+
+}  // namespace feint::models

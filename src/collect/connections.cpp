@@ -1,0 +1,302 @@
+// The connection loop of `feint collect` (feint/collect/server.hpp): Boost.Beast sessions (modelled
+// on Beast's http_server_async example), the Host check, the client's address, the connection cap
+// and the back-off when descriptors run out. The requests themselves are answered in server.cpp.
+#include <fmt/format.h>
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <atomic>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/signal_set.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <boost/asio/strand.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <optional>
+#include <random>
+#include <thread>
+#include <vector>
+
+#include "feint/collect/server.hpp"
+#include "feint/error.hpp"
+#include "feint/io/number.hpp"
+
+namespace feint::collect {
+
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace net = boost::asio;
+using tcp = net::ip::tcp;
+
+// ---- the connection loop --------------------------------------------------------------------
+
+namespace {
+
+/// What the sessions share with the server: options, the study, the state, the connection count.
+struct Shared {
+  Study& study;
+  ServerOptions opt;
+  ServerState state;
+  std::atomic<std::size_t> connections{0};
+  std::size_t max_connections = 0;
+  std::vector<std::string> allowed_hosts;  // empty: no Host check
+  Shared(Study& s, ServerOptions o)
+      : study(s), opt(std::move(o)), state(opt.rejections_per_minute) {}
+};
+
+class Session : public std::enable_shared_from_this<Session> {
+ public:
+  Session(tcp::socket&& socket, Shared& shared) : stream_(std::move(socket)), sh_(shared) {
+    beast::error_code ec;
+    const auto ep = stream_.socket().remote_endpoint(ec);
+    peer_ = ec ? std::string() : ep.address().to_string();
+  }
+  ~Session() { --sh_.connections; }
+
+  void run() {
+    net::dispatch(stream_.get_executor(),
+                  beast::bind_front_handler(&Session::read, shared_from_this()));
+  }
+
+ private:
+  void read() {
+    parser_.emplace();
+    parser_->body_limit(sh_.opt.body_limit);
+    parser_->header_limit(16 * 1024);
+    // The first request has the full timeout; a kept-alive connection waiting for its next one
+    // is closed after the (shorter) idle timeout, so idle connections do not hold descriptors.
+    stream_.expires_after(first_ ? sh_.opt.timeout : std::min(sh_.opt.timeout, sh_.opt.idle_timeout));
+    first_ = false;
+    http::async_read(stream_, buffer_, *parser_,
+                     beast::bind_front_handler(&Session::on_read, shared_from_this()));
+  }
+
+  void on_read(beast::error_code ec, std::size_t) {
+    if (ec == http::error::end_of_stream || ec == beast::error::timeout ||
+        ec == net::error::operation_aborted) {
+      return close();
+    }
+    if (ec) {
+      Response r;
+      if (ec == http::error::body_limit || ec == http::error::header_limit) {
+        r = {413, "application/json",
+             fmt::format("{{\"error\":\"too_large\",\"message\":\"request larger than {} bytes\"}}",
+                         sh_.opt.body_limit)};
+        sh_.state.record_rejection(sh_.study, peer_, "",
+                                   fmt::format("413 too_large: {}", ec.message()));
+      } else {
+        r = {400, "application/json",
+             "{\"error\":\"malformed\",\"message\":\"not an HTTP request\"}"};
+      }
+      return send(r, false, 11);
+    }
+    auto req = parser_->release();
+    const std::string client =
+        client_address(peer_, std::string(req["X-Forwarded-For"]), sh_.opt.trusted_proxies);
+    const std::string host(req[http::field::host]);
+    if (!sh_.allowed_hosts.empty() && !host_allowed(sh_.allowed_hosts, host)) {
+      // DNS rebinding: a page of another site whose name now points here. Refused before
+      // anything is read or written for it.
+      sh_.state.record_rejection(
+          sh_.study, client, "",
+          fmt::format("{} {} 421 bad_host: Host '{}'", std::string(req.method_string()),
+                      std::string(req.target().substr(0, req.target().find('?'))), host));
+      const Response r{
+          421, "application/json",
+          fmt::format("{{\"error\":\"bad_host\",\"message\":{}}}",
+                      io::json_quote(fmt::format(
+                          "this server does not answer to the host name '{}' (a protection "
+                          "against DNS rebinding); open it as http://127.0.0.1:PORT/, or start "
+                          "feint collect with --allowed-host NAME for your proxy's name",
+                          host.substr(0, 200))))};
+      return send(r, false, req.version());
+    }
+    const Response r =
+        handle_request(sh_.study, sh_.opt.admin_token, std::string(req.method_string()),
+                       std::string(req.target()), req.body(), RequestInfo{client, &sh_.state});
+    send(r, req.keep_alive(), req.version(), req.method() == http::verb::head);
+  }
+
+  void send(const Response& r, bool keep_alive, unsigned version, bool head = false) {
+    auto res = std::make_shared<http::response<http::string_body>>(
+        static_cast<http::status>(r.status), version);
+    res->set(http::field::server, "feint-collect");
+    res->set(http::field::content_type, r.content_type);
+    res->set(http::field::cache_control, "no-store");
+    res->set("X-Content-Type-Options", "nosniff");
+    res->set("Content-Security-Policy",
+             "default-src 'self'; img-src 'self' data:; style-src 'self'; script-src 'self'; "
+             "frame-ancestors 'none'");
+    if (r.status == 503) res->set(http::field::retry_after, "2");
+    res->keep_alive(keep_alive);
+    if (!head) res->body() = r.body;
+    res->prepare_payload();
+    if (head) res->body().clear();
+    stream_.expires_after(sh_.opt.timeout);
+    http::async_write(
+        stream_, *res,
+        [self = shared_from_this(), res, keep_alive](beast::error_code ec, std::size_t) {
+          if (ec || !keep_alive) return self->close();
+          self->read();
+        });
+  }
+
+  void close() {
+    beast::error_code ec;
+    stream_.socket().shutdown(tcp::socket::shutdown_send, ec);
+  }
+
+  beast::tcp_stream stream_;
+  beast::flat_buffer buffer_;
+  std::optional<http::request_parser<http::string_body>> parser_;
+  Shared& sh_;
+  std::string peer_;
+  bool first_ = true;
+};
+
+bool is_loopback(const net::ip::address& a) {
+  return a.is_loopback() || (a.is_v4() && (a.to_v4().to_uint() >> 24) == 127);
+}
+
+}  // namespace
+
+struct Server::Impl {
+  Shared sh;
+  net::io_context ioc;
+  tcp::acceptor acceptor;
+  net::steady_timer backoff;
+  bool warned_cap = false;   // the conditions are logged once per episode
+  bool warned_fds = false;
+  std::chrono::milliseconds delay{10};
+  Impl(Study& s, ServerOptions o)
+      : sh(s, std::move(o)),
+        ioc(static_cast<int>(std::max(1u, sh.opt.threads))),
+        acceptor(net::make_strand(ioc)),
+        backoff(acceptor.get_executor()) {}
+
+  void note(bool& warned, const std::string& event, const std::string& text) {
+    if (warned) return;
+    warned = true;
+    std::fprintf(stderr, "feint collect: %s\n", text.c_str());
+    try {
+      sh.study.record_event("", event, text);
+    } catch (const std::exception&) {
+    }
+  }
+
+  void wait_then_accept() {
+    backoff.expires_after(delay);
+    backoff.async_wait([this](beast::error_code ec) {
+      if (!ec && acceptor.is_open()) accept();
+    });
+  }
+
+  void accept() {
+    if (sh.connections.load() >= sh.max_connections) {
+      // At the cap: leave new connections in the listen queue (no descriptor is spent on them)
+      // and look again shortly; the open connections are served meanwhile.
+      note(warned_cap, "connections_capped",
+           fmt::format("{} simultaneous connections (the cap): new connections wait until one "
+                       "closes; idle ones close after {} s",
+                       sh.max_connections, sh.opt.idle_timeout.count()));
+      delay = std::chrono::milliseconds(50);
+      return wait_then_accept();
+    }
+    acceptor.async_accept(net::make_strand(ioc), [this](beast::error_code ec, tcp::socket socket) {
+      if (!ec) {
+        ++sh.connections;
+        std::make_shared<Session>(std::move(socket), sh)->run();
+        if (sh.connections.load() < sh.max_connections * 9 / 10) warned_cap = false;
+        warned_fds = false;
+        delay = std::chrono::milliseconds(10);
+        if (acceptor.is_open()) accept();
+        return;
+      }
+      if (!acceptor.is_open() || ec == net::error::operation_aborted) return;
+      if (ec == net::error::no_descriptors || ec.value() == ENFILE || ec == net::error::no_memory ||
+          ec == net::error::no_buffer_space) {
+        // Out of descriptors (more than the cap allowed for, or the whole system): back off
+        // instead of retrying at once (which would spin on the same error), up to 1 s.
+        note(warned_fds, "descriptors_exhausted",
+             fmt::format("cannot accept a connection: {}; retrying with back-off", ec.message()));
+        delay = std::min(std::chrono::milliseconds(1000), delay * 2);
+      }
+      wait_then_accept();
+    });
+  }
+};
+
+Server::Server(Study& study, ServerOptions options)
+    : impl_(std::make_unique<Impl>(study, std::move(options))) {
+  auto& o = impl_->sh.opt;
+  if (o.admin_token.empty()) {
+    std::random_device rd;  // the kernel's generator (getrandom / /dev/urandom): 4 x 32 bits
+    o.admin_token = fmt::format("{:08x}{:08x}{:08x}{:08x}", rd(), rd(), rd(), rd());
+  }
+  beast::error_code ec;
+  const auto address = net::ip::make_address(o.host, ec);
+  if (ec) throw UsageError(fmt::format("--host '{}': not an IP address", o.host));
+  for (const auto& p : o.trusted_proxies) {
+    net::ip::make_address(p, ec);
+    if (ec) throw UsageError(fmt::format("--trusted-proxy '{}': not an IP address", p));
+  }
+  const tcp::endpoint ep(address, o.port);
+  auto& a = impl_->acceptor;
+  a.open(ep.protocol(), ec);
+  if (!ec) a.set_option(net::socket_base::reuse_address(true), ec);
+  if (!ec) a.bind(ep, ec);
+  if (!ec) a.listen(net::socket_base::max_listen_connections, ec);
+  if (ec) throw IoError(fmt::format("cannot listen on {}:{}: {}", o.host, o.port, ec.message()));
+  auto& sh = impl_->sh;
+  sh.max_connections = o.max_connections;
+  if (sh.max_connections == 0) {
+    rlimit rl{};
+    const std::size_t reserve = reserved_descriptors(o.threads);
+    const std::size_t limit =
+        ::getrlimit(RLIMIT_NOFILE, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY
+            ? static_cast<std::size_t>(rl.rlim_cur)
+            : std::size_t{1} << 20;
+    sh.max_connections = limit > reserve + 8 ? limit - reserve : 8;
+  }
+  if (is_loopback(address) || !o.allowed_hosts.empty()) {
+    sh.allowed_hosts = o.allowed_hosts;
+    if (is_loopback(address)) {
+      const std::string port = std::to_string(port_of());
+      for (const char* h : {"localhost", "127.0.0.1", "[::1]"}) {
+        sh.allowed_hosts.emplace_back(h);  // the Host header without a port
+        sh.allowed_hosts.push_back(std::string(h) + ":" + port);
+      }
+    }
+  }
+  // A file-size limit (ulimit -f) makes a write fail with EFBIG instead of killing the server.
+  std::signal(SIGXFSZ, SIG_IGN);
+}
+
+Server::~Server() = default;
+
+unsigned short Server::port_of() const noexcept { return impl_->acceptor.local_endpoint().port(); }
+unsigned short Server::port() const noexcept { return port_of(); }
+const std::string& Server::admin_token() const noexcept { return impl_->sh.opt.admin_token; }
+std::size_t Server::max_connections() const noexcept { return impl_->sh.max_connections; }
+ServerState& Server::state() noexcept { return impl_->sh.state; }
+
+void Server::run() {
+  impl_->accept();
+  std::optional<net::signal_set> signals;
+  if (impl_->sh.opt.stop_on_signals) {
+    signals.emplace(impl_->ioc, SIGINT, SIGTERM);
+    signals->async_wait([this](beast::error_code, int) { impl_->ioc.stop(); });
+  }
+  std::vector<std::thread> pool;
+  for (unsigned i = 1; i < std::max(1u, impl_->sh.opt.threads); ++i)
+    pool.emplace_back([this] { impl_->ioc.run(); });
+  impl_->ioc.run();
+  for (auto& t : pool) t.join();
+}
+
+void Server::stop() { impl_->ioc.stop(); }
+
+}  // namespace feint::collect

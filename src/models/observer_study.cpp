@@ -1,0 +1,158 @@
+// The whole study's observer fit: per participant, pooled per condition, agreement and learning
+// (feint/models/observer_fit.hpp, docs/observer.md). The single fit is in observer_fit.cpp.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <tuple>
+
+#include <fmt/format.h>
+
+#include "feint/error.hpp"
+#include "feint/models/observer_fit.hpp"
+
+namespace feint::models {
+
+namespace {
+
+/// Running sums for a Pearson correlation and an RMSE of pairs (x = human, y = model).
+struct Sums {
+  double n = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, sdd = 0;
+  void add(double x, double y) {
+    n += 1; sx += x; sy += y; sxx += x * x; syy += y * y; sxy += x * y; sdd += (x - y) * (x - y);
+  }
+  double r() const {
+    if (n < 3) return std::nan("");
+    const double vx = sxx - sx * sx / n, vy = syy - sy * sy / n;
+    if (!(vx > 0) || !(vy > 0)) return std::nan("");
+    return (sxy - sx * sy / n) / std::sqrt(vx * vy);
+  }
+  double rmse() const { return n > 0 ? std::sqrt(sdd / n) : std::nan(""); }
+  double mean_x() const { return n > 0 ? sx / n : std::nan(""); }
+  double mean_y() const { return n > 0 ? sy / n : std::nan(""); }
+};
+
+/// A note without its leading "unit: " (the issue list names the unit already).
+std::string without_unit(const std::string& note, const std::string& unit) {
+  const std::string prefix = unit + ": ";
+  return note.rfind(prefix, 0) == 0 ? note.substr(prefix.size()) : note;
+}
+}  // namespace
+
+StudyObserverFit fit_study(std::vector<ObservedTrial> trials, const ObserverFitSettings& settings) {
+  settings.validate();
+  StudyObserverFit out;
+  // 1. Check every trial; a bad one is named and left out.
+  std::vector<ObservedTrial> good;
+  good.reserve(trials.size());
+  for (auto& tr : trials) {
+    if (tr.label.empty()) {
+      tr.label = tr.condition.empty() ? fmt::format("{}/{}", tr.participant, tr.iteration)
+                                      : fmt::format("{}/{}/{}", tr.participant, tr.condition, tr.iteration);
+    }
+    if (auto why = trial_problem(tr)) {
+      out.issues.push_back({tr.label, *why + "; the trial is left out of the fit"});
+      continue;
+    }
+    good.push_back(std::move(tr));
+  }
+  // 2. Exposure: earlier trials of the same strategy by the same participant (by iteration).
+  std::stable_sort(good.begin(), good.end(), [](const ObservedTrial& a, const ObservedTrial& b) {
+    return std::tie(a.condition, a.participant, a.iteration) < std::tie(b.condition, b.participant, b.iteration);
+  });
+  {
+    std::map<std::tuple<std::string, std::string, std::string>, int> seen;
+    for (auto& tr : good) tr.exposure = seen[{tr.condition, tr.participant, tr.strategy}]++;
+  }
+  out.trials_used = good.size();
+  // 3. Per participant.
+  std::map<std::pair<std::string, std::string>, GoalObserver> fitted;
+  for (std::size_t i = 0; i < good.size();) {
+    std::size_t j = i;
+    while (j < good.size() && good[j].participant == good[i].participant && good[j].condition == good[i].condition) ++j;
+    const std::span<const ObservedTrial> part(good.data() + i, j - i);
+    try {
+      auto fit = fit_observer(part, settings, good[i].participant);
+      for (const auto& n : fit.notes) out.issues.push_back({good[i].participant, without_unit(n, fit.unit)});
+      fitted[{good[i].condition, good[i].participant}] = fit.observer();
+      out.participants.push_back(std::move(fit));
+    } catch (const Error& e) {
+      out.issues.push_back({good[i].participant, fmt::format("the participant's fit failed: {}", e.what())});
+    }
+    i = j;
+  }
+  // 4. Pooled per condition (and the learning test).
+  for (std::size_t i = 0; i < good.size();) {
+    std::size_t j = i;
+    while (j < good.size() && good[j].condition == good[i].condition) ++j;
+    const std::span<const ObservedTrial> cond(good.data() + i, j - i);
+    const std::string name = good[i].condition.empty() ? "all" : good[i].condition;
+    try {
+      auto fit = fit_observer(cond, settings, name);
+      fit.condition = good[i].condition;
+      for (const auto& n : fit.notes) out.issues.push_back({name, without_unit(n, name)});
+      if (settings.learning) {
+        const LearningTest lt = test_learning(cond, settings, fit);
+        out.learning.push_back(lt);
+      }
+      out.conditions.push_back(std::move(fit));
+    } catch (const Error& e) {
+      out.issues.push_back({name, fmt::format("the pooled fit failed: {}", e.what())});
+    }
+    i = j;
+  }
+  // 5. Agreement: the model's trace at each participant's fitted parameters against the pad.
+  std::map<std::tuple<std::string, std::string, long long>, std::array<Sums, 3>> groups;
+  for (const auto& tr : good) {
+    const auto it = fitted.find({tr.condition, tr.participant});
+    if (it == fitted.end()) continue;
+    const auto model = belief_trace(tr.path, tr.times, settings.goals, it->second);
+    const double target = tr.goal == GoalSide::right ? 1.0 : 0.0;
+    const double v = tr.pad_speed.value_or(settings.pad_speed);
+    metrics::TrialScore hs, ms;
+    try {
+      hs = metrics::score_trace(tr.times, tr.pads, target, v, settings.metric);
+      ms = metrics::score_trace(tr.times, model, target, v, settings.metric);
+    } catch (const Error& e) {
+      out.issues.push_back({tr.label, fmt::format("left out of the agreement tables: {}", e.what())});
+      continue;
+    }
+    const std::string cond = tr.condition.empty() ? "all" : tr.condition;
+    const std::string strat = tr.strategy.empty() ? "unknown" : tr.strategy;
+    // Each trial counts in its own cell and in the "all" margins (once, when it is already "all").
+    std::vector<std::string> conds{cond}, strats{strat};
+    if (cond != "all") conds.push_back("all");
+    if (strat != "all") strats.push_back("all");
+    std::vector<long long> its{tr.iteration};
+    if (tr.iteration != 0) its.push_back(0);
+    for (const auto& c : conds) {
+      for (const auto& s : strats) {
+        for (long long k : its) {
+          auto& g = groups[{c, s, k}];
+          g[0].add(hs.error, ms.error);
+          g[1].add(hs.confusion, ms.confusion);
+          for (std::size_t i = 0; i < model.size(); ++i) g[2].add(tr.pads[i], model[i]);
+        }
+      }
+    }
+  }
+  for (const auto& [key, g] : groups) {
+    AgreementRow r;
+    std::tie(r.condition, r.strategy, r.iteration) = key;
+    r.trials = static_cast<std::size_t>(g[0].n);
+    r.human_error = g[0].mean_x();
+    r.model_error = g[0].mean_y();
+    r.error_r = g[0].r();
+    r.error_rmse = g[0].rmse();
+    r.human_confusion = g[1].mean_x();
+    r.model_confusion = g[1].mean_y();
+    r.confusion_r = g[1].r();
+    r.confusion_rmse = g[1].rmse();
+    r.trace_r = g[2].r();
+    r.trace_rmse = g[2].rmse();
+    out.agreement.push_back(r);
+  }
+  return out;
+}
+
+}  // namespace feint::models

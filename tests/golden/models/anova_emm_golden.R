@@ -1,0 +1,39 @@
+# Golden values for the estimated marginal means and contrasts of `feint anova` (issue #18):
+# emmeans 1.8.4-1 on afex::aov_ez objects (afex 1.2-1), with emmeans' default for afex objects,
+# the multivariate model (afex_options(emmeans_model = "multivariate")): cell means, and every
+# contrast's SE from the pooled within-condition covariance of the iterations, df = N - a.
+#   cd tests/golden/models && Rscript anova_emm_golden.R
+# Reads anova_data.csv (anova_golden.R), writes anova_emm_golden.csv (case, quantity, name, value).
+suppressPackageStartupMessages({ library(afex); library(emmeans) })
+afex_options(emmeans_model = "multivariate")
+d0 <- read.csv("anova_data.csv")
+out <- list()
+put <- function(case, quantity, name, value)
+  out[[length(out) + 1]] <<- data.frame(case = case, quantity = quantity, name = name,
+                                        value = sprintf("%.17g", value))
+rows <- function(case, label, obj, means) {
+  s <- as.data.frame(summary(obj, infer = c(TRUE, TRUE)))
+  by <- intersect(c("condition", "iteration"), names(s))
+  for (i in seq_len(nrow(s))) {
+    n <- if (means) paste(vapply(by, function(b) as.character(s[[b]][i]), ""), collapse = "|")
+         else paste(c(as.character(s$contrast[i]), vapply(by, function(b) as.character(s[[b]][i]), "")), collapse = "|")
+    put(case, paste0(label, ".estimate"), n, if (means) s$emmean[i] else s$estimate[i])
+    put(case, paste0(label, ".SE"), n, s$SE[i]); put(case, paste0(label, ".df"), n, s$df[i])
+    put(case, paste0(label, ".lower"), n, s$lower.CL[i]); put(case, paste0(label, ".upper"), n, s$upper.CL[i])
+    if (!means) { put(case, paste0(label, ".t"), n, s$t.ratio[i]); put(case, paste0(label, ".p"), n, s$p.value[i]) }
+  }
+}
+for (case in c("balanced_spherical", "unbalanced_nonspherical", "missing_trials")) {
+  d <- d0[d0$case == case & !is.na(d0$value), ]
+  d$iteration <- factor(d$iteration)
+  a <- suppressMessages(suppressWarnings(aov_ez("participant", "value", d, between = "condition",
+                                                 within = "iteration")))
+  rows(case, "cells", emmeans(a, ~ condition * iteration), TRUE)
+  rows(case, "condition", suppressMessages(emmeans(a, ~ condition)), TRUE)
+  rows(case, "iteration", suppressMessages(emmeans(a, ~ iteration)), TRUE)
+  rows(case, "cond_by_it", contrast(emmeans(a, ~ condition | iteration), "pairwise"), FALSE)
+  for (adj in c("none", "holm", "tukey"))
+    rows(case, paste0("it_by_cond.", adj), contrast(emmeans(a, ~ iteration | condition), "pairwise", adjust = adj), FALSE)
+  rows(case, "poly_by_cond", contrast(emmeans(a, ~ iteration | condition), "poly"), FALSE)
+}
+write.csv(do.call(rbind, out), "anova_emm_golden.csv", row.names = FALSE, quote = FALSE)
