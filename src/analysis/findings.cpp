@@ -179,12 +179,16 @@ Finding family_finding(std::string id, std::string hypothesis, std::string quest
 }
 
 std::vector<Finding> exposure_findings(const models::ExposureByCondition& e, const WordingRules& rules,
-                                       std::string source) {
+                                       std::string source, const std::string& metric) {
   std::vector<Finding> out;
   const std::string question =
-      "Does a strategy wear off with exposure differently under the two conditions?";
+      metric.empty() ? std::string("Does a strategy wear off with exposure differently under the two conditions?")
+                     : fmt::format("Does a strategy's effect on {} wear off with exposure differently under the "
+                                   "two conditions?", metric);
+  const std::string id_prefix = metric.empty() ? std::string("H1-exposure") : "H1-exposure-" + metric;
+  const std::string of_metric = metric.empty() ? std::string() : " (" + metric + ")";
   if (e.differences.empty()) {
-    out.push_back(one_condition_only("H1-exposure", "H1", question,
+    out.push_back(one_condition_only(id_prefix, "H1", question,
                                      e.slopes.empty() ? std::string("none") : e.slopes.front().condition,
                                      source));
     return out;
@@ -199,7 +203,7 @@ std::vector<Finding> exposure_findings(const models::ExposureByCondition& e, con
     const auto& a = e.slopes[i];
     const auto& b = e.slopes[k + i];
     Finding f;
-    f.id = "H1-exposure-" + e.differences[i].strategy;
+    f.id = id_prefix + "-" + e.differences[i].strategy;
     f.hypothesis = "H1";
     f.question = question;
     f.source = source;
@@ -207,19 +211,21 @@ std::vector<Finding> exposure_findings(const models::ExposureByCondition& e, con
     f.evidence = evidence_text(f.strength, f.grade);
     auto slope_text = [](const models::ExposureSlope& s) {
       if (!s.test.computed || !s.test.estimate) return fmt::format("{}: not computable", s.condition);
-      return fmt::format("{}: {:.3f} per exposure, 95% CI [{:.3f}, {:.3f}]", s.condition, *s.test.estimate,
-                         *s.test.conf_low, *s.test.conf_high);
+      return fmt::format("{}: {:.3f} per exposure, {:g}% CI [{:.3f}, {:.3f}]", s.condition, *s.test.estimate,
+                         100 * s.test.conf_level, *s.test.conf_low, *s.test.conf_high);
     };
     if (f.strength == Strength::not_computable) {
-      f.sentence = fmt::format("Exposure slope of strategy '{}' by condition: not computable ({}).",
-                               e.differences[i].strategy, d.note);
+      f.sentence = fmt::format("Exposure slope{} of strategy '{}' by condition: not computable ({}).",
+                               of_metric, e.differences[i].strategy, d.note);
     } else {
-      f.statistics = fmt::format("t({:.2f}) = {:.2f}, Holm-adjusted p = {:.3f}", *d.df, *d.statistic, *d.p_adjusted);
+      f.statistics = fmt::format("t({:.2f}) = {:.2f}, Holm-adjusted {}", *d.df, *d.statistic,
+                                 report::apa_p(*d.p_adjusted));
       f.sentence = fmt::format(
-          "Exposure slope of strategy '{}' ({}; {}): {} between the conditions (difference {:.3f}, "
-          "95% CI [{:.3f}, {:.3f}], {}, Holm-corrected over {} strategies).",
-          e.differences[i].strategy, slope_text(a), slope_text(b), f.evidence, *d.estimate, *d.conf_low,
-          *d.conf_high, f.statistics, k);
+          "Exposure slope{} of strategy '{}' ({}; {}): {} between the conditions (difference {:.3f}, "
+          "{:g}% CI [{:.3f}, {:.3f}], {}, Holm-corrected over {} strategies; a model contrast has no "
+          "Bayes factor).",
+          of_metric, e.differences[i].strategy, slope_text(a), slope_text(b), f.evidence, *d.estimate,
+          100 * d.conf_level, *d.conf_low, *d.conf_high, f.statistics, k);
     }
     out.push_back(std::move(f));
   }

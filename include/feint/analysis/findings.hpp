@@ -80,10 +80,12 @@ Finding family_finding(std::string id, std::string hypothesis, std::string quest
 /// H1, condition x exposure per strategy: one finding per strategy on the difference of the two
 /// conditions' exposure slopes (Holm-corrected over the strategies; a model contrast has no Bayes
 /// factor, so the rule for tests without one applies), both slopes with their CIs in the sentence.
-/// With one condition only: one "not computable" finding that says so.
+/// With one condition only: one "not computable" finding that says so. `metric` (when given) is
+/// named in the ids ("H1-exposure-error-<strategy>") and the sentences.
 std::vector<Finding> exposure_findings(const models::ExposureByCondition& exposure,
                                        const WordingRules& rules = {},
-                                       std::string source = "model-exposure");
+                                       std::string source = "model-exposure",
+                                       const std::string& metric = "");
 
 /// Reference plausibility: where the reference lies relative to every value of the metric.
 struct ReferenceCheck {
