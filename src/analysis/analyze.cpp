@@ -179,6 +179,7 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
     if (gone.count > 0) d.exclusions.push_back(std::move(gone));
     for (const auto& c : r.scores.conditions()) d.participants_per_condition.emplace_back(c, per[c].size());
   }
+  t.equivalence_by_evidence = true;  // the report's "≈" needs BF01 >= 3 or TOST (issue 15)
   r.table1 = report::build_table1(r.scores, t);
   if (study.compare) {
     report::Table1Options c = t;

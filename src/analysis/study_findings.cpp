@@ -120,8 +120,6 @@ std::vector<Finding> study_findings(const StudyResults& r, const std::vector<rep
           what, row.result, nullptr, between ? "questionnaire-compare" : "questionnaire", rules));
     }
   };
-  likert(r.likert, false);
-  likert(r.likert_compare, true);
   // H1 from the mixed models (condition x iteration, the linear trend).
   for (auto& f : mixed_model_findings(r.model ? &*r.model : nullptr,
                                       r.trend_model ? &*r.trend_model : nullptr, rules))
@@ -163,6 +161,9 @@ std::vector<Finding> study_findings(const StudyResults& r, const std::vector<rep
       for (auto& f : fs) out.push_back(std::move(f));
     }
   }
+  // H2 after every H1 finding.
+  likert(r.likert, false);
+  likert(r.likert_compare, true);
   return out;
 }
 
