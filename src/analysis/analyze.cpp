@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <stdlib.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -106,8 +107,36 @@ std::set<std::string> count_rejections(const fs::path& rejects, Diagnostics& d) 
   return participants;
 }
 
+// A scoring diagnostic as an entry of the accounting: where it applies is added as an example
+// unless the message names it already.
+Exclusion scoring_note(const io::Diagnostic& n, const std::string& prefix,
+                       const std::string& study_folder) {
+  std::string message = without_prefix(n.message, prefix);
+  if (!n.file.empty() && n.file != "-") {
+    // The file as the report names every path: relative to the study, never absolute.
+    const std::string shown = display_path(n.file, study_folder);
+    for (auto pos = message.find(n.file); pos != std::string::npos;
+         pos = message.find(n.file, pos + shown.size())) {
+      message.replace(pos, n.file.size(), shown);
+    }
+  }
+  Exclusion e{"scoring", "warning", 0, message, {}, n.code};
+  const std::string file = n.file.empty() ? "" : fs::path(n.file).filename().string();
+  if (!file.empty() && e.reason.find(file) == std::string::npos) {
+    e.examples.push_back(n.line > 0 ? fmt::format("{}:{}", file, n.line) : file);
+  }
+  if (!n.column.empty() && e.reason.find("'" + n.column + "'") == std::string::npos) {
+    e.examples.push_back(fmt::format("column '{}'", n.column));
+  }
+  return e;
+}
+
+std::vector<std::string> first_ten(const std::vector<std::string>& ids) {
+  return {ids.begin(), ids.begin() + static_cast<std::ptrdiff_t>(std::min<std::size_t>(ids.size(), 10))};
+}
+
 void note_left_out(Diagnostics& d, const std::string& stage, const std::string& reason) {
-  d.exclusions.push_back({stage, "analysis", 0, reason, {}});
+  d.exclusions.push_back({stage, "analysis", 0, reason, {}, ""});
   d.warnings.push_back(fmt::format("{}: {}", stage, reason));
 }
 
@@ -145,9 +174,9 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   if (!d.scoring.rejects_path.empty()) {
     d.scoring.rejects_path = fs::path(d.scoring.rejects_path).filename().string();
   }
-  for (const auto& w : d.scoring.warnings) {
-    d.exclusions.push_back({"scoring", "warning", 0, w, {}});
-  }
+  // The reader's and the time-unit check's notes, structured (code, file, line, column): one
+  // entry each (their messages are also in d.warnings, through on_warning).
+  for (const auto& n : d.scoring.diagnostics) d.exclusions.push_back(scoring_note(n, prefix, study.folder));
 
   // 2. Table 1: one-sample per condition, and A against B when asked.
   report::Table1Options t;
@@ -158,6 +187,8 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   t.equivalence = study.settings.equivalence;
   t.apa = study.tests.apa;
   io::ScoresOptions load;
+  // A study of two conditions never pools a table without its condition column (issue 18).
+  load.expected_conditions = s.reading.expected_conditions;
   load.metrics.clear();
   for (const auto& m : t.metrics) load.metrics.push_back(m.column);
   r.scores = io::load_scores(scores_path.string(), load);
@@ -170,7 +201,7 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
     }
     d.participants = all.size();
     // A participant whose every trial was rejected is not in the scores at all: say so.
-    Exclusion gone{"scoring", "participant", 0, "every trial rejected (not in the analysis)", {}};
+    Exclusion gone{"scoring", "participant", 0, "every trial rejected (not in the analysis)", {}, ""};
     for (const auto& p : rejected_participants) {
       if (all.count(p) != 0) continue;
       ++gone.count;
@@ -194,7 +225,7 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   try {
     r.anova = report::build_anova_report(r.scores, models::SphericityCorrection::GG);
   } catch (const InvalidData& e) {
-    note_left_out(d, "anova", fmt::format("no mixed ANOVA: {}", e.what()));
+    note_left_out(d, "anova", fmt::format("no mixed ANOVA: {}", without_prefix(e.what(), prefix)));
   }
   // The model of condition x iteration needs two of each (and models::fit_mixed_model does not
   // yet refuse fewer cleanly).
@@ -216,7 +247,7 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
       o.trend = true;
       r.trend_model = report::build_model_analysis(r.scores, o);
     } catch (const InvalidData& e) {
-      note_left_out(d, "model", fmt::format("no mixed model: {}", e.what()));
+      note_left_out(d, "model", fmt::format("no mixed model: {}", without_prefix(e.what(), prefix)));
     }
   }
 
@@ -235,6 +266,33 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
       if (e.examples.size() < 5) e.examples.push_back(x.id);
     }
     for (auto& [_, e] : excluded) d.exclusions.push_back(std::move(e));
+    // Who answered the questionnaire but has no scored trial, and the reverse (issue 18). Only a
+    // warning: the two analyses are independent, and an anonymous questionnaire (its own ids)
+    // is a design, not an error; the report and standard error list the ids.
+    std::vector<std::string> log_ids;
+    for (const auto& rec : r.scores.records) log_ids.push_back(rec.participant);
+    io::ParticipantComparison pc = io::compare_participants(log_ids, q.participants);
+    if (!pc.matches()) {
+      const std::string why =
+          pc.in_both == 0
+              ? fmt::format("no participant id in common between the logs and the questionnaire "
+                            "(as when the questionnaire is anonymous, or the ids are written "
+                            "differently): {}",
+                            pc.message())
+              : pc.message();
+      if (!pc.only_in_logs.empty()) {
+        d.exclusions.push_back({"participants", "participant", pc.only_in_logs.size(),
+                                "in the logs but not in the questionnaire",
+                                first_ten(pc.only_in_logs), ""});
+      }
+      if (!pc.only_in_questionnaire.empty()) {
+        d.exclusions.push_back({"participants", "participant", pc.only_in_questionnaire.size(),
+                                "in the questionnaire but not in the logs",
+                                first_ten(pc.only_in_questionnaire), ""});
+      }
+      d.warnings.push_back(fmt::format("participants: {}", why));
+    }
+    d.participants_compared = std::move(pc);
     r.likert = report::analyze_likert(q, study.likert);
     if (study.compare) {
       report::LikertSettings lc = study.likert;
@@ -251,11 +309,28 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
     r.figures.labels_note = without_prefix(e.what(), prefix);
   }
   if (!r.figures.labels.empty()) {
-    io::TraceOptions topt;
+    // Read as the scorer read them (other labs' options: decimal mark, headerless files, ...).
+    io::TraceOptions topt = s.reading;
     topt.column_map = s.column_map;
     topt.delimiter = s.delimiter;
     topt.unsorted = s.unsorted;
     r.figures.traces = mean_traces(study.logs, topt, r.figures.labels, t.test.conf_level);
+    // Condition x exposure per strategy: the wear-off of a strategy (issue 15, H1).
+    for (const auto& m : load.metrics) {
+      r.figures.exposure.push_back(
+          metrics::exposure_trend(r.scores, r.figures.labels, m, t.test.conf_level));
+    }
+  }
+  // The mixed model's fitted trend (the linear-trend model: the line the trend F-test is about).
+  if (r.trend_model) {
+    const report::ModelOptions& o = r.trend_model->options;
+    for (const auto& mm : r.trend_model->models) {
+      r.figures.model_trends.push_back(
+          {mm.metric,
+           fmt::format("linear trend over the iterations, random {}",
+                       o.random_slope ? "intercept and slope" : "intercept"),
+           models::fitted_trend(mm.fit, t.test.conf_level)});
+    }
   }
   r.scores.path = "scores.csv";
   // 6. The findings (docs/findings.md): what the study shows, and how strongly.

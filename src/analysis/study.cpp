@@ -52,7 +52,11 @@ Study load_study(const std::string& folder, const AnalysisSettings& a, const std
   s.scoring = score_settings(a.scoring);
   s.tests = resolve_report_options(a.report);
   s.metrics = parse_metric_specs(a.metrics);
-  if (!a.compare.empty()) s.compare = parse_compare(a.compare);
+  if (!a.compare.empty()) {
+    s.compare = parse_compare(a.compare);
+    // A log without a condition column is then refused, not pooled (issue 18).
+    s.scoring.reading.expected_conditions = {s.compare->first, s.compare->second};
+  }
   for (const auto& n : a.formats) s.formats.push_back(report::parse_output_format(n));
   if (s.formats.empty()) {
     throw UsageError("--formats: name at least one of text, markdown, latex, csv, json");

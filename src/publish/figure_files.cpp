@@ -68,6 +68,11 @@ plot::Figure figure_from_files(const FigureRequest& a, const analysis::ResolvedR
   io::ScoresOptions so;
   so.metrics.clear();
   for (const auto& m : t.metrics) so.metrics.push_back(m.column);
+  if (!a.compare.empty()) {
+    // A comparison of two conditions never pools a scores file without its condition column.
+    const auto ab = analysis::parse_compare(a.compare);
+    so.expected_conditions = {ab.first, ab.second};
+  }
   io::ScoresTable scores;
   try {
     scores = io::load_scores(a.input, so);

@@ -90,40 +90,68 @@ DrawnFigures draw_figures(const analysis::StudyResults& r, const std::vector<std
           d.group1, d.group2,
           d.marked.empty() ? std::string("none") : fmt::format("{}", fmt::join(d.marked, ", ")));
     }
-    w.add(m.column, fmt::format("Mean {} per iteration", m.column),
-          fmt::format("Line chart: mean {} per iteration for each condition, with confidence "
-                      "bands, against the reference {:g}.",
-                      m.column, m.reference),
-          caption, plot::metric_figure(d));
+    w.add(m.column, fmt::format("Mean {} per iteration", m.column), plot::alt_text(d), caption,
+          plot::metric_figure(d));
   }
   for (const auto& m : t.options.metrics) {
+    const plot::ParticipantsData pd = plot::participants_data(r.scores, m.column, &t);
     w.add("participants-" + m.column, capitalised(m.column) + " of each participant",
-          fmt::format("Line chart, one panel per condition: each participant's {} over the "
-                      "iterations as faint lines, the condition mean with its band on top.",
-                      m.column),
+          plot::alt_text(pd),
           fmt::format("Each participant's {} over the iterations (faint lines), one panel per "
                       "condition, with the condition's mean and its interval from Table 1 (thick "
                       "line and band). A participant who stopped playing or an outlier stands out.",
                       m.column),
-          plot::participants_figure(r.scores, m.column, &t));
+          plot::participants_figure(pd));
+  }
+  // The mixed model's fitted trend over the per-iteration means (the trend F-test's line).
+  for (const auto& mt : r.figures.model_trends) {
+    plot::ModelFitFigureData md{plot::metric_figure_data(t, comparison, mt.metric), mt.trend,
+                                mt.model};
+    w.add("model-" + mt.metric, fmt::format("Mixed model's fitted trend of {}", mt.metric),
+          plot::alt_text(md),
+          fmt::format("The mixed model's fitted {} per condition and iteration (lines, {} "
+                      "confidence band from Satterthwaite's df, as emmeans) over the observed "
+                      "per-iteration means with their {} t intervals (markers; Table 1). Model: "
+                      "{} ~ condition * iteration, {} (the table \"Mixed model (linear trend "
+                      "over the iterations)\"). Where the means leave the band, a straight line "
+                      "does not describe the iterations.",
+                      mt.metric, level, level, mt.metric, mt.model),
+          plot::model_fit_figure(md));
   }
   if (!r.figures.labels_note.empty()) {
     w.out.notes.push_back(fmt::format("No strategy figures: {}", r.figures.labels_note));
   }
   if (!r.figures.labels.empty()) {
-    w.add("strategies", "Strategies shown",
-          "Bar chart per condition: the share of participants who saw each strategy at each "
-          "iteration.",
+    const plot::Occurrence occurrence = plot::strategy_occurrence(r.figures.labels);
+    w.add("strategies", "Strategies shown", plot::alt_text(occurrence),
           "Share of participants who saw each strategy, per iteration and condition (the logs' "
           "strategy column, as scored). The paper's Fig. 5/7 show the selection algorithms' "
           "expectation; this is what the study's participants actually saw.",
-          plot::occurrence_figure(plot::strategy_occurrence(r.figures.labels)));
+          plot::occurrence_figure(occurrence));
+    for (const auto& e : r.figures.exposure) {
+      w.add("exposure-" + e.metric,
+            fmt::format("{} by exposure to the strategy, per condition", capitalised(e.metric)),
+            plot::alt_text(e),
+            fmt::format(
+                "Mean {} against the exposure (1 = the participant's first trial with that "
+                "strategy, 2 = the second, ...), one panel per strategy, per condition, with "
+                "{} t intervals (at exposures with at least 5 trials), and each condition's "
+                "least-squares line with its {} band from participant-clustered (CR1) standard "
+                "errors. A strategy that wears off rises (error) as it is seen again; the "
+                "paper's claim is that it wears off under the random algorithm and not under "
+                "the adaptive one. Descriptive: the mixed model is the inference.{}",
+                e.metric, level, level,
+                e.unmatched > 0 ? fmt::format(" {} without a strategy label left out.",
+                                              e.unmatched == 1 ? std::string("1 scored trial")
+                                                               : fmt::format("{} scored trials", e.unmatched))
+                                : std::string()),
+            plot::exposure_figure(e));
+    }
     if (r.figures.traces.empty()) {
       w.out.notes.push_back("No trace figure: no scored trial was found again in the logs.");
     } else {
       w.add("traces", "Pad traces per strategy",
-            "Line chart per strategy: the mean pad position over normalised time, first "
-            "exposure against later exposures, with confidence bands.",
+            plot::alt_text(plot::TracesFigureData{r.figures.traces, t.options.test.conf_level}),
             fmt::format("Mean pad position over normalised time (0 = first sample, 1 = last) "
                         "per strategy and version, mirrored so that the true target is at 1 "
                         "(1 - |pad - target|), with {} t intervals; first exposure of a "
@@ -135,25 +163,22 @@ DrawnFigures draw_figures(const analysis::StudyResults& r, const std::vector<std
   }
   if (r.likert) {
     const report::LikertAnalysis& l = *r.likert;
-    w.add("likert", "Questionnaire answers",
-          "Diverging stacked bar chart: the answers to each questionnaire item per condition, "
-          "disagreement to the left and agreement to the right of the neutral point.",
+    const plot::LikertDistribution ld = plot::likert_distribution_data(l);
+    w.add("likert", "Questionnaire answers", plot::alt_text(ld),
           fmt::format("Answers per item and condition as diverging stacked bars centred on the "
                       "neutral point {:g}: disagreement to the left, agreement to the right; "
                       "bar lengths are percentages of the respondents (n).",
                       l.neutral),
-          plot::likert_distribution_figure(l));
-    w.add("likert-means", "Questionnaire means",
-          fmt::format("Dot chart: the mean rating of each item per condition with its confidence "
-                      "interval, against the reference {:g}.",
-                      l.reference),
+          plot::likert_distribution_figure(ld));
+    const plot::LikertMeansData lm = plot::likert_means_data(l);
+    w.add("likert-means", "Questionnaire means", plot::alt_text(lm),
           fmt::format("Mean rating per item and condition with its {:g}% t interval, against "
                       "the reference R = {:g} (the paper's Fig. 11). Filled markers: the "
                       "one-sample t-test differs from R (p < {:g}, {}); the Wilcoxon "
                       "signed-rank test is the primary analysis (table below).",
                       l.settings.test.conf_level * 100, l.reference, l.settings.alpha,
                       adjustment_words(l.settings.p_adjust)),
-          plot::likert_means_figure(l));
+          plot::likert_means_figure(lm));
   }
   return std::move(w.out);
 }

@@ -126,7 +126,12 @@ std::string subtitle_of(const analysis::StudyResults& r) {
 std::string exclusion_text(const analysis::Exclusion& e) {
   std::string s = e.count > 0 ? fmt::format("{} {}: {}", e.stage, count(e.count, e.what), e.reason)
                               : fmt::format("{}: {}", e.stage, e.reason);
-  if (!e.examples.empty()) s += fmt::format(" (e.g. {})", fmt::join(e.examples, ", "));
+  if (!e.examples.empty()) {
+    // A full list is a list; a partial one gives examples.
+    const bool all = e.count == 0 || e.examples.size() >= e.count;
+    s += fmt::format(" ({}{})", all ? "" : "e.g. ", fmt::join(e.examples, ", "));
+  }
+  if (!e.code.empty()) s += fmt::format(" [{}]", e.code);
   return s;
 }
 
@@ -152,6 +157,13 @@ std::vector<std::string> diagnostics_lines(const analysis::Diagnostics& d) {
     lines.push_back(fmt::format("Questionnaire: {} read, {} analysed.",
                                 count(d.questionnaire_rows, "row"),
                                 count(d.respondents, "respondent")));
+  }
+  if (d.participants_compared) {
+    const auto& c = *d.participants_compared;
+    lines.push_back(fmt::format(
+        "Participant ids of the logs and the questionnaire: {} in both, {} only in the logs, {} "
+        "only in the questionnaire.",
+        c.in_both, c.only_in_logs.size(), c.only_in_questionnaire.size()));
   }
   if (d.exclusions.empty()) {
     lines.emplace_back("Nothing was excluded and there was no warning.");
@@ -309,10 +321,26 @@ std::string study_results_json(const analysis::StudyResults& r) {
   o += "], \"exclusions\": [";
   for (std::size_t i = 0; i < r.diagnostics.exclusions.size(); ++i) {
     const auto& e = r.diagnostics.exclusions[i];
-    o += fmt::format("{}{{\"stage\": {}, \"what\": {}, \"count\": {}, \"reason\": {}}}",
-                     i ? ", " : "", q(e.stage), q(e.what), e.count, q(e.reason));
+    std::string examples;
+    for (std::size_t k = 0; k < e.examples.size(); ++k) examples += (k ? ", " : "") + q(e.examples[k]);
+    o += fmt::format("{}{{\"stage\": {}, \"what\": {}, \"count\": {}, \"reason\": {}, "
+                     "\"code\": {}, \"examples\": [{}]}}",
+                     i ? ", " : "", q(e.stage), q(e.what), e.count, q(e.reason), q(e.code),
+                     examples);
   }
-  o += "]},\n  \"findings\": [";
+  o += "]";
+  if (r.diagnostics.participants_compared) {
+    const auto& c = *r.diagnostics.participants_compared;
+    auto list = [&](const std::vector<std::string>& v) {
+      std::string l;
+      for (std::size_t i = 0; i < v.size(); ++i) l += (i ? ", " : "") + q(v[i]);
+      return l;
+    };
+    o += fmt::format(", \"participants_compared\": {{\"in_both\": {}, \"only_in_logs\": [{}], "
+                     "\"only_in_questionnaire\": [{}]}}",
+                     c.in_both, list(c.only_in_logs), list(c.only_in_questionnaire));
+  }
+  o += "},\n  \"findings\": [";
   for (std::size_t i = 0; i < r.findings.size(); ++i) {
     const auto& f = r.findings[i];
     o += fmt::format("{}{{\"id\": {}, \"question\": {}, \"sentence\": {}, \"evidence\": {}, "

@@ -155,3 +155,163 @@ TEST(Analyze, RejectedTrialsAndParticipantsAreCountedByReason) {
   EXPECT_FALSE(r.rejects_csv.empty());
   fs::remove_all(study);
 }
+
+namespace {
+
+// A small study: participants P1, P2 (adaptive) and P3, P4 (random), two iterations of a 1 s
+// trial each (times as `scale` says: 1 = seconds, 1000 = milliseconds), with or without a
+// condition column, and optionally a questionnaire naming `respondents`.
+fs::path small_study(const std::string& name, double scale, bool with_condition,
+                     const std::vector<std::string>& respondents = {}) {
+  const fs::path study = fs::temp_directory_path() / ("feint-test-" + name);
+  fs::remove_all(study);
+  fs::create_directories(study / "logs");
+  std::ofstream f(study / "logs" / "s.csv");
+  f << "participant," << (with_condition ? "condition," : "")
+    << "iteration,strategy,target,t,pad,pad_speed\n";
+  const char* ids[] = {"P1", "P2", "P3", "P4"};
+  for (int p = 0; p < 4; ++p) {
+    for (int it = 1; it <= 2; ++it) {
+      for (int k = 0; k <= 5; ++k) {
+        f << ids[p] << ',';
+        if (with_condition) f << (p < 2 ? "adaptive," : "random,");
+        f << it << ',' << (it == 1 ? "L" : "R") << ",right," << k * 0.1 * scale << ','
+          << 0.5 + 0.05 * k * (p + 1) / 4.0 + 0.01 * it << ",0.5\n";
+      }
+    }
+  }
+  if (!respondents.empty()) {
+    std::ofstream q(study / "questionnaire.csv");
+    q << "participant,condition,trust\n";
+    for (std::size_t i = 0; i < respondents.size(); ++i) {
+      q << respondents[i] << ',' << (i % 2 ? "random" : "adaptive") << ',' << 3 + i % 3 << "\n";
+    }
+  }
+  return study;
+}
+
+}  // namespace
+
+TEST(Analyze, TheDemoHasTheExposureAndModelTrendFigureData) {
+  const analysis::StudyResults r = analysis::analyze(analysis::load_study(kDemo, demo_settings()));
+  ASSERT_EQ(r.figures.exposure.size(), 2u);  // error, confusion
+  EXPECT_EQ(r.figures.exposure[0].metric, "error");
+  EXPECT_EQ(r.figures.exposure[0].conditions, (std::vector<std::string>{"adaptive", "random"}));
+  ASSERT_FALSE(r.figures.exposure[0].strategies.empty());
+  std::size_t trials = 0;
+  for (const auto& st : r.figures.exposure[0].strategies) {
+    ASSERT_EQ(st.series.size(), 2u);
+    for (const auto& se : st.series) {
+      for (const auto& p : se.points) trials += p.n;
+    }
+  }
+  EXPECT_EQ(trials + r.figures.exposure[0].unmatched, 1200u) << "every scored trial, once";
+  ASSERT_EQ(r.figures.model_trends.size(), 2u);
+  const auto& mt = r.figures.model_trends[0];
+  EXPECT_EQ(mt.metric, "error");
+  ASSERT_EQ(mt.trend.size(), 2u);  // one line per condition
+  for (const auto& g : mt.trend) {
+    ASSERT_EQ(g.points.size(), 20u);
+    // A linear trend: equal steps, the fit inside its band.
+    const double step = g.points[1].fit - g.points[0].fit;
+    EXPECT_NEAR(g.points[19].fit - g.points[18].fit, step, 1e-12);
+    for (const auto& p : g.points) {
+      EXPECT_LT(p.low, p.fit);
+      EXPECT_GT(p.high, p.fit);
+    }
+  }
+  // The demo's questionnaire names exactly the logs' participants.
+  ASSERT_TRUE(r.diagnostics.participants_compared.has_value());
+  EXPECT_TRUE(r.diagnostics.participants_compared->matches());
+  EXPECT_EQ(r.diagnostics.participants_compared->in_both, 60u);
+}
+
+TEST(Analyze, ParticipantsMissingOnEitherSideAreListed) {
+  const fs::path study = small_study("ids", 1, true, {"P1", "P2", "P3", "P9"});
+  const auto r = analysis::analyze(analysis::load_study(study.string(), {}), "test");
+  ASSERT_TRUE(r.diagnostics.participants_compared.has_value());
+  EXPECT_EQ(r.diagnostics.participants_compared->only_in_logs, std::vector<std::string>{"P4"});
+  EXPECT_EQ(r.diagnostics.participants_compared->only_in_questionnaire,
+            std::vector<std::string>{"P9"});
+  EXPECT_EQ(r.diagnostics.participants_compared->in_both, 3u);
+  int listed = 0;
+  for (const auto& e : r.diagnostics.exclusions) {
+    if (e.stage != "participants") continue;
+    ++listed;
+    EXPECT_EQ(e.count, 1u);
+    EXPECT_EQ(e.examples, std::vector<std::string>{e.reason.find("not in the questionnaire") !=
+                                                           std::string::npos
+                                                       ? "P4"
+                                                       : "P9"});
+  }
+  EXPECT_EQ(listed, 2);
+  bool warned = false;
+  for (const auto& w : r.diagnostics.warnings) {
+    warned |= w.find("P4") != std::string::npos && w.find("P9") != std::string::npos;
+  }
+  EXPECT_TRUE(warned) << "the warning (standard error) names both ids";
+  fs::remove_all(study);
+}
+
+TEST(Analyze, MillisecondTimesAreAStructuredScoringWarning) {
+  const fs::path study = small_study("ms", 1000, true);  // 0.5 s trials written in ms
+  const auto r = analysis::analyze(analysis::load_study(study.string(), {}), "test");
+  int notes = 0;
+  for (const auto& e : r.diagnostics.exclusions) {
+    if (e.code != "time-unit-ms-suspected") continue;
+    ++notes;
+    EXPECT_EQ(e.stage, "scoring");
+    EXPECT_NE(e.reason.find("--time-unit ms"), std::string::npos) << e.reason;
+  }
+  EXPECT_EQ(notes, 1) << "listed once, not once per source";
+  fs::remove_all(study);
+}
+
+TEST(Analyze, TwoConditionsAndALogWithoutTheConditionColumnIsRefused) {
+  const fs::path study = small_study("nocond", 1, false);
+  auto s = analysis::AnalysisSettings{};
+  s.compare = "adaptive,random";
+  const auto loaded = analysis::load_study(study.string(), s);
+  EXPECT_EQ(loaded.scoring.reading.expected_conditions,
+            (std::vector<std::string>{"adaptive", "random"}));
+  try {
+    analysis::analyze(loaded, "test");
+    ADD_FAILURE() << "pooled instead of refused";
+  } catch (const InvalidData& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("s.csv:1: no condition column"), std::string::npos) << m;
+    EXPECT_NE(m.find("--map condition="), std::string::npos) << m;
+  }
+  // Without the comparison the same log is one condition, as before.
+  EXPECT_NO_THROW(analysis::analyze(analysis::load_study(study.string(), {}), "test"));
+  fs::remove_all(study);
+}
+
+TEST(Analyze, ReadingNotesNameTheFileRelativeToTheStudy) {
+  // Other labs' exports (tests/data/labs): a European CSV and fixed-length NaN padding. The study
+  // is named by an absolute path; the notes name the log relative to it.
+  for (const std::string name : {"european.csv", "fixed_length_nan.csv"}) {
+    const fs::path study = fs::temp_directory_path() / ("feint-test-notes-" + name);
+    fs::remove_all(study);
+    fs::create_directories(study / "logs");
+    fs::copy_file(std::string(FEINT_SOURCE_DIR) + "/tests/data/labs/" + name, study / "logs" / name);
+    analysis::AnalysisSettings s;
+    s.scoring.norm = "raw";  // the padded file has no pad_speed column
+    const auto r = analysis::analyze(analysis::load_study(study.string(), s), "test");
+    const std::string code = name == "european.csv" ? "decimal-comma" : "nan-padding";
+    int notes = 0;
+    for (const auto& e : r.diagnostics.exclusions) {
+      if (e.code != code) continue;
+      ++notes;
+      EXPECT_EQ(e.reason.find(study.string()), std::string::npos) << e.reason;
+      if (code == "decimal-comma") {
+        EXPECT_EQ(e.reason.rfind("logs/european.csv:2: numbers read with a decimal comma", 0), 0u)
+            << e.reason;
+      } else {
+        EXPECT_NE(e.reason.find("dropped"), std::string::npos) << e.reason;
+      }
+    }
+    EXPECT_EQ(notes, 1) << name;
+    fs::remove_all(study);
+  }
+}

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "cli/cli_helpers.hpp"
 
@@ -29,7 +30,132 @@ std::string shell_output(const std::string& command) {
   return out;
 }
 
+// A small study in `dir`: P1, P2 (adaptive) and P3, P4 (random), two iterations of a 0.5 s trial
+// (times multiplied by `scale`: 1000 = milliseconds), with or without the condition column, and a
+// questionnaire naming `respondents` (none when empty).
+fs::path small_study(const fs::path& dir, double scale, bool with_condition,
+                     const std::vector<std::string>& respondents = {}) {
+  const fs::path study = dir / "study";
+  fs::create_directories(study / "logs");
+  std::string log = std::string("participant,") + (with_condition ? "condition," : "") +
+                    "iteration,strategy,target,t,pad,pad_speed\n";
+  const char* ids[] = {"P1", "P2", "P3", "P4"};
+  for (int p = 0; p < 4; ++p) {
+    for (int it = 1; it <= 2; ++it) {
+      for (int k = 0; k <= 5; ++k) {
+        log += std::string(ids[p]) + ',' + (with_condition ? (p < 2 ? "adaptive," : "random,") : "") +
+               std::to_string(it) + ',' + (it == 1 ? "L" : "R") + ",right," +
+               std::to_string(k * 0.1 * scale) + ',' +
+               std::to_string(0.5 + 0.05 * k * (p + 1) / 4.0 + 0.01 * it) + ",0.5\n";
+      }
+    }
+  }
+  feint::test::write_text(study / "logs" / "lab.csv", log);
+  if (!respondents.empty()) {
+    std::string q = "participant,condition,trust\n";
+    for (std::size_t i = 0; i < respondents.size(); ++i) {
+      q += respondents[i] + (i % 2 ? ",random," : ",adaptive,") + std::to_string(3 + i % 3) + "\n";
+    }
+    feint::test::write_text(study / "questionnaire.csv", q);
+  }
+  return study;
+}
+
 }  // namespace
+
+TEST(AnalyzePipeline, EveryFigureInEveryFormatWithAltTextFromItsData) {
+  TempDir dir;
+  const auto out = dir / "out";
+  const auto r = run_feint("analyze " + shell_quote(kDemo) + " -o " + shell_quote(out.string()) +
+                           " --figure-formats pdf,svg,png --formats csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string html = read_text(out / "report.html");
+  for (const std::string name :
+       {"error", "confusion", "participants-error", "model-error", "model-confusion",
+        "exposure-error", "exposure-confusion", "strategies", "traces", "likert", "likert-means"}) {
+    for (const std::string file : {"-1col.pdf", "-1col.svg", "-1col.png", "-2col.pdf",
+                                   "-2col.svg", "-2col.png"}) {
+      EXPECT_GT(fs::file_size(out / "figures" / (name + file)), 500u) << name << file;
+    }
+    EXPECT_NE(html.find("<figure id=\"fig-" + name + "\">"), std::string::npos) << name;
+  }
+  // The alt text is the plot module's sentence from the data (numbers of this study), not a
+  // generic description; the captions name what the new figures show.
+  EXPECT_NE(html.find("The mixed model&#39;s fitted error per iteration (linear trend over the "
+                      "iterations, random intercept) with its 95% band for adaptive and random"),
+            std::string::npos);
+  EXPECT_NE(html.find("Mean error against the number of times the participant had seen the "
+                      "strategy, one panel per strategy"),
+            std::string::npos);
+  EXPECT_NE(html.find("Adaptive averages 0.48"), std::string::npos);
+  EXPECT_EQ(html.find("Line chart: mean error per iteration"), std::string::npos)
+      << "no hand-written generic alt text";
+  const std::string md = read_text(out / "report.md");
+  EXPECT_NE(md.find("Mixed model's fitted trend of error.** ![The mixed model's fitted error"),
+            std::string::npos);
+}
+
+TEST(AnalyzePipeline, QuestionnaireIdsMissingOnEitherSideAreListed) {
+  TempDir dir;
+  const auto study = small_study(dir.path(), 1, true, {"P1", "P2", "P3", "P9"});
+  const auto r = run_feint("analyze " + shell_quote(study.string()) + " -o " +
+                           shell_quote((dir / "out").string()) + " --no-figures");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("feint: warning: participants: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("P4"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("P9"), std::string::npos) << r.err;
+  const std::string md = read_text(dir / "out" / "report.md");
+  EXPECT_NE(md.find("- participants 1 participant: in the logs but not in the questionnaire (P4)"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("- participants 1 participant: in the questionnaire but not in the logs (P9)"),
+            std::string::npos);
+  EXPECT_NE(md.find("Participant ids of the logs and the questionnaire: 3 in both, 1 only in the "
+                    "logs, 1 only in the questionnaire."),
+            std::string::npos);
+  const std::string json = read_text(dir / "out" / "results.json");
+  EXPECT_NE(json.find("\"examples\": [\"P9\"]"), std::string::npos);
+  EXPECT_NE(json.find("\"participants_compared\": {\"in_both\": 3, \"only_in_logs\": [\"P4\"], "
+                      "\"only_in_questionnaire\": [\"P9\"]}"),
+            std::string::npos)
+      << json;
+}
+
+TEST(AnalyzePipeline, MillisecondTimesAreWarnedInTheReport) {
+  TempDir dir;
+  const auto study = small_study(dir.path(), 1000, true);
+  const auto r = run_feint("analyze " + shell_quote(study.string()) + " -o " +
+                           shell_quote((dir / "out").string()) + " --no-figures");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string md = read_text(dir / "out" / "report.md");
+  const auto at = md.find("- scoring: the median trial lasts 500 s");
+  ASSERT_NE(at, std::string::npos) << md;
+  EXPECT_NE(md.find("give --time-unit ms", at), std::string::npos);
+  EXPECT_NE(md.find("[time-unit-ms-suspected]", at), std::string::npos);
+  EXPECT_EQ(md.find("the median trial lasts", at + 12), std::string::npos) << "listed once";
+  EXPECT_NE(md.find("500 s): implausible for seconds; if the logs' times are in milliseconds, give "
+                    "--time-unit ms (every confusion and duration would otherwise be off by a "
+                    "factor of 1000) (column 't') [time-unit-ms-suspected]"),
+            std::string::npos);
+  // No scratch path of the pipeline reaches the report (the ANOVA's note names scores.csv).
+  EXPECT_EQ(md.find("feint-analyze-"), std::string::npos);
+  EXPECT_NE(read_text(dir / "out" / "report.html").find("the median trial lasts 500 s"),
+            std::string::npos);
+}
+
+TEST(AnalyzePipeline, TwoConditionsRefuseALogWithoutTheConditionColumn) {
+  TempDir dir;
+  const auto study = small_study(dir.path(), 1, false);
+  const auto r = run_feint("analyze " + shell_quote(study.string()) + " -o " +
+                           shell_quote((dir / "out").string()) +
+                           " --no-figures --compare adaptive,random");
+  EXPECT_EQ(r.exit_code, 65) << r.err;
+  EXPECT_NE(r.err.find("lab.csv:1: no condition column 'condition', but the study has 2 "
+                       "conditions (adaptive, random)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out" / "report.html"));
+}
 
 TEST(AnalyzePipeline, PrintedSettingsReproduceTheRunByteForByte) {
   TempDir dir;
@@ -114,4 +240,20 @@ TEST(PlotCli, HelpStatesTrueDefaultsAndApaIsRefused) {
   EXPECT_EQ(apa.exit_code, 64) << apa.err;
   EXPECT_NE(apa.err.find("--apa: a figure has no APA strings"), std::string::npos) << apa.err;
   EXPECT_FALSE(fs::exists("/tmp/never-written.svg"));
+}
+
+TEST(PlotCli, CompareRefusesAScoresFileWithoutTheConditionColumn) {
+  TempDir dir;
+  feint::test::write_text(dir / "scores.csv",
+                          "participant,iteration,error,confusion\nP1,1,0.4,0.5\nP2,1,0.5,0.6\n"
+                          "P1,2,0.3,0.5\nP2,2,0.6,0.7\n");
+  const auto r = run_feint("plot " + shell_quote((dir / "scores.csv").string()) +
+                           " --figure error --compare a,b -o " +
+                           shell_quote((dir / "e.svg").string()));
+  EXPECT_EQ(r.exit_code, 65) << r.err;
+  EXPECT_NE(r.err.find("scores.csv:1: no condition column 'condition', but the study has 2 "
+                       "conditions (a, b)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir / "e.svg"));
 }

@@ -55,7 +55,8 @@ bool have(const char* tool) {
 TEST(AnalyzeFigures, EveryFigureInPdfAndSvgAtBothWidths) {
   const auto names = files_in(demo_output() / "figures");
   for (const char* fig : {"error", "confusion", "participants-error", "participants-confusion",
-                          "strategies", "traces", "likert", "likert-means"}) {
+                          "strategies", "traces", "likert", "likert-means", "model-error",
+                          "model-confusion", "exposure-error", "exposure-confusion"}) {
     for (const char* suffix : {"-1col.pdf", "-1col.svg", "-2col.pdf", "-2col.svg"}) {
       const std::string name = std::string(fig) + suffix;
       ASSERT_TRUE(names.count(name)) << name;
@@ -67,7 +68,7 @@ TEST(AnalyzeFigures, EveryFigureInPdfAndSvgAtBothWidths) {
       }
     }
   }
-  EXPECT_EQ(names.size(), 8u * 4u);
+  EXPECT_EQ(names.size(), 12u * 4u);
 }
 
 TEST(AnalyzeFigures, SvgFilesParseAsXml) {
@@ -87,7 +88,7 @@ TEST(AnalyzeFigures, ReportIsOneSelfContainedPageWithEveryFigureAndTable) {
   for (std::size_t p = html.find("<figure"); p != std::string::npos;
        p = html.find("<figure", p + 1))
     ++figures;
-  EXPECT_EQ(figures, 8u);
+  EXPECT_EQ(figures, 12u);
   for (const char* part :
        {"<svg", "Table 1 per condition", "Comparison", "Questionnaire", "Accounting",
         "Rows read</dt><dd>219587", "Welch two-sample", "Wilcoxon", "feint analyze",

@@ -1,9 +1,12 @@
 // The study report's words and links (plurals, CSV downloads, relative paths, alt text).
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <map>
 #include <string>
 
 #include "feint/analysis/analyze.hpp"
+#include "feint/plot/figures.hpp"
 #include "feint/publish/study_report.hpp"
 
 using namespace feint;
@@ -40,4 +43,35 @@ TEST(StudyReport, TablesDownloadAsCsvAndFiguresHaveAltText) {
             std::string::npos);
   const std::string md = publish::study_report_markdown(r, {f}, c);
   EXPECT_NE(md.find("![Line chart of the mean error.](figures/error-2col.svg)"), std::string::npos);
+}
+
+TEST(StudyReport, TheNewFiguresAreDrawnWithTheAltTextOfTheirData) {
+  analysis::AnalysisSettings s;
+  s.compare = "adaptive,random";
+  const auto study = analysis::load_study(std::string(FEINT_SOURCE_DIR) + "/data/demo", s);
+  const auto r = analysis::analyze(study, "test");
+  const auto dir = std::filesystem::temp_directory_path() / "feint-test-publish-figures";
+  std::filesystem::remove_all(dir);
+  const publish::DrawnFigures drawn = publish::draw_figures(r, {"svg"}, dir.string());
+  std::map<std::string, const publish::RenderedFigure*> by_name;
+  for (const auto& f : drawn.figures) by_name[f.name] = &f;
+  ASSERT_TRUE(by_name.count("exposure-error"));
+  ASSERT_TRUE(by_name.count("model-confusion"));
+  ASSERT_TRUE(by_name.count("error"));
+  // The alt text is the plot module's, from the same data the figure is drawn from.
+  EXPECT_EQ(by_name["exposure-error"]->alt, plot::alt_text(r.figures.exposure[0]));
+  const plot::ModelFitFigureData md{
+      plot::metric_figure_data(r.table1, &*r.comparison, "confusion"),
+      r.figures.model_trends[1].trend, r.figures.model_trends[1].model};
+  EXPECT_EQ(by_name["model-confusion"]->alt, plot::alt_text(md));
+  EXPECT_EQ(by_name["error"]->alt,
+            plot::alt_text(plot::metric_figure_data(r.table1, &*r.comparison, "error")));
+  EXPECT_EQ(by_name["traces"]->alt,
+            plot::alt_text(plot::TracesFigureData{r.figures.traces, 0.95}));
+  for (const auto& f : drawn.figures) {
+    EXPECT_FALSE(f.alt.empty()) << f.name;
+    EXPECT_NE(f.svg.find("<svg"), std::string::npos) << f.name;
+    for (const auto& file : f.files) EXPECT_TRUE(std::filesystem::exists(dir / file)) << file;
+  }
+  std::filesystem::remove_all(dir);
 }

@@ -11,8 +11,12 @@
 
 #include "feint/analysis/figure_data.hpp"
 #include "feint/analysis/findings.hpp"
+#include "feint/io/diagnostic.hpp"
+#include "feint/io/participants.hpp"
 #include "feint/io/scores.hpp"
+#include "feint/metrics/exposure_trend.hpp"
 #include "feint/metrics/score.hpp"
+#include "feint/models/fitted_trend.hpp"
 #include "feint/report/anova_render.hpp"
 #include "feint/report/likert.hpp"
 #include "feint/report/model_render.hpp"
@@ -22,11 +26,14 @@ namespace feint::analysis {
 
 /// One reason trials, participants or questionnaire answers were left out or warned about.
 struct Exclusion {
-  std::string stage;   ///< "scoring", "questionnaire", "anova", "model", "figures"
+  std::string stage;   ///< "scoring", "participants", "questionnaire", "anova", "model", "figures"
   std::string what;    ///< "trial", "participant", "respondent", "analysis"
   std::size_t count = 0;
   std::string reason;  ///< e.g. "trial durations look like milliseconds"
   std::vector<std::string> examples;  ///< up to 5 items (file:line, respondent id)
+  /// The reader's stable code for a scoring warning (io::Diagnostic::code, e.g.
+  /// "time-unit-ms-suspected", "nan-padding", "iteration-base-0"); "" otherwise.
+  std::string code;
 };
 
 /// What was read, left out and warned about, stage by stage (issue 15 item 5).
@@ -38,6 +45,8 @@ struct Diagnostics {
   std::size_t respondents = 0;         ///< respondents analysed
   std::vector<std::string> warnings;   ///< every warning, as also printed on standard error
   std::vector<Exclusion> exclusions;   ///< what was left out and why
+  /// The logs' participants against the questionnaire's (empty sides when there is none).
+  std::optional<io::ParticipantComparison> participants_compared;
 };
 
 /// The data of every figure (the plot module draws them; nothing here is read from a file then).
@@ -45,6 +54,17 @@ struct FigureData {
   std::vector<TrialLabel> labels;  ///< per scored trial; empty when the logs have no strategy
   std::string labels_note;         ///< why there is no strategy figure ("" when there is)
   std::vector<TraceCurve> traces;  ///< mean pad trace per strategy, version and exposure
+  /// Condition x exposure per strategy, one per metric (metrics::exposure_trend of the scores and
+  /// the labels); empty when the logs have no strategy.
+  std::vector<metrics::ExposureTrend> exposure;
+  /// The mixed model's fitted trend (the linear-trend model, models::fitted_trend at the tables'
+  /// confidence level), one per metric; empty without the model.
+  struct ModelTrend {
+    std::string metric;
+    std::string model;  ///< how the model reads, e.g. "linear trend, random intercept"
+    std::vector<models::FittedTrend> trend;
+  };
+  std::vector<ModelTrend> model_trends;
 };
 
 struct StudyResults {
