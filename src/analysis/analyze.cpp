@@ -1,5 +1,6 @@
 // The study pipeline: Study -> StudyResults (see feint/analysis/analyze.hpp).
 #include "feint/analysis/analyze.hpp"
+#include "feint/analysis/study_findings.hpp"
 
 #include <fmt/format.h>
 #include <stdlib.h>
@@ -209,6 +210,7 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
     if (gone.count > 0) d.exclusions.push_back(std::move(gone));
     for (const auto& c : r.scores.conditions()) d.participants_per_condition.emplace_back(c, per[c].size());
   }
+  t.equivalence_by_evidence = true;  // the report's "≈" needs BF01 >= 3 or TOST (issue 15)
   r.table1 = report::build_table1(r.scores, t);
   if (study.compare) {
     report::Table1Options c = t;
@@ -331,6 +333,8 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
     }
   }
   r.scores.path = "scores.csv";
+  // 6. The findings (docs/findings.md): what the study shows, and how strongly.
+  r.findings = study_findings(r, t.metrics);
   return r;
 }
 

@@ -14,6 +14,7 @@
 #include "commands.hpp"
 #include "feint/analysis/analyze.hpp"
 #include "feint/analysis/command_line.hpp"
+#include "feint/analysis/findings.hpp"
 #include "feint/error.hpp"
 #include "feint/publish/study_report.hpp"
 #include "options.hpp"
@@ -43,6 +44,8 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
   for (const auto& w : results.diagnostics.warnings) fmt::print(stderr, "feint: warning: {}\n", w);
   const publish::WrittenStudy written =
       publish::write_study(study, results, out, analysis::command_line());
+  // What the study shows (docs/findings.md), also in OUT/findings.json and first in the report.
+  if (!results.findings.empty()) fmt::print("{}", analysis::findings_text(results.findings));
   fmt::print(
       stderr, "{}",
       analysis::run_summary(study, results, written.files.size(), written.folder, a.out.empty()));

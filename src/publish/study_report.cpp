@@ -179,13 +179,8 @@ std::string study_report_html(const analysis::StudyResults& r,
   page.title = title_of(r);
   page.subtitle = subtitle_of(r);
   if (!r.findings.empty()) {
-    std::string html = "<ul class=\"findings\">\n";
-    for (const auto& f : r.findings) {
-      html += fmt::format("<li><strong>{}</strong> {} <a href=\"#{}\">({})</a></li>\n",
-                          html_escape(f.question), html_escape(f.sentence), html_escape(f.source),
-                          html_escape(f.evidence));
-    }
-    page.sections.push_back({"findings", "Findings", html + "</ul>\n"});
+    // the findings engine's own fragment (docs/findings.md): strength, sentence, link, warnings
+    page.sections.push_back({"findings", "Findings", analysis::findings_html(r.findings)});
   }
   page.sections.push_back({"design", "Design", facts(design_rows(r, c))});
   {
@@ -270,10 +265,7 @@ std::string study_report_markdown(const analysis::StudyResults& r,
   std::string o = fmt::format("# {}\n\n{}\n\n", title_of(r), subtitle_of(r));
   if (!r.findings.empty()) {
     o += "## Findings\n\n";
-    for (const auto& f : r.findings) {
-      o += fmt::format("- **{}** {} ({}; see [{}](#{}))\n", f.question, f.sentence, f.evidence,
-                       f.source, f.source);
-    }
+    o += analysis::findings_markdown(r.findings);
     o += "\n";
   }
   o += "## Design\n\n";

@@ -83,6 +83,7 @@ WrittenStudy write_study(const analysis::Study& study, const analysis::StudyResu
   }
   write("settings.toml", r.settings_toml);
   write("results.json", study_results_json(r));
+  write("findings.json", analysis::findings_json(r.findings));
 
   DrawnFigures drawn;
   if (!a.no_figures) drawn = draw_figures(r, a.figure_formats, out.staging().string());

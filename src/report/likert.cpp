@@ -15,6 +15,8 @@
 #include "feint/stats/descriptive.hpp"
 #include "feint/stats/rank_tests.hpp"
 #include "feint/stats/reliability.hpp"
+#include "feint/stats/bayes_factor.hpp"
+#include "feint/stats/effect_size.hpp"
 #include "feint/stats/ttest.hpp"
 
 namespace feint::report {
@@ -289,6 +291,13 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
         primary.result = stats::wilcoxon_signed_rank(x, a.reference, settings.test);
         paper.result = stats::t_test_one_sample(x, a.reference, settings.test);
       }
+      // effect-size intervals (r: n = non-zero differences for the signed-rank test) and the JZS
+      // Bayes factor of the t test
+      std::size_t nonzero = 0;
+      for (double v : x) nonzero += !std::isnan(v) && v != a.reference;
+      stats::add_effect_size_intervals(primary.result, a.two_sample ? 0 : nonzero);
+      stats::add_effect_size_intervals(paper.result);
+      stats::add_bayes_factor(paper.result);
       if (comp) primary.cronbach_alpha = paper.cronbach_alpha = alpha_of[k];
       a.rows.push_back(std::move(primary));
       a.rows.push_back(std::move(paper));

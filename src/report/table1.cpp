@@ -9,6 +9,8 @@
 
 #include "feint/error.hpp"
 #include "feint/io/number.hpp"
+#include "feint/stats/bayes_factor.hpp"
+#include "feint/stats/effect_size.hpp"
 #include "feint/stats/ttest.hpp"
 
 namespace feint::report {
@@ -71,10 +73,19 @@ std::string p_adjust_name(stats::PAdjustMethod m) {
   return "no adjustment";
 }
 
+// BF01 >= 3: moderate evidence for no difference (docs/findings.md).
+constexpr double kBf01Equivalence = 3.0;
+
 std::string label_for(const Table1Options& o, const stats::TestResult& diff,
                       const stats::TestResult* tost) {
-  return two_sample(o) ? two_sample_label(diff, o.alpha, tost)
-                       : one_sample_label(diff, o.alpha, tost);
+  std::string label = two_sample(o) ? two_sample_label(diff, o.alpha, tost)
+                                    : one_sample_label(diff, o.alpha, tost);
+  if (!o.equivalence_by_evidence || label.find(kApprox) == std::string::npos) return label;
+  // "≈" from a non-significant p alone is not kept: it needs BF01 >= 3 or TOST.
+  const bool by_bf = diff.log_bf10 && -*diff.log_bf10 >= std::log(kBf01Equivalence);
+  const auto tp = tost ? decision_p(*tost) : std::nullopt;
+  const bool by_tost = tost && tost->computed && tp && *tp < o.alpha;
+  return by_bf || by_tost ? label : std::string(kInconclusive);
 }
 
 // p.adjust within a family of row indices (one metric column of one block).
@@ -280,6 +291,8 @@ Table1 build_table1(const io::ScoresTable& scores, const Table1Options& options)
           t.rows.push_back(std::move(row));
           return t.rows.size() - 1;
         };
+        stats::add_effect_size_intervals(diff);
+        stats::add_bayes_factor(diff);
         blk.cells[ii][m].difference_row = add_row(std::move(diff));
         family.push_back(blk.cells[ii][m].difference_row);
         if (o.equivalence) {
@@ -373,7 +386,18 @@ std::vector<std::string> table1_note(const Table1& t) {
   const std::string what = two ? "the mean of A is" : "the mean is";
   const std::string than = two ? "that of B" : "R";
   const std::string p_used = o.p_adjust == stats::PAdjustMethod::none ? "p" : "adjusted p";
-  if (!o.equivalence) {
+  if (o.equivalence_by_evidence) {
+    notes.push_back(fmt::format(
+        "{0}>{1} / {0}<{1}: {2} significantly greater / smaller than {3} ({4} < {5}). "
+        "{0}\u2248{1}: evidence for no difference, from the JZS Bayes factor BF01 \u2265 {6:g} "
+        "(bf01 in the CSV and JSON tables){7}; a non-significant p alone is not evidence of equivalence. "
+        "inconclusive: neither significantly different nor shown to be equivalent.",
+        lhs, rhs, what, than, p_used, io::format_double(o.alpha), kBf01Equivalence,
+        o.equivalence ? fmt::format(" or from TOST within \u00b1{} (two one-sided t-tests, {} < {}, "
+                                    "column \"p TOST\")",
+                                    io::format_double(*o.equivalence), p_used, io::format_double(o.alpha))
+                      : std::string()));
+  } else if (!o.equivalence) {
     notes.push_back(fmt::format(
         "{0}>{1} / {0}<{1}: {2} significantly greater / smaller than {3} ({4} < {5}). "
         "{0}\u2248{1}: not significantly different; this is not evidence that they are equal.",

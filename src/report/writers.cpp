@@ -122,6 +122,17 @@ std::string apa_r(double r) {
 
 std::string apa_two_dec(double x) { return drop_negative_zero(fmt::format("{:.2f}", x)); }
 
+std::string bayes_factor_text(double log_bf10) {
+  // The direction with BF >= 1 is printed (BF01 = 4.2 reads better than BF10 = 0.24).
+  const bool for_h1 = log_bf10 >= 0;
+  const double l = std::fabs(log_bf10);
+  const char* name = for_h1 ? "BF\u2081\u2080" : "BF\u2080\u2081";
+  if (l < std::log(1000.0)) return fmt::format("{} = {:.2f}", name, std::exp(l));
+  const double log10v = l / std::log(10.0);
+  if (log10v > 300) return fmt::format("{} > 1e300", name);
+  return fmt::format("{} = {:.1e}", name, std::exp(l));
+}
+
 }  // namespace
 
 std::string apa_string(const stats::TestResult& r) {
@@ -163,15 +174,33 @@ std::string apa_string(const stats::TestResult& r) {
     std::string adj = apa_p(*r.p_adjusted);  // "p = .021" -> "adjusted p = .021"
     out += ", adjusted " + adj;
   }
+  // An interval is printed only when both bounds are finite (a one-sided interval has one
+  // infinite bound: "[0.12, Inf]" would read as a typo in a paper).
+  auto ci = [&](std::optional<double> lo, std::optional<double> hi, auto fmt_one) {
+    if (!lo || !hi || !std::isfinite(*lo) || !std::isfinite(*hi)) return std::string();
+    return " [" + fmt_one(*lo) + ", " + fmt_one(*hi) + "]";
+  };
   if (rank) {
-    if (r.rank_biserial) out += ", r = " + apa_r(*r.rank_biserial);
+    if (r.rank_biserial) {
+      out += ", r = " + apa_r(*r.rank_biserial) +
+             ci(r.rank_biserial_low, r.rank_biserial_high, [](double v) { return apa_r(v); });
+    }
   } else if (f_test) {
-    if (r.r_squared) out += ", \u03b7\u00b2 = " + apa_r(*r.r_squared);  // eta squared = R^2
+    if (r.r_squared) {
+      out += ", \u03b7\u00b2 = " + apa_r(*r.r_squared);  // eta squared = R^2
+      out += ci(r.eta_squared_low, r.eta_squared_high, [](double v) { return apa_r(v); });
+    }
   } else if (!f_test && !chi2 && t != "tost") {
-    if (r.cohen_d) out += ", d = " + apa_two_dec(*r.cohen_d);
+    if (r.cohen_d) {
+      out += ", d = " + apa_two_dec(*r.cohen_d) +
+             ci(r.cohen_d_low, r.cohen_d_high, [](double v) { return apa_two_dec(v); });
+    }
+    if (r.log_bf10) out += ", " + bayes_factor_text(*r.log_bf10);
   }
   return out;
 }
+
+std::string apa_bayes_factor(double log_bf10) { return bayes_factor_text(log_bf10); }
 
 // ---------------------------------------------------------------------------------------------
 // Labels
@@ -249,6 +278,14 @@ Cell tidy_cell(const TidyRow& row, std::string_view c) {
   if (c == "p_adjusted") return Cell::num(r.p_adjusted);
   if (c == "cohen_d") return Cell::num(r.cohen_d);
   if (c == "hedges_g") return Cell::num(r.hedges_g);
+  if (c == "cohen_d_low") return Cell::num(r.cohen_d_low);
+  if (c == "cohen_d_high") return Cell::num(r.cohen_d_high);
+  if (c == "hedges_g_low") return Cell::num(r.hedges_g_low);
+  if (c == "hedges_g_high") return Cell::num(r.hedges_g_high);
+  if (c == "bf10") return Cell::num(r.bf10);
+  if (c == "bf01") return Cell::num(r.bf01);
+  if (c == "rank_biserial_low") return Cell::num(r.rank_biserial_low);
+  if (c == "rank_biserial_high") return Cell::num(r.rank_biserial_high);
   if (c == "label") return text_or_none(row.label);
   if (c == "note") return text_or_none(r.note);
   if (c == "median1") return Cell::num(r.median1);
@@ -354,6 +391,8 @@ std::string latex_escape(std::string_view text) {
     if (starts("\u03c7")) { out += "\\ensuremath{\\chi}"; i += 1; continue; }
     if (starts("\u03b7")) { out += "\\ensuremath{\\eta}"; i += 1; continue; }
     if (starts("\u00b2")) { out += "\\textsuperscript{2}"; i += 1; continue; }
+    if (starts("\u2081\u2080")) { out += "\\textsubscript{10}"; i += 5; continue; }  // BF10
+    if (starts("\u2080\u2081")) { out += "\\textsubscript{01}"; i += 5; continue; }  // BF01
     if (starts("\u2013")) { out += "--"; i += 2; continue; }
     if (starts("\u2014")) { out += "---"; i += 2; continue; }
     if (starts("\u2265")) { out += "\\ensuremath{\\geq}"; i += 2; continue; }

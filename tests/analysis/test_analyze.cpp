@@ -73,7 +73,18 @@ TEST(Analyze, TheDemoGivesEveryPartAsPlainData) {
   EXPECT_EQ(r.figures.labels.size(), 1200u);
   EXPECT_FALSE(r.figures.traces.empty());
   for (const auto& c : r.figures.traces) EXPECT_EQ(c.mean.size(), analysis::kTracePoints);
-  EXPECT_TRUE(r.findings.empty());  // the findings engine fills these
+  // The findings engine: H1 per metric (the comparison's per-iteration contrasts), the demo's
+  // confusion reference 0.95 above every score, H2 per item against the reference and between.
+  ASSERT_FALSE(r.findings.empty());
+  EXPECT_EQ(r.findings.front().id, "H1-iterations-error");
+  EXPECT_NE(r.findings.front().sentence.find("Holm-corrected over 20 tests"), std::string::npos);
+  bool reference_warning = false, h2 = false;
+  for (const auto& f : r.findings) {
+    reference_warning |= f.id == "reference-confusion" && !f.warnings.empty();
+    h2 |= f.hypothesis == "H2" && f.sentence.find("BF") != std::string::npos;
+  }
+  EXPECT_TRUE(reference_warning);
+  EXPECT_TRUE(h2);
   EXPECT_EQ(r.settings_toml, analysis::settings_toml(study.settings));
 }
 

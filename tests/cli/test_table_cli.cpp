@@ -91,7 +91,8 @@ TEST(TableCli, TidyCsvHasTheFixedColumnsAndFullPrecision) {
   const std::vector<std::string> expected = {
       "metric", "iteration", "test", "method", "alternative", "mu", "group1", "group2", "n1",
       "n2", "mean1", "mean2", "sd1", "sd2", "estimate", "conf_low", "conf_high", "statistic",
-      "df", "p_value", "p_adjusted", "cohen_d", "hedges_g", "label", "note"};
+      "df", "p_value", "p_adjusted", "cohen_d", "hedges_g", "cohen_d_low", "cohen_d_high",
+      "hedges_g_low", "hedges_g_high", "bf10", "bf01", "label", "note"};
   EXPECT_EQ(csv.header, expected);
   ASSERT_EQ(csv.rows.size(), 20u);  // 2 conditions x 2 metrics x 5 iterations
   // R: t.test(error[adaptive, iteration 2], mu = 0.5)$p.value = 1.5223063212763852e-10.

@@ -167,8 +167,8 @@ TEST(LikertRender, TextTableShowsWilcoxonAsPrimaryAndTheTTestAsThePapers) {
   EXPECT_NE(text.find("Reverse-coded before analysis (x -> 8 - x): trust."), std::string::npos);
   EXPECT_NE(text.find("the Wilcoxon signed-rank test (R's wilcox.test(x, mu = R)) is the primary"),
             std::string::npos);
-  EXPECT_NE(text.find("APA, entertainment (adaptive): V = 15, p = .057, r = 1.00; t(4) = 5.88, "
-                      "p = .004, d = 2.63"),
+  EXPECT_NE(text.find("APA, entertainment (adaptive): V = 15, p = .057, r = 1.00 [1.00, 1.00]; "
+                      "t(4) = 5.88, p = .004, d = 2.63 [0.66, 4.57], BF\u2081\u2080 = 13.26"),
             std::string::npos)
       << text;
   const auto md = render_likert(a, OutputFormat::markdown);

@@ -275,7 +275,7 @@ TEST(Table1Render, TidyCsvHasOneRowPerTestAndTheFixedColumns) {
     if (lines == 0 && csv[i] == ',') ++commas_first;
   }
   EXPECT_EQ(lines, 1u + 10u);
-  EXPECT_EQ(commas_first, 24u);
+  EXPECT_EQ(commas_first, 30u);
   EXPECT_NE(csv.find("confusion,3,one_sample_t,One Sample t-test,two.sided,0.95,adaptive,,8,"),
             std::string::npos);
   const std::string json = render_table1(t, OutputFormat::json);

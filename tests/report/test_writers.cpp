@@ -234,8 +234,8 @@ TEST(TidyCsv, HeaderIsExactlyTheTableColumns) {
   const std::string csv = tidy_csv({}, cols);
   EXPECT_EQ(csv,
             "metric,iteration,test,method,alternative,mu,group1,group2,n1,n2,mean1,mean2,sd1,sd2,"
-            "estimate,conf_low,conf_high,statistic,df,p_value,p_adjusted,cohen_d,hedges_g,label,"
-            "note\n");
+            "estimate,conf_low,conf_high,statistic,df,p_value,p_adjusted,cohen_d,hedges_g,"
+            "cohen_d_low,cohen_d_high,hedges_g_low,hedges_g_high,bf10,bf01,label,note\n");
   EXPECT_EQ(table_columns(true).back(), "apa");
   EXPECT_EQ(likert_columns().size(), kTableColumns.size() + kLikertExtraColumns.size());
 }
@@ -258,10 +258,10 @@ TEST(TidyCsv, OneRowPerTestFullPrecisionEmptyWhereNotApplicable) {
   const auto l1 = csv.substr(csv.find('\n') + 1);
   EXPECT_EQ(l1.substr(0, l1.find('\n')),
             "error,1,one_sample_t,One Sample t-test,two.sided,0.5,adaptive,,30,,0.5703,,0.1314,,"
-            "0.5703,0.5212,0.6194,2.9306,29,1.2345678901234567e-200,,0.5349,0.521,M>R,");
+            "0.5703,0.5212,0.6194,2.9306,29,1.2345678901234567e-200,,0.5349,0.521,,,,,,,M>R,");
   const auto l2 = l1.substr(l1.find('\n') + 1);
   EXPECT_EQ(l2,
-            "confusion,2,one_sample_t,One Sample t-test,two.sided,,adaptive,,1,,,,,,,,,,,,,,,"
+            "confusion,2,one_sample_t,One Sample t-test,two.sided,,adaptive,,1,,,,,,,,,,,,,,,,,,,,,"
             "not computable,\"fewer than 2 observations, \"\"n = 1\"\"\"\n");
 }
 
@@ -297,6 +297,7 @@ TEST(TidyCell, LikertColumnsAndUnknownColumn) {
 TEST(LatexEscape, SpecialCharactersAndApprox) {
   EXPECT_EQ(latex_escape("a_b & 50% #1 {x} $"), "a\\_b \\& 50\\% \\#1 \\{x\\} \\$");
   EXPECT_EQ(latex_escape("M\u2248R"), "M\\ensuremath{\\approx}R");
+  EXPECT_EQ(latex_escape("BF\u2081\u2080 = 3.20, BF\u2080\u2081 = 4.00"), "BF\\textsubscript{10} = 3.20, BF\\textsubscript{01} = 4.00");
   EXPECT_EQ(latex_escape("a<b"), "a\\textless{}b");
   EXPECT_EQ(latex_escape("method = \"holm\", \"p adj.\""), "method = ``holm'', ``p adj.''");
   EXPECT_EQ(latex_escape("\u03b7\u00b2"), "\\ensuremath{\\eta}\\textsuperscript{2}");
@@ -361,4 +362,19 @@ TEST(RenderTable, LatexIsABooktabsFragment) {
   EXPECT_LT(s.find("\\midrule"), s.find("\\bottomrule"));
   EXPECT_EQ(s.find("\\hline"), std::string::npos);  // booktabs rules only
   EXPECT_THROW(render_table(t, OutputFormat::csv), std::invalid_argument);
+}
+
+TEST(Apa, EffectSizeIntervalAndBayesFactorWhenPresent) {
+  auto r = one_sample();
+  r.cohen_d_low = 0.147;
+  r.cohen_d_high = 0.914;
+  r.log_bf10 = std::log(6.4321);
+  EXPECT_EQ(apa_string(r), "t(29) = 2.93, p = .007, d = 0.53 [0.15, 0.91], BF\u2081\u2080 = 6.43");
+  r.log_bf10 = std::log(0.25);
+  EXPECT_EQ(apa_string(r), "t(29) = 2.93, p = .007, d = 0.53 [0.15, 0.91], BF\u2080\u2081 = 4.00");
+  // one-sided interval: an infinite bound is not printed
+  r.cohen_d_high = HUGE_VAL;
+  r.log_bf10.reset();
+  EXPECT_EQ(apa_string(r), "t(29) = 2.93, p = .007, d = 0.53");
+  EXPECT_EQ(apa_bayes_factor(std::log(123456.0)), "BF\u2081\u2080 = 1.2e+05");
 }

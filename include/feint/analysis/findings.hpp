@@ -1,20 +1,113 @@
-// feint/analysis/findings.hpp - what the study shows, in sentences (issue 15). This is the slot
-// that StudyResults carries; the findings engine (helper branch issue15-stats) fills and extends it.
+// feint/analysis/findings.hpp - what the study shows, in sentences (issue 15): the findings engine.
+//
+// A Finding answers one question of the study in a sentence with its numbers (APA style), with a
+// strength of evidence taken from the statistics by the wording rules of docs/findings.md, never
+// from a p-value alone. The functions are pure: plain inputs (test results, values per iteration)
+// in, findings out. The fields id/question/sentence/evidence/source are those StudyResults carries
+// (branch issue19-arch); the others add what the rules rest on.
 #pragma once
 
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "feint/models/exposure.hpp"
+#include "feint/stats/htest.hpp"
+
 namespace feint::analysis {
 
-/// One answered question of the study: a sentence with its numbers, the strength of evidence,
-/// and where in the report it comes from.
+/// The strength categories of docs/findings.md.
+enum class Strength {
+  evidence_for_difference,     ///< BF10 >= 3 and the CI excludes the null (after correction)
+  no_evidence_either_way,      ///< neither of the others
+  evidence_for_no_difference,  ///< BF01 >= 3, or TOST equivalent within a stated margin
+  not_computable,              ///< the data cannot answer (one condition, n < 2, no variance, ...)
+};
+/// "evidence for a difference", "no evidence either way", "evidence for no difference", "not computable".
+std::string to_string(Strength strength);
+
+/// Grading by the Bayes factor in the direction of the evidence: moderate 3..10, strong >= 10.
+enum class Grade { none, moderate, strong };
+std::string to_string(Grade grade);  ///< "", "moderate", "strong"
+
+/// One answered question of the study.
 struct Finding {
-  std::string id;        ///< stable key, e.g. "H1-persistence"
+  std::string id;        ///< stable key, e.g. "H1-iteration-contrasts-error"
   std::string question;  ///< the hypothesis in words
   std::string sentence;  ///< the answer, APA numbers included
-  std::string evidence;  ///< "evidence for", "no evidence either way", "evidence for no difference"
+  std::string evidence;  ///< to_string(strength), with the grade: "strong evidence for a difference"
   std::string source;    ///< anchor of the table or figure it comes from, e.g. "table1"
+  std::string hypothesis;  ///< "H1" or "H2"
+  Strength strength = Strength::not_computable;
+  Grade grade = Grade::none;
+  std::string statistics;              ///< the APA statistics it rests on
+  std::vector<std::string> warnings;   ///< e.g. a reference outside the data's range
 };
+
+/// The thresholds of docs/findings.md (settable, stated in the report).
+struct WordingRules {
+  double bf_moderate = 3.0;  ///< BF >= 3: evidence (moderate)
+  double bf_strong = 10.0;   ///< BF >= 10: strong evidence
+  double alpha = 0.05;       ///< level of the interval that must exclude the null
+  std::optional<double> equivalence_margin;  ///< TOST margin, when given
+};
+
+/// The strength of one difference test (a t test with its Bayes factor and, when a margin is given,
+/// the TOST result): evidence for a difference needs BF10 >= bf_moderate AND the (adjusted) p below
+/// alpha (the interval excludes the null); evidence for no difference needs BF01 >= bf_moderate OR
+/// a TOST p below alpha. A test without a Bayes factor can never earn "evidence for no difference"
+/// except by TOST, and earns "evidence for a difference" only from p AND its interval.
+Strength classify(const stats::TestResult& difference, const stats::TestResult* tost,
+                  const WordingRules& rules, Grade* grade = nullptr);
+
+/// A finding from one difference test. `what` names the comparison in words ("mean error in
+/// iteration 3, adaptive vs random"), `lhs`/`rhs` its two sides for the sentence.
+Finding difference_finding(std::string id, std::string hypothesis, std::string question,
+                           std::string what, const stats::TestResult& difference,
+                           const stats::TestResult* tost, std::string source,
+                           const WordingRules& rules = {});
+
+/// A family of tests (e.g. the 20 per-iteration contrasts of one metric) summarised in one headline
+/// finding: the p-values are Holm-adjusted within the family (unless already adjusted), each test
+/// classified, and the sentence counts the iterations with evidence for a difference, for no
+/// difference, and neither. The family's headline strength is "evidence for a difference" when at
+/// least one test earns it after the correction.
+Finding family_finding(std::string id, std::string hypothesis, std::string question,
+                       std::string what, std::vector<stats::TestResult> tests, std::string source,
+                       const WordingRules& rules = {});
+
+/// H1, condition x exposure per strategy: one finding per strategy on the difference of the two
+/// conditions' exposure slopes (Holm-corrected over the strategies; a model contrast has no Bayes
+/// factor, so the rule for tests without one applies), both slopes with their CIs in the sentence.
+/// With one condition only: one "not computable" finding that says so. `metric` (when given) is
+/// named in the ids ("H1-exposure-error-<strategy>") and the sentences.
+std::vector<Finding> exposure_findings(const models::ExposureByCondition& exposure,
+                                       const WordingRules& rules = {},
+                                       std::string source = "model-exposure",
+                                       const std::string& metric = "");
+
+/// Reference plausibility: where the reference lies relative to every value of the metric.
+struct ReferenceCheck {
+  bool outside = false;  ///< above every value, or below every value, in every iteration
+  bool above = false;    ///< the reference is above all values (else below), when outside
+  double min = 0, max = 0;
+  std::string warning;   ///< empty unless outside
+};
+/// `values[i]` = the participants' values of the metric in iteration i (NaN = missing).
+ReferenceCheck check_reference(const std::string& metric, double reference,
+                               std::span<const std::vector<double>> values);
+
+/// Bad input made into findings (never a crash, never a silent gap).
+Finding one_condition_only(std::string id, std::string hypothesis, std::string question,
+                           const std::string& condition, std::string source);
+Finding questionnaire_without_log(std::string id, std::span<const std::string> participants);
+
+/// Renderers: a Markdown list, an HTML fragment (<ul class="findings">), JSON (findings.json: an
+/// array of objects with every field), and plain text for the terminal.
+std::string findings_markdown(std::span<const Finding> findings);
+std::string findings_html(std::span<const Finding> findings);
+std::string findings_json(std::span<const Finding> findings);
+std::string findings_text(std::span<const Finding> findings);
 
 }  // namespace feint::analysis

@@ -18,3 +18,38 @@ std::vector<double> exposure_counts(std::span<const std::string> participant,
                                     std::span<const std::string> strategy);
 
 }  // namespace feint::models
+
+#include "feint/stats/htest.hpp"
+
+namespace feint::models {
+
+/// An exposure slope (change of the metric per earlier exposure to the strategy) of one strategy in
+/// one condition, or the difference of a strategy's slopes between two conditions.
+struct ExposureSlope {
+  std::string strategy;
+  std::string condition;  ///< a condition, or "A-B" for a difference
+  stats::TestResult test;  ///< test "lmm_contrast" (slope) or "slope_difference"
+  double std_error = 0;
+};
+
+/// Condition x exposure per strategy (issue 15): in each condition separately, the mixed model
+/// y ~ strategy * exposure + (1 | participant) (REML; lmer) and each strategy's exposure slope by
+/// lmerTest::contest1D (Satterthwaite df). Conditions are between participants, so the fits are
+/// independent and the difference of a strategy's slopes (first condition minus second) has
+/// SE = sqrt(SE1^2 + SE2^2) and Welch–Satterthwaite df (SE1^2 + SE2^2)^2 / (SE1^4/df1 + SE2^4/df2).
+/// Golden: tests/golden/models/exposure_by_condition_golden.R. `conditions` gives the two
+/// conditions in order (empty: sorted). A condition whose model cannot be fitted gives slopes that
+/// are not computable, with the reason in the note (never a throw).
+struct ExposureByCondition {
+  std::vector<ExposureSlope> slopes;       ///< condition-major, strategies sorted
+  std::vector<ExposureSlope> differences;  ///< one per strategy (empty with fewer than 2 conditions)
+};
+ExposureByCondition exposure_slopes_by_condition(std::span<const std::string> participant,
+                                                 std::span<const std::string> condition,
+                                                 std::span<const std::string> strategy,
+                                                 std::span<const double> exposure,
+                                                 std::span<const double> y,
+                                                 std::vector<std::string> conditions = {},
+                                                 double conf_level = 0.95);
+
+}  // namespace feint::models

@@ -45,6 +45,11 @@ struct Table1Options {
   stats::PAdjustMethod p_adjust = stats::PAdjustMethod::none;
   std::optional<double> equivalence;  ///< TOST margin delta (> 0)
   bool apa = false;                   ///< fill TidyRow::apa
+  /// The study report's labels (issue 15; docs/findings.md): "≈" only from evidence of no
+  /// difference, BF01 >= 3 (the JZS Bayes factor of the difference test) or TOST within the
+  /// margin; a non-significant test without either is "inconclusive". False (`feint table`, the
+  /// paper's Table 1): "≈" for any non-significant test, with a note that it is not equivalence.
+  bool equivalence_by_evidence = false;
 };
 
 /// One cell of the paper-shaped table: a metric at an iteration (in one condition, or A vs B).

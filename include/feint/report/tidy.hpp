@@ -25,13 +25,17 @@ struct TidyRow {
 };
 
 /// Columns of the tidy CSV/JSON of `feint table`, in order.
-inline constexpr std::array<std::string_view, 25> kTableColumns = {
+/// cohen_d_low ... hedges_g_high: the effect sizes' intervals at the test's level (noncentral t);
+/// bf10, bf01: the JZS Bayes factor (Cauchy prior r = 0.707 unless set; feint/stats/bayes_factor.hpp).
+inline constexpr std::array<std::string_view, 31> kTableColumns = {
     "metric", "iteration", "test", "method", "alternative", "mu", "group1", "group2", "n1", "n2",
     "mean1", "mean2", "sd1", "sd2", "estimate", "conf_low", "conf_high", "statistic", "df",
-    "p_value", "p_adjusted", "cohen_d", "hedges_g", "label", "note"};
+    "p_value", "p_adjusted", "cohen_d", "hedges_g", "cohen_d_low", "cohen_d_high",
+    "hedges_g_low", "hedges_g_high", "bf10", "bf01", "label", "note"};
 
 /// Extra columns of `feint likert` (appended after kTableColumns).
-inline constexpr std::array<std::string_view, 7> kLikertExtraColumns = {
-    "median1", "median2", "iqr1", "iqr2", "rank_biserial", "exact", "cronbach_alpha"};
+inline constexpr std::array<std::string_view, 9> kLikertExtraColumns = {
+    "median1", "median2", "iqr1", "iqr2", "rank_biserial", "rank_biserial_low",
+    "rank_biserial_high", "exact", "cronbach_alpha"};
 
 }  // namespace feint::report

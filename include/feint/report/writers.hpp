@@ -114,6 +114,10 @@ using Record = std::vector<Cell>;
 
 /// The value of `column` for a tidy row. Known columns: kTableColumns, kLikertExtraColumns and
 /// "apa". Throws std::invalid_argument for any other name (a programming error).
+/// A Bayes factor for a sentence: "BF₁₀ = 3.21" when log BF10 >= 0, else "BF₀₁ = 4.50" (the
+/// direction of the evidence); values >= 1000 in scientific notation ("BF₁₀ = 2.3e+05").
+std::string apa_bayes_factor(double log_bf10);
+
 Cell tidy_cell(const TidyRow& row, std::string_view column);
 
 /// Tidy records of `rows` restricted to `columns`, in order.

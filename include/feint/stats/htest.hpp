@@ -64,6 +64,17 @@ struct TestResult {
   std::optional<double> rank_biserial;  ///< rank tests only
   std::optional<double> r_squared;      ///< ANOVA: R^2 (eta squared) = SS_between / SS_total
   std::optional<bool> exact;            ///< rank tests: exact distribution (true) or normal approx.
+  /// Confidence intervals of the effect sizes at `conf_level` (feint/stats/effect_size.hpp):
+  /// d and g from the noncentral t, r from Fisher's z, eta squared from the noncentral F.
+  std::optional<double> cohen_d_low, cohen_d_high, hedges_g_low, hedges_g_high;
+  std::optional<double> rank_biserial_low, rank_biserial_high;
+  std::optional<double> eta_squared_low, eta_squared_high;  ///< CI of r_squared (partial eta^2)
+
+  // Bayes factor (t tests; feint/stats/bayes_factor.hpp): JZS, Cauchy prior scale bf_prior_r,
+  // H1 by `alternative` (two-sided: delta != 0; greater: delta > 0; less: delta < 0).
+  std::optional<double> log_bf10;    ///< natural log of BF10 (finite where BF10 overflows)
+  std::optional<double> bf10, bf01;  ///< exp(log_bf10), exp(-log_bf10)
+  std::optional<double> bf_prior_r;
 
   bool computed = true;
   std::string note;  ///< why it could not be computed, or a warning (ties, zeros, ...)

@@ -1,0 +1,47 @@
+// feint/analysis/study_findings.hpp - the findings of a whole study, from its StudyResults.
+#pragma once
+
+#include <vector>
+
+#include "feint/analysis/findings.hpp"
+#include "feint/analysis/results.hpp"
+#include "feint/report/table1.hpp"
+
+namespace feint::analysis {
+
+/// H1: per metric, the Holm-corrected family of per-iteration contrasts between the conditions (the
+/// comparison table), or "only one condition" when there is none to compare; a reference-outside-
+/// the-data warning per metric (check_reference over every participant and iteration).
+/// H2: per Likert item and composite, the t test against the reference and between the conditions.
+/// H1 from the mixed models: mixed_model_findings. H1 condition x exposure per strategy: the trial
+/// labels (figures.labels) joined to the scores, exposure_findings per metric.
+/// Wording rules: docs/findings.md.
+std::vector<Finding> study_findings(const StudyResults& results,
+                                    const std::vector<report::MetricSpec>& metrics,
+                                    const WordingRules& rules = {});
+
+/// H1 from the mixed models, per metric: the condition x iteration interaction and the condition
+/// main effect of `model` (type-III F, Satterthwaite or Kenward-Roger df) and the difference of the
+/// conditions' linear slopes over the iterations in `trend` (the fixed effect
+/// condition<B>:iteration, second level minus the first, with its interval). The three tests of a
+/// metric are one family, Holm-corrected. Neither has a Bayes factor: "evidence for a difference"
+/// needs the corrected p below alpha (and, for the slope, its interval excluding 0); otherwise "no
+/// evidence either way", never "evidence for no difference". Sources: "model" and "model-trend".
+/// Either model may be null (left out of the study).
+std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model,
+                                          const report::ModelAnalysis* trend,
+                                          const WordingRules& rules = {});
+
+/// The input of models::exposure_slopes_by_condition for one metric: each scored trial with a value
+/// of the metric, joined by (participant, iteration) to its label (strategy), with its exposure
+/// count taken over all the participant's labelled trials (models::exposure_counts). Trials
+/// without a label are left out (`unlabelled` counts them).
+struct ExposureInput {
+  std::vector<std::string> participant, condition, strategy;
+  std::vector<double> exposure, y;
+  std::size_t unlabelled = 0;
+};
+ExposureInput exposure_input(const io::ScoresTable& scores, const std::vector<TrialLabel>& labels,
+                             const std::string& metric);
+
+}  // namespace feint::analysis

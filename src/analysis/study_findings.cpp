@@ -1,0 +1,301 @@
+// study_findings(): see feint/analysis/study_findings.hpp.
+#include "feint/analysis/study_findings.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include "feint/models/exposure.hpp"
+#include "feint/stats/p_adjust.hpp"
+
+namespace feint::analysis {
+
+namespace {
+
+const models::AnovaTerm* find_term(const models::MixedModelFit& fit, const std::string& name) {
+  for (const auto& t : fit.anova)
+    if (t.term == name) return &t;
+  return nullptr;
+}
+
+/// An F test as a TestResult for classify(): no Bayes factor, no interval.
+stats::TestResult f_as_test(const models::AnovaTerm& t) {
+  stats::TestResult r;
+  r.test = "lmm_f";
+  r.computed = t.computed;
+  if (t.computed) {
+    r.statistic = t.f;
+    r.p_value = t.p;
+  } else {
+    r.note = t.note;
+  }
+  return r;
+}
+
+std::string evidence_text(Strength s, Grade g) {
+  const std::string grade = to_string(g);
+  return grade.empty() ? to_string(s) : grade + " " + to_string(s);
+}
+
+std::string p_text(double p) {
+  if (p < 0.001) return "p < .001";
+  std::string s = fmt::format("{:.3f}", p);
+  if (s.rfind("0.", 0) == 0) s.erase(0, 1);
+  return "p = " + s;
+}
+
+bool is_t_test(const std::string& test) {
+  return test == "one_sample_t" || test == "welch_t" || test == "student_t" || test == "paired_t";
+}
+
+}  // namespace
+
+std::vector<Finding> study_findings(const StudyResults& r, const std::vector<report::MetricSpec>& metrics,
+                                    const WordingRules& rules) {
+  std::vector<Finding> out;
+  const auto conditions = r.scores.conditions();
+  for (const auto& m : metrics) {
+    const std::string question =
+        fmt::format("Does {} differ between the conditions, iteration by iteration?", m.column);
+    if (r.comparison) {
+      std::vector<stats::TestResult> tests;
+      std::string g1, g2;
+      for (const auto& row : r.comparison->rows) {
+        if (row.metric != m.column || !is_t_test(row.result.test)) continue;
+        tests.push_back(row.result);
+        g1 = row.group1;
+        g2 = row.group2;
+      }
+      if (!tests.empty()) {
+        out.push_back(family_finding("H1-iterations-" + m.column, "H1", question,
+                                     fmt::format("per-iteration contrasts of {}, {} vs {}", m.column, g1, g2),
+                                     std::move(tests), "comparison", rules));
+      }
+    } else if (conditions.size() < 2) {
+      out.push_back(one_condition_only("H1-iterations-" + m.column, "H1", question,
+                                       conditions.empty() ? std::string() : conditions.front(), "table1"));
+    }
+    // Reference plausibility over every participant and iteration.
+    const int k = r.scores.metric_index(m.column);
+    if (k < 0) continue;
+    std::map<long long, std::vector<double>> per_iteration;
+    for (const auto& rec : r.scores.records) {
+      const auto& v = rec.values[static_cast<std::size_t>(k)];
+      per_iteration[rec.iteration].push_back(v ? *v : std::nan(""));
+    }
+    std::vector<std::vector<double>> values;
+    for (auto& [it, v] : per_iteration) values.push_back(std::move(v));
+    const ReferenceCheck c = check_reference(m.column, m.reference, values);
+    if (c.outside) {
+      Finding f;
+      f.id = "reference-" + m.column;
+      f.hypothesis = "H1";
+      f.question = fmt::format("Is the reference {} = {:g} a plausible value of the metric?", m.column, m.reference);
+      f.sentence = c.warning;
+      f.evidence = "reference outside the data";
+      f.strength = Strength::not_computable;
+      f.source = "table1";
+      f.warnings.push_back(c.warning);
+      out.push_back(std::move(f));
+    }
+  }
+  // H2: the questionnaire.
+  auto likert = [&](const std::optional<report::LikertAnalysis>& a, bool between) {
+    if (!a) return;
+    for (const auto& row : a->rows) {
+      if (!is_t_test(row.result.test)) continue;
+      const std::string what =
+          between ? fmt::format("{}: {} vs {}", row.metric, row.group1, row.group2)
+                  : fmt::format("{}{} against the reference", row.metric,
+                                row.group1.empty() ? std::string() : " (" + row.group1 + ")");
+      out.push_back(difference_finding(
+          fmt::format("H2-{}-{}{}", between ? "compare" : "reference", row.metric,
+                      row.group1.empty() || between ? std::string() : "-" + row.group1),
+          "H2",
+          between ? fmt::format("Do the conditions differ on {}?", row.metric)
+                  : fmt::format("Does {} differ from the reference?", row.metric),
+          what, row.result, nullptr, between ? "questionnaire-compare" : "questionnaire", rules));
+    }
+  };
+  // H1 from the mixed models (condition x iteration, the linear trend).
+  for (auto& f : mixed_model_findings(r.model ? &*r.model : nullptr,
+                                      r.trend_model ? &*r.trend_model : nullptr, rules))
+    out.push_back(std::move(f));
+  // H1, condition x exposure per strategy: needs each trial's strategy (the labels).
+  if (!r.figures.labels.empty()) {
+    std::vector<std::string> conditions_order;
+    if (r.model && !r.model->models.empty() && !r.model->models.front().group1.empty())
+      conditions_order = {r.model->models.front().group1, r.model->models.front().group2};
+    // The figure of first against later exposures (the strategies figure when there are no traces).
+    const std::string source = r.figures.traces.empty() ? "fig-strategies" : "fig-traces";
+    for (const auto& m : metrics) {
+      if (r.scores.metric_index(m.column) < 0) continue;
+      const ExposureInput in = exposure_input(r.scores, r.figures.labels, m.column);
+      std::vector<Finding> fs;
+      try {
+        const auto e = models::exposure_slopes_by_condition(in.participant, in.condition, in.strategy,
+                                                            in.exposure, in.y, conditions_order,
+                                                            r.table1.options.test.conf_level);
+        fs = exposure_findings(e, rules, source, m.column);
+      } catch (const std::exception& e) {
+        Finding f;
+        f.id = "H1-exposure-" + m.column;
+        f.hypothesis = "H1";
+        f.question = fmt::format("Does a strategy's effect on {} wear off with exposure differently under "
+                                 "the two conditions?", m.column);
+        f.strength = Strength::not_computable;
+        f.evidence = to_string(f.strength);
+        f.sentence = fmt::format("Exposure slopes of {} by condition: not computable ({}).", m.column, e.what());
+        f.source = source;
+        fs.push_back(std::move(f));
+      }
+      if (in.unlabelled > 0) {
+        const std::string w = fmt::format(
+            "{} scored trial{} of {} without a strategy in the logs' labels {} left out of the exposure analysis.",
+            in.unlabelled, in.unlabelled == 1 ? "" : "s", m.column, in.unlabelled == 1 ? "is" : "are");
+        for (auto& f : fs) f.warnings.push_back(w);
+      }
+      for (auto& f : fs) out.push_back(std::move(f));
+    }
+  }
+  // H2 after every H1 finding.
+  likert(r.likert, false);
+  likert(r.likert_compare, true);
+  return out;
+}
+
+std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, const report::ModelAnalysis* trend,
+                                          const WordingRules& rules) {
+  std::vector<Finding> out;
+  std::vector<std::string> metrics;
+  if (model)
+    for (const auto& m : model->models) metrics.push_back(m.metric);
+  if (trend)
+    for (const auto& m : trend->models)
+      if (std::find(metrics.begin(), metrics.end(), m.metric) == metrics.end()) metrics.push_back(m.metric);
+  auto find_model = [](const report::ModelAnalysis* a, const std::string& metric) -> const report::MetricModel* {
+    if (!a) return nullptr;
+    for (const auto& m : a->models)
+      if (m.metric == metric) return &m;
+    return nullptr;
+  };
+  for (const auto& metric : metrics) {
+    // The family: the two F tests of the factor model and the slope difference(s) of the trend model.
+    struct Member {
+      std::string id, question, what, source, formula, apa;
+      stats::TestResult test;
+      bool is_f = false;
+    };
+    std::vector<Member> family;
+    if (const report::MetricModel* m = find_model(model, metric)) {
+      const auto& spec = m->fit.spec;
+      const std::string inter = spec.group + ":" + spec.time;
+      if (const auto* t = find_term(m->fit, inter)) {
+        family.push_back({"H1-model-interaction-" + metric,
+                          fmt::format("Does the course of {} over the iterations differ between the conditions?", metric),
+                          fmt::format("Condition \u00d7 iteration interaction of {}", metric), "model", m->formula + " (iteration as a factor)",
+                          report::anova_apa(*t), f_as_test(*t), true});
+      }
+      if (const auto* t = find_term(m->fit, spec.group)) {
+        family.push_back({"H1-model-condition-" + metric,
+                          fmt::format("Does {} differ between the conditions, over all iterations?", metric),
+                          fmt::format("Main effect of condition on {}", metric), "model", m->formula + " (iteration as a factor)",
+                          report::anova_apa(*t), f_as_test(*t), true});
+      }
+    }
+    if (const report::MetricModel* m = find_model(trend, metric)) {
+      const auto& fit = m->fit;
+      for (std::size_t k = 1; k < fit.group_levels.size(); ++k) {
+        const std::string name = fit.spec.group + fit.group_levels[k] + ":" + fit.spec.time;
+        const auto it = std::find(fit.coef_names.begin(), fit.coef_names.end(), name);
+        if (it == fit.coef_names.end()) continue;
+        Eigen::VectorXd L = Eigen::VectorXd::Zero(fit.beta.size());
+        L(static_cast<Eigen::Index>(it - fit.coef_names.begin())) = 1;
+        const models::Contrast c = models::contrast(fit, L, trend->options.conf_level);
+        family.push_back({"H1-model-trend-" + metric + (fit.group_levels.size() > 2 ? "-" + fit.group_levels[k] : ""),
+                          fmt::format("Does {} change over the iterations at a different rate in the two conditions?", metric),
+                          fmt::format("Difference of the linear slopes of {} over the iterations, {} minus {} ({})",
+                                      metric, fit.group_levels[k], fit.group_levels[0], name),
+                          "model-trend", m->formula + " (iteration as a linear trend)", "", c.test, false});
+      }
+    }
+    std::vector<std::optional<double>> p;
+    for (const auto& f : family) p.push_back(f.test.computed ? f.test.p_value : std::nullopt);
+    const auto adj = stats::p_adjust(p, stats::PAdjustMethod::holm);
+    for (std::size_t i = 0; i < family.size(); ++i) {
+      Member& mb = family[i];
+      mb.test.p_adjusted = adj[i];
+      Finding f;
+      f.id = mb.id;
+      f.hypothesis = "H1";
+      f.question = mb.question;
+      f.source = mb.source;
+      f.strength = classify(mb.test, nullptr, rules, &f.grade);
+      f.evidence = evidence_text(f.strength, f.grade);
+      if (f.strength == Strength::not_computable) {
+        f.sentence = fmt::format("{} in the mixed model {}: not computable ({}).", mb.what, mb.formula,
+                                 mb.test.note.empty() ? std::string("no test result") : mb.test.note);
+        out.push_back(std::move(f));
+        continue;
+      }
+      const std::string holm = fmt::format("Holm-adjusted over the {} model tests of {}: {}", family.size(),
+                                           metric, p_text(*mb.test.p_adjusted));
+      const std::string no_bf = f.strength == Strength::evidence_for_difference
+                                    ? "no Bayes factor is available for this test"
+                                    : "no Bayes factor is available for this test, so a non-significant "
+                                      "result is not evidence for no difference";
+      if (mb.is_f) {
+        f.statistics = mb.apa;
+        f.sentence = fmt::format("{} in the mixed model {}: {} ({}; {}; {}).", mb.what, mb.formula, f.evidence,
+                                 mb.apa, holm, no_bf);
+      } else {
+        const auto& t = mb.test;
+        f.statistics = fmt::format("t({:.1f}) = {:.2f}, {}", *t.df, *t.statistic, p_text(*t.p_value));
+        f.sentence = fmt::format("{} in the mixed model {}: {} (b = {:.4f} per iteration, {:g}% CI [{:.4f}, "
+                                 "{:.4f}], {}; {}; {}).",
+                                 mb.what, mb.formula, f.evidence, *t.estimate, 100 * t.conf_level, *t.conf_low,
+                                 *t.conf_high, f.statistics, holm, no_bf);
+      }
+      out.push_back(std::move(f));
+    }
+  }
+  return out;
+}
+
+ExposureInput exposure_input(const io::ScoresTable& scores, const std::vector<TrialLabel>& labels,
+                             const std::string& metric) {
+  ExposureInput in;
+  const int k = scores.metric_index(metric);
+  if (k < 0) return in;
+  // Exposure over every labelled trial of a participant (seeing a strategy is the exposure).
+  std::vector<std::string> lp, ls;
+  std::vector<double> li;
+  for (const auto& l : labels) {
+    lp.push_back(l.participant);
+    li.push_back(static_cast<double>(l.iteration));
+    ls.push_back(l.strategy);
+  }
+  const std::vector<double> counts = models::exposure_counts(lp, li, ls);
+  std::map<std::pair<std::string, long long>, std::size_t> at;
+  for (std::size_t i = 0; i < labels.size(); ++i) at[{labels[i].participant, labels[i].iteration}] = i;
+  for (const auto& rec : scores.records) {
+    const auto& v = rec.values[static_cast<std::size_t>(k)];
+    if (!v || std::isnan(*v)) continue;
+    const auto it = at.find({rec.participant, rec.iteration});
+    if (it == at.end() || labels[it->second].strategy.empty()) {
+      ++in.unlabelled;
+      continue;
+    }
+    in.participant.push_back(rec.participant);
+    in.condition.push_back(rec.condition);
+    in.strategy.push_back(labels[it->second].strategy);
+    in.exposure.push_back(counts[it->second]);
+    in.y.push_back(*v);
+  }
+  return in;
+}
+
+}  // namespace feint::analysis

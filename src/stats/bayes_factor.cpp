@@ -1,0 +1,233 @@
+// The JZS Bayes factor: see feint/stats/bayes_factor.hpp for the formulas and references.
+#include "feint/stats/bayes_factor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <fmt/format.h>
+
+#include "feint/error.hpp"
+
+namespace feint::stats {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kPi = std::numbers::pi;
+
+void check_args(double t, double n_eff, double df, double r) {
+  if (!std::isfinite(t)) throw InvalidData(fmt::format("Bayes factor: t = {} is not finite", t));
+  if (!(n_eff > 0) || !std::isfinite(n_eff))
+    throw UsageError(fmt::format("Bayes factor: effective sample size {} must be positive", n_eff));
+  if (!(df > 0) || !std::isfinite(df))
+    throw UsageError(fmt::format("Bayes factor: degrees of freedom {} must be positive", df));
+  if (!(r > 0) || !std::isfinite(r))
+    throw UsageError(fmt::format("Bayes factor: prior scale r = {} must be positive", r));
+}
+
+/// Integral of exp(f) over [a, b] cut at `breaks`, with adaptive Gauss–Kronrod (61 points) on each
+/// piece; f is given in logs and `scale` (its maximum) is taken out first: returns log of the integral.
+template <class F>
+double log_integral(F&& log_f, double scale, std::vector<double> breaks, double a, double b,
+                    unsigned max_depth = 12, double tol = 1e-10) {
+  breaks.push_back(a);
+  breaks.push_back(b);
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  double total = 0.0;
+  auto f = [&](double x) {
+    const double v = log_f(x) - scale;
+    return std::isfinite(v) ? std::exp(v) : 0.0;
+  };
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
+    const double lo = breaks[k], hi = breaks[k + 1];
+    if (lo < a || hi > b || !(hi > lo)) continue;
+    double err = 0;
+    total += boost::math::quadrature::gauss_kronrod<double, 61>::integrate(f, lo, hi, max_depth, tol, &err);
+  }
+  return scale + std::log(total);
+}
+
+/// Rouder's g integral for the two-sided point test, over x = log g.
+double log_bf_point(double t, double n, double nu, double r) {
+  const double log_null = -(nu + 1) / 2 * std::log1p(t * t / nu);
+  const double c = std::log(r) - 0.5 * std::log(2 * kPi);
+  auto lf = [&](double x) {
+    const double g = std::exp(x);
+    return -0.5 * std::log1p(n * g) - (nu + 1) / 2 * std::log1p(t * t / ((1 + n * g) * nu)) + c -
+           0.5 * x - r * r / (2 * g) - log_null;
+  };
+  // The integrand is smooth and unimodal in x; locate its peak on a grid, integrate +-40 around it
+  // (beyond, it falls below e^-40 of the peak on both sides: like e^-x above, like exp(-e^-x) below).
+  double best = -kInf, xm = 0;
+  for (double x = -40; x <= 40; x += 0.05) {
+    const double v = lf(x);
+    if (v > best) best = v, xm = x;
+  }
+  std::vector<double> breaks;
+  for (int k = -20; k <= 20; ++k) breaks.push_back(xm + 2.0 * k);
+  return log_integral(lf, best, breaks, xm - 40, xm + 40);
+}
+
+/// log p(t | delta) - log p(t | 0): the noncentral t likelihood ratio, integrated from its
+/// definition (Boost's and R's noncentral t densities lose their accuracy in the far tail):
+///   p(t | ncp) = int_0^inf phi(t s - ncp) s h(s) ds,  s = sqrt(V / nu), V ~ chi^2_nu,
+/// where log(s h(s)) = log(2 nu) + (nu/2 - 1) log nu + nu log s - nu s^2 / 2 - (nu/2) log 2 - lgamma(nu/2).
+/// The log integrand is concave in s with its peak in closed form (A s^2 - B s - nu = 0,
+/// A = t^2 + nu, B = t ncp) and curvature at least A, so +-14/sqrt(A) around the peak hold all of it.
+/// Beyond |ncp| > `cutoff` the likelihood is below e^-1800 of its peak and is taken as 0.
+double log_likelihood_ratio(double t, double n, double nu, double delta, double log_p0,
+                            double cutoff) {
+  const double ncp = delta * std::sqrt(n);
+  if (!std::isfinite(ncp) || std::fabs(ncp) > cutoff) return -kInf;
+  const double a = t * t + nu, b = t * ncp;
+  const double root = std::sqrt(b * b + 4 * a * nu);
+  const double sm = b >= 0 ? (b + root) / (2 * a) : 2 * nu / (root - b);  // no cancellation
+  const double c = -0.5 * std::log(2 * kPi) + std::log(2 * nu) + (nu / 2 - 1) * std::log(nu) -
+                   (nu / 2) * std::log(2.0) - std::lgamma(nu / 2);
+  auto lh = [&](double s) {
+    if (!(s > 0)) return -kInf;
+    const double z = t * s - ncp;
+    return -0.5 * z * z + c + nu * std::log(s) - nu * s * s / 2;
+  };
+  const double w0 = 1 / std::sqrt(a);
+  const double w = 1 / std::sqrt(a + nu / (sm * sm));
+  std::vector<double> breaks;
+  for (int k = -12; k <= 12; k += 4) breaks.push_back(sm + w * k);
+  const double lo = std::max(0.0, sm - 14 * w0), hi = sm + 14 * w0;
+  return log_integral(lh, lh(sm), breaks, lo, hi, 3, 1e-11) - log_p0;
+}
+
+/// log of int_{theta in [a, b]} p(t | r tan theta) / p(t | 0) d theta (the Cauchy prior is uniform
+/// in theta = atan(delta / r)), NOT divided by b - a.
+double log_theta_integral(double t, double n, double nu, double r, double a, double b) {
+  // the central t density in logs (closed form; finite where the density itself underflows)
+  const double log_p0 = std::lgamma((nu + 1) / 2) - std::lgamma(nu / 2) - 0.5 * std::log(nu * kPi) -
+                        (nu + 1) / 2 * std::log1p(t * t / nu);
+  const double peak = std::atan(t / std::sqrt(n) / r);
+  const double ncp_centre = std::fabs(r * std::tan(std::clamp(peak, a, b)) * std::sqrt(n));
+  const double cutoff = 60 * (1 + std::fabs(t)) + ncp_centre;
+  auto lf = [&](double th) {
+    return log_likelihood_ratio(t, n, nu, r * std::tan(th), log_p0, cutoff);
+  };
+  // the likelihood's width in theta: (1 / sqrt(N)) d theta / d delta = cos^2(theta) / (r sqrt(N))
+  const double width = std::cos(peak) * std::cos(peak) / (r * std::sqrt(n));
+  const double centre = std::clamp(peak, a, b);
+  const double pad = std::min(1e-12, (b - a) * 1e-6);
+  const double scale = lf(std::clamp(centre, a + pad, b - pad));
+  std::vector<double> breaks;
+  for (int k = -40; k <= 40; k += 5) breaks.push_back(centre + width * k);
+  if (!std::isfinite(scale)) return -kInf;
+  return log_integral(lf, scale, breaks, a, b);
+}
+
+/// log BF of delta in [lo, hi] against 0.
+double log_bf_interval(double t, double n, double nu, double r, double lo, double hi) {
+  const double a = std::atan(lo / r), b = std::atan(hi / r);
+  return log_theta_integral(t, n, nu, r, a, b) - std::log(b - a);
+}
+
+}  // namespace
+
+std::string BayesFactor::describe() const {
+  std::string h1;
+  if (std::isinf(lo) && std::isinf(hi)) h1 = "delta != 0";
+  else if (lo == 0 && std::isinf(hi)) h1 = "delta > 0";
+  else if (std::isinf(lo) && hi == 0) h1 = "delta < 0";
+  else h1 = fmt::format("delta in [{:g}, {:g}]", lo, hi);
+  return fmt::format("JZS Bayes factor, Cauchy prior r = {:.3g}, H1: {}", r, h1);
+}
+
+double jzs_log_bf(double t, double n_eff, double df, double r, double lo, double hi) {
+  check_args(t, n_eff, df, r);
+  if (!(lo < hi)) throw UsageError(fmt::format("Bayes factor: interval [{}, {}] is empty", lo, hi));
+  if (std::isinf(lo) && std::isinf(hi)) return log_bf_point(t, n_eff, df, r);
+  return log_bf_interval(t, n_eff, df, r, lo, hi);
+}
+
+double jzs_log_bf_complement(double t, double n_eff, double df, double r, double lo, double hi) {
+  check_args(t, n_eff, df, r);
+  if (!(lo < hi)) throw UsageError(fmt::format("Bayes factor: interval [{}, {}] is empty", lo, hi));
+  if (std::isinf(lo) && std::isinf(hi))
+    throw UsageError("Bayes factor: the whole line has no complement");
+  // Integrate each outside piece directly (subtracting from the full BF would cancel).
+  const double a = std::atan(lo / r), b = std::atan(hi / r);
+  double mass = 0;
+  std::vector<double> logs;
+  if (a > -kPi / 2) {
+    logs.push_back(log_theta_integral(t, n_eff, df, r, -kPi / 2, a));
+    mass += a + kPi / 2;
+  }
+  if (b < kPi / 2) {
+    logs.push_back(log_theta_integral(t, n_eff, df, r, b, kPi / 2));
+    mass += kPi / 2 - b;
+  }
+  const double m = *std::max_element(logs.begin(), logs.end());
+  if (!std::isfinite(m)) return -kInf;
+  double s = 0;
+  for (double l : logs) s += std::exp(l - m);
+  return m + std::log(s) - std::log(mass);
+}
+
+BayesFactor jzs_bf_one_sample(double t, std::size_t n, Alternative alternative, double r) {
+  if (n < 2) throw UsageError(fmt::format("Bayes factor: n = {} (a t test needs at least 2)", n));
+  BayesFactor bf;
+  bf.r = r;
+  if (alternative == Alternative::greater) bf.lo = 0;
+  if (alternative == Alternative::less) bf.hi = 0;
+  const double nn = static_cast<double>(n);
+  bf.log_bf10 = jzs_log_bf(t, nn, nn - 1, r, bf.lo, bf.hi);
+  return bf;
+}
+
+BayesFactor jzs_bf_two_sample(double t, std::size_t n1, std::size_t n2, Alternative alternative,
+                              double r) {
+  if (n1 < 1 || n2 < 1 || n1 + n2 < 3)
+    throw UsageError(fmt::format("Bayes factor: groups of {} and {} (need n1 + n2 >= 3)", n1, n2));
+  BayesFactor bf;
+  bf.r = r;
+  if (alternative == Alternative::greater) bf.lo = 0;
+  if (alternative == Alternative::less) bf.hi = 0;
+  const double a = static_cast<double>(n1), b = static_cast<double>(n2);
+  bf.log_bf10 = jzs_log_bf(t, a * b / (a + b), a + b - 2, r, bf.lo, bf.hi);
+  return bf;
+}
+
+BayesFactor jzs_bf_interval_null(double t, double n_eff, double df, double margin, double r) {
+  if (!(margin > 0) || !std::isfinite(margin))
+    throw UsageError(fmt::format("Bayes factor: interval-null margin {} must be positive", margin));
+  BayesFactor bf;
+  bf.r = r;
+  bf.lo = -margin;
+  bf.hi = margin;
+  bf.log_bf10 = jzs_log_bf_complement(t, n_eff, df, r, -margin, margin) -
+                jzs_log_bf(t, n_eff, df, r, -margin, margin);
+  return bf;
+}
+
+void add_bayes_factor(TestResult& test, double r) {
+  if (!test.computed || !test.statistic || !std::isfinite(*test.statistic)) return;
+  BayesFactor bf;
+  if (test.test == "one_sample_t" || test.test == "paired_t") {
+    if (test.n1 < 2) return;
+    bf = jzs_bf_one_sample(*test.statistic, test.n1, test.alternative, r);
+  } else if (test.test == "student_t" || test.test == "welch_t") {
+    // ttestBF is the pooled-variance model: its t is d * sqrt(N) with the pooled-sd d.
+    if (!test.cohen_d) return;
+    const double a = static_cast<double>(test.n1), b = static_cast<double>(test.n2);
+    const double t = *test.cohen_d * std::sqrt(a * b / (a + b));
+    bf = jzs_bf_two_sample(t, test.n1, test.n2, test.alternative, r);
+  } else {
+    return;
+  }
+  test.log_bf10 = bf.log_bf10;
+  test.bf10 = bf.bf10();
+  test.bf01 = bf.bf01();
+  test.bf_prior_r = r;
+}
+
+}  // namespace feint::stats

@@ -1,0 +1,305 @@
+// H1 findings from the mixed models (condition x iteration, the linear trend) and from condition x
+// exposure per strategy: on the demo (the numbers equal the model tables' numbers) and on
+// simulated studies with a planted truth. Wording rules: docs/findings.md.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "feint/analysis/analyze.hpp"
+#include "feint/analysis/study_findings.hpp"
+#include "feint/models/exposure.hpp"
+#include "feint/report/model_render.hpp"
+#include "feint/report/writers.hpp"
+#include "feint/stats/p_adjust.hpp"
+
+namespace fs = std::filesystem;
+using namespace feint;
+using analysis::Finding;
+using analysis::Strength;
+
+namespace {
+
+const std::string kDemo = std::string(FEINT_SOURCE_DIR) + "/data/demo";
+
+const analysis::StudyResults& demo() {
+  static const analysis::StudyResults r = [] {
+    analysis::AnalysisSettings s;  // as data/demo/feint.toml
+    s.compare = "adaptive,random";
+    s.likert.reference = 3.5;
+    return analysis::analyze(analysis::load_study(kDemo, s), "test");
+  }();
+  return r;
+}
+
+const Finding* by_id(const std::vector<Finding>& fs, const std::string& id) {
+  for (const auto& f : fs)
+    if (f.id == id) return &f;
+  return nullptr;
+}
+
+const report::MetricModel& metric_model(const report::ModelAnalysis& a, const std::string& metric) {
+  for (const auto& m : a.models)
+    if (m.metric == metric) return m;
+  throw std::runtime_error("no model of " + metric);
+}
+
+const models::AnovaTerm& term(const report::MetricModel& m, const std::string& name) {
+  for (const auto& t : m.fit.anova)
+    if (t.term == name) return t;
+  throw std::runtime_error("no term " + name);
+}
+
+std::string p_text(double p) {
+  if (p < 0.001) return "p < .001";
+  std::string s = fmt::format("{:.3f}", p);
+  return "p = " + s.substr(1);
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+// The rule for a test without a Bayes factor, restated: a difference only from the corrected p.
+void expect_rule(const Finding& f, double p_adjusted) {
+  if (p_adjusted < 0.05) {
+    EXPECT_EQ(f.strength, Strength::evidence_for_difference) << f.sentence;
+  } else {
+    EXPECT_EQ(f.strength, Strength::no_evidence_either_way) << f.sentence;
+    EXPECT_TRUE(contains(f.sentence, "not evidence for no difference")) << f.sentence;
+  }
+  EXPECT_NE(f.strength, Strength::evidence_for_no_difference);
+  EXPECT_TRUE(contains(f.sentence, "no Bayes factor")) << f.sentence;
+}
+
+}  // namespace
+
+TEST(StudyFindings, DemoMixedModelFindingsCarryTheModelTablesNumbers) {
+  const auto& r = demo();
+  ASSERT_TRUE(r.model && r.trend_model);
+  for (const std::string metric : {"error", "confusion"}) {
+    const auto& m = metric_model(*r.model, metric);
+    const auto& tm = metric_model(*r.trend_model, metric);
+    const auto& inter = term(m, "condition:iteration");
+    const auto& cond = term(m, "condition");
+    // The trend model's slope difference: the fixed effect condition<2nd level>:iteration.
+    const auto& fit = tm.fit;
+    ASSERT_EQ(fit.group_levels.size(), 2u);
+    const std::string name = "condition" + fit.group_levels[1] + ":iteration";
+    const auto idx = std::find(fit.coef_names.begin(), fit.coef_names.end(), name) - fit.coef_names.begin();
+    ASSERT_LT(static_cast<std::size_t>(idx), fit.coef_names.size());
+    Eigen::VectorXd L = Eigen::VectorXd::Zero(fit.beta.size());
+    L(idx) = 1;
+    const auto c = models::contrast(fit, L, 0.95);
+    // Invariant: the trend model's 1-df interaction F is the square of the slope difference's t.
+    EXPECT_NEAR(term(tm, "condition:iteration").f, *c.test.statistic * *c.test.statistic, 1e-8 * inter.f + 1e-10);
+    // Holm over the metric's three model tests, by hand.
+    const std::vector<std::optional<double>> ps = {inter.p, cond.p, *c.test.p_value};
+    const auto adj = stats::p_adjust(ps, stats::PAdjustMethod::holm);
+
+    const Finding* fi = by_id(r.findings, "H1-model-interaction-" + metric);
+    const Finding* fc = by_id(r.findings, "H1-model-condition-" + metric);
+    const Finding* ft = by_id(r.findings, "H1-model-trend-" + metric);
+    ASSERT_TRUE(fi && fc && ft) << metric;
+    // The F statistics are the model table's APA strings, in the table and in the sentence.
+    const std::string table = report::render_model(*r.model, report::OutputFormat::markdown);
+    EXPECT_EQ(fi->statistics, report::anova_apa(inter));
+    EXPECT_EQ(fc->statistics, report::anova_apa(cond));
+    EXPECT_TRUE(contains(fi->sentence, fi->statistics));
+    EXPECT_TRUE(contains(fi->sentence, fmt::format("{:.2f}", inter.f)));
+    EXPECT_TRUE(contains(table, fmt::format("{:.2f}", inter.f))) << table.substr(0, 600);
+    EXPECT_TRUE(contains(fi->sentence, "Holm-adjusted over the 3 model tests of " + metric + ": " + p_text(*adj[0])))
+        << fi->sentence;
+    EXPECT_TRUE(contains(fc->sentence, p_text(*adj[1]))) << fc->sentence;
+    expect_rule(*fi, *adj[0]);
+    expect_rule(*fc, *adj[1]);
+    EXPECT_EQ(fi->source, "model");
+    EXPECT_EQ(ft->source, "model-trend");
+    // The slope difference and its interval: the trend table's fixef row (CSV, full precision).
+    EXPECT_TRUE(contains(ft->sentence, fmt::format("b = {:.4f} per iteration, 95% CI [{:.4f}, {:.4f}]",
+                                                   *c.test.estimate, *c.test.conf_low, *c.test.conf_high)))
+        << ft->sentence;
+    const std::string csv = report::render_model(*r.trend_model, report::OutputFormat::csv);
+    EXPECT_TRUE(contains(csv, name)) << csv.substr(0, 400);
+    expect_rule(*ft, *adj[2]);
+  }
+  // On the demo the conditions' error courses differ (the planted adaptive-vs-random effect).
+  const Finding* fe = by_id(r.findings, "H1-model-interaction-error");
+  ASSERT_TRUE(fe);
+  EXPECT_TRUE(contains(fe->sentence, "Condition \u00d7 iteration interaction of error in the mixed model "
+                                     "error ~ condition * iteration + (1 | participant)"))
+      << fe->sentence;
+}
+
+TEST(StudyFindings, DemoExposureFindingsPerStrategyEqualTheModel) {
+  const auto& r = demo();
+  ASSERT_FALSE(r.figures.labels.empty()) << r.figures.labels_note;
+  // An independent join: the strategy column of scores.csv, read back by report::load_strategies.
+  const fs::path dir = fs::temp_directory_path() / fmt::format("feint-sf-{}", ::testing::UnitTest::GetInstance()->random_seed());
+  fs::create_directories(dir);
+  const fs::path file = dir / "scores.csv";
+  { std::ofstream(file) << r.scores_csv; }
+  io::ScoresOptions so;
+  so.metrics = {"error"};
+  const io::ScoresTable scores = io::load_scores(file.string(), so);
+  const auto strategy = report::load_strategies(scores, so);
+  fs::remove_all(dir);
+  std::vector<std::string> part, cond;
+  std::vector<double> it, y;
+  for (const auto& rec : scores.records) {
+    part.push_back(rec.participant);
+    cond.push_back(rec.condition);
+    it.push_back(static_cast<double>(rec.iteration));
+    y.push_back(rec.values[0].value_or(std::nan("")));
+  }
+  const auto exposure = models::exposure_counts(part, it, strategy);
+  const auto e = models::exposure_slopes_by_condition(part, cond, strategy, exposure, y, {"adaptive", "random"});
+  ASSERT_FALSE(e.differences.empty());
+  const auto adj = [&] {
+    std::vector<std::optional<double>> p;
+    for (const auto& d : e.differences) p.push_back(d.test.p_value);
+    return stats::p_adjust(p, stats::PAdjustMethod::holm);
+  }();
+  for (std::size_t i = 0; i < e.differences.size(); ++i) {
+    const auto& d = e.differences[i];
+    const Finding* f = by_id(r.findings, "H1-exposure-error-" + d.strategy);
+    ASSERT_TRUE(f) << d.strategy;
+    EXPECT_TRUE(contains(f->sentence, fmt::format("difference {:.3f}, 95% CI [{:.3f}, {:.3f}]", *d.test.estimate,
+                                                  *d.test.conf_low, *d.test.conf_high)))
+        << f->sentence;
+    EXPECT_TRUE(contains(f->sentence, fmt::format("adaptive: {:.3f} per exposure", *e.slopes[i].test.estimate)));
+    EXPECT_TRUE(contains(f->statistics, "Holm-adjusted " + report::apa_p(*adj[i]))) << f->statistics;
+    EXPECT_EQ(f->strength, *adj[i] < 0.05 ? Strength::evidence_for_difference : Strength::no_evidence_either_way);
+    EXPECT_EQ(f->source, "fig-traces");
+  }
+}
+
+namespace {
+
+// A simulated study: 2 conditions x n participants x 8 iterations, strategies A/B alternating per
+// participant at random; y = 0.4 + slope_adaptive * iteration (adaptive only) + exposure effect
+// (random condition, strategy A: -exposure_drop per earlier exposure to A) + participant + noise.
+analysis::StudyResults simulated(unsigned seed, double slope_adaptive, double exposure_drop, std::size_t n = 14) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> noise(0, 0.05), person(0, 0.05);
+  std::bernoulli_distribution coin(0.5);
+  analysis::StudyResults r;
+  r.scores.metrics = {"error"};
+  r.scores.has_condition = true;
+  for (const std::string cond : {"adaptive", "random"}) {
+    for (std::size_t p = 0; p < n; ++p) {
+      const std::string id = fmt::format("{}{}", cond, p);
+      const double u = person(rng);
+      int seen_a = 0;
+      for (long long it = 1; it <= 8; ++it) {
+        const std::string s = coin(rng) ? "A" : "B";
+        double y = 0.4 + u + noise(rng);
+        if (cond == "adaptive") y += slope_adaptive * static_cast<double>(it);
+        if (cond == "random" && s == "A") y -= exposure_drop * seen_a;
+        if (s == "A") ++seen_a;
+        r.scores.records.push_back({id, cond, it, {y}, 0});
+        r.figures.labels.push_back({id, cond, it, s, "v1"});
+      }
+    }
+  }
+  r.table1.options.test.conf_level = 0.95;
+  report::ModelOptions o;
+  o.metrics = {"error"};
+  r.model = report::build_model_analysis(r.scores, o);
+  o.trend = true;
+  r.trend_model = report::build_model_analysis(r.scores, o);
+  return r;
+}
+
+}  // namespace
+
+TEST(StudyFindings, SimulatedPlantedSlopeDifferenceIsFoundAndTheNullIsNeverEquivalence) {
+  const std::vector<report::MetricSpec> metrics = {{"error", 0.5}};
+  // Planted: the adaptive error rises 0.03 per iteration, the random one is flat.
+  const auto planted = simulated(7, 0.03, 0.0);
+  const auto fs = analysis::study_findings(planted, metrics);
+  const Finding* ft = by_id(fs, "H1-model-trend-error");
+  const Finding* fi = by_id(fs, "H1-model-interaction-error");
+  ASSERT_TRUE(ft && fi);
+  EXPECT_EQ(ft->strength, Strength::evidence_for_difference) << ft->sentence;
+  EXPECT_EQ(fi->strength, Strength::evidence_for_difference) << fi->sentence;
+  // The estimate (random minus adaptive, the level order) covers the truth -0.03.
+  const auto& fit = metric_model(*planted.trend_model, "error").fit;
+  EXPECT_EQ(fit.group_levels[1], "random");
+  EXPECT_TRUE(contains(ft->sentence, "random minus adaptive")) << ft->sentence;
+  Eigen::VectorXd L = Eigen::VectorXd::Zero(fit.beta.size());
+  L(static_cast<Eigen::Index>(std::find(fit.coef_names.begin(), fit.coef_names.end(), "conditionrandom:iteration") -
+                              fit.coef_names.begin())) = 1;
+  const auto c = models::contrast(fit, L, 0.95);
+  EXPECT_LT(*c.test.conf_low, -0.03);
+  EXPECT_GT(*c.test.conf_high, -0.03);
+  EXPECT_NEAR(*c.test.estimate, -0.03, 0.01);
+
+  // Null studies: no model finding ever claims "evidence for no difference" (no Bayes factor), and
+  // the false "evidence for a difference" of the interaction is rare (alpha, Holm over 3 tests).
+  int false_difference = 0;
+  const int studies = 20;
+  for (int s = 0; s < studies; ++s) {
+    const auto null = simulated(100 + static_cast<unsigned>(s), 0.0, 0.0, 8);
+    for (const auto& f : analysis::mixed_model_findings(&*null.model, &*null.trend_model)) {
+      EXPECT_NE(f.strength, Strength::evidence_for_no_difference) << f.sentence;
+      EXPECT_NE(f.strength, Strength::not_computable) << f.sentence;
+      if (f.id == "H1-model-interaction-error" && f.strength == Strength::evidence_for_difference) ++false_difference;
+    }
+  }
+  EXPECT_LE(false_difference, 3);  // expected <= 1 of 20 at alpha = .05
+}
+
+TEST(StudyFindings, SimulatedExposureEffectInOneConditionIsFound) {
+  const std::vector<report::MetricSpec> metrics = {{"error", 0.5}};
+  // Strategy A wears off under random (-0.06 per earlier exposure), not under adaptive.
+  const auto r = simulated(11, 0.0, 0.06, 20);
+  const auto fs = analysis::study_findings(r, metrics);
+  const Finding* fa = by_id(fs, "H1-exposure-error-A");
+  const Finding* fb = by_id(fs, "H1-exposure-error-B");
+  ASSERT_TRUE(fa && fb);
+  EXPECT_EQ(fa->strength, Strength::evidence_for_difference) << fa->sentence;
+  EXPECT_NE(fb->strength, Strength::evidence_for_no_difference) << fb->sentence;
+  EXPECT_TRUE(contains(fa->sentence, "Holm-corrected over 2 strategies")) << fa->sentence;
+
+  // The join: exposure counts every labelled trial; a scored trial without a label is counted out.
+  auto partial = r;
+  partial.figures.labels.erase(partial.figures.labels.begin());  // adaptive0, iteration 1
+  const auto in = analysis::exposure_input(partial.scores, partial.figures.labels, "error");
+  EXPECT_EQ(in.unlabelled, 1u);
+  EXPECT_EQ(in.y.size(), partial.scores.records.size() - 1);
+  const auto in_full = analysis::exposure_input(r.scores, r.figures.labels, "error");
+  ASSERT_EQ(in_full.exposure.size(), r.scores.records.size());
+  // Participant adaptive0: exposure counts the earlier trials with the same strategy.
+  int a = 0, b = 0;
+  for (std::size_t i = 0; i < 8; ++i) {
+    const bool is_a = r.figures.labels[i].strategy == "A";
+    EXPECT_EQ(in_full.exposure[i], is_a ? a : b) << i;
+    (is_a ? a : b) += 1;
+  }
+  const auto fs_partial = analysis::study_findings(partial, metrics);
+  const Finding* fp = by_id(fs_partial, "H1-exposure-error-A");
+  ASSERT_TRUE(fp);
+  ASSERT_EQ(fp->warnings.size(), 1u);
+  EXPECT_TRUE(contains(fp->warnings[0], "1 scored trial of error without a strategy")) << fp->warnings[0];
+}
+
+TEST(StudyFindings, OneConditionOnlyGivesNoModelFindingButSaysSo) {
+  auto r = simulated(3, 0.0, 0.0, 6);
+  r.model.reset();
+  r.trend_model.reset();
+  for (auto& rec : r.scores.records) rec.condition = "adaptive";
+  for (auto& l : r.figures.labels) l.condition = "adaptive";
+  const auto fs = analysis::study_findings(r, {{"error", 0.5}});
+  EXPECT_EQ(by_id(fs, "H1-model-interaction-error"), nullptr);
+  const Finding* f = by_id(fs, "H1-exposure-error");
+  ASSERT_TRUE(f);
+  EXPECT_EQ(f->strength, Strength::not_computable);
+  EXPECT_TRUE(contains(f->sentence, "Only one condition ('adaptive')")) << f->sentence;
+  EXPECT_TRUE(analysis::mixed_model_findings(nullptr, nullptr).empty());
+}
