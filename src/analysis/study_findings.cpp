@@ -129,10 +129,13 @@ std::vector<Finding> study_findings(const StudyResults& r, const std::vector<rep
     std::vector<std::string> conditions_order;
     if (r.model && !r.model->models.empty() && !r.model->models.front().group1.empty())
       conditions_order = {r.model->models.front().group1, r.model->models.front().group2};
-    // The figure of first against later exposures (the strategies figure when there are no traces).
-    const std::string source = r.figures.traces.empty() ? "fig-strategies" : "fig-traces";
     for (const auto& m : metrics) {
       if (r.scores.metric_index(m.column) < 0) continue;
+      // The condition x exposure figure of this metric; else first against later exposures (the
+      // strategies figure when there are no traces).
+      std::string source = r.figures.traces.empty() ? "fig-strategies" : "fig-traces";
+      for (const auto& e : r.figures.exposure)
+        if (e.metric == m.column) source = "fig-exposure-" + m.column;
       const ExposureInput in = exposure_input(r.scores, r.figures.labels, m.column);
       std::vector<Finding> fs;
       try {

@@ -175,7 +175,7 @@ TEST(StudyFindings, DemoExposureFindingsPerStrategyEqualTheModel) {
     EXPECT_TRUE(contains(f->sentence, fmt::format("adaptive: {:.3f} per exposure", *e.slopes[i].test.estimate)));
     EXPECT_TRUE(contains(f->statistics, "Holm-adjusted " + report::apa_p(*adj[i]))) << f->statistics;
     EXPECT_EQ(f->strength, *adj[i] < 0.05 ? Strength::evidence_for_difference : Strength::no_evidence_either_way);
-    EXPECT_EQ(f->source, "fig-traces");
+    EXPECT_EQ(f->source, "fig-exposure-error");  // the condition x exposure figure
   }
 }
 
