@@ -8,6 +8,7 @@
 #include <iterator>
 
 #include "feint/io/number.hpp"
+#include "feint/stats/effect_size.hpp"
 
 namespace feint::report {
 
@@ -146,6 +147,8 @@ std::vector<std::string_view> anova_columns(bool apa) {
                                      "F",
                                      "ges",
                                      "pes",
+                                     "pes_low",
+                                     "pes_high",
                                      "p.value",
                                      "correction",
                                      "eps",
@@ -182,6 +185,14 @@ std::string effect_note(const models::MixedAnova& a, const models::AnovaEffect& 
   return join(notes, "; ");
 }
 
+/// The 95 % interval of partial eta squared from the reported F and df (effectsize's F_to_eta2:
+/// noncentral F, one-sided "greater", so the upper bound is 1); empty where F is not computable.
+Cell pes_bound(const models::AnovaEffect& e, bool low) {
+  if (!(std::isfinite(e.f) && e.report_num_df > 0 && e.report_den_df > 0)) return Cell::none();
+  const auto ci = stats::f_to_eta2(e.f, e.report_num_df, e.report_den_df, 0.95);
+  return Cell::num(low ? ci.low : ci.high);
+}
+
 std::vector<Record> tidy(const AnovaReport& r, bool apa) {
   std::vector<Record> out;
   for (const auto& a : r.analyses) {
@@ -195,6 +206,8 @@ std::vector<Record> tidy(const AnovaReport& r, bool apa) {
                     Cell::num(e.f),
                     Cell::num(e.ges),
                     Cell::num(e.pes),
+                    pes_bound(e, true),
+                    pes_bound(e, false),
                     Cell::num(e.report_p),
                     Cell::str(e.within ? std::string(models::to_string(r.correction)) : "none"),
                     Cell::num(e.report_eps),

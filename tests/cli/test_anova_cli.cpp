@@ -96,6 +96,19 @@ TEST(AnovaCli, CsvCarriesAfexNumbersForEveryMetricOfThePaperDesign) {
       EXPECT_NEAR(std::stod(mine), want, 1e-10 * std::abs(want)) << rows[i][1] << " " << ours;
     }
   }
+  // pes with its interval as effectsize::F_to_eta2 on the reported table (tests/golden/models/
+  // anova_pes_ci.R); effectsize's bounds come from a search, good to ~5e-5 (docs/effect-sizes.md),
+  // feint's are exact roots.
+  std::map<std::string, std::vector<std::string>> ci;
+  for (const auto& g : parse_csv(read_text(std::string(FEINT_SOURCE_DIR) + "/tests/golden/models/anova_pes_ci.csv")))
+    if (g.size() == 5 && g[0] == "paper_design") ci[g[1]] = g;
+  ASSERT_EQ(ci.size(), 3u);
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const auto& g = ci.at(rows[i][col.at("effect")]);
+    EXPECT_NEAR(std::stod(rows[i][col.at("pes")]), std::stod(g[2]), 1e-10) << rows[i][1];
+    EXPECT_NEAR(std::stod(rows[i][col.at("pes_low")]), std::stod(g[3]), 1e-4) << rows[i][1];
+    EXPECT_NEAR(std::stod(rows[i][col.at("pes_high")]), std::stod(g[4]), 1e-12) << rows[i][1];
+  }
   EXPECT_EQ(rows[2][col.at("correction")], "GG");
   EXPECT_EQ(
       rows[2][col.at("apa")].rfind("F(4.81, 278.8) = 2.32, p = .046, \u03b7G\u00b2 = .002", 0), 0u)
