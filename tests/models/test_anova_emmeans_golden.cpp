@@ -13,27 +13,15 @@
 
 #include "feint/models/emmeans.hpp"
 
+#include "golden_csv.hpp"
+
 namespace {
 
 using namespace feint::models;
 
-const std::string kDir = std::string(FEINT_SOURCE_DIR) + "/tests/golden/models/";
+const std::string& kDir = feint::test::kModelGoldenDir;
 
-std::vector<std::vector<std::string>> read_csv(const std::string& path) {
-  std::ifstream in(path);
-  EXPECT_TRUE(in) << path;
-  std::vector<std::vector<std::string>> rows;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) f.push_back(cell);
-    if (!line.empty() && line.back() == ',') f.emplace_back();
-    rows.push_back(f);
-  }
-  return rows;
-}
+using feint::test::read_csv;
 
 WideDesign design(const std::string& c) {
   std::vector<Observation> obs;

@@ -14,40 +14,16 @@
 #include "feint/models/emmeans.hpp"
 #include "feint/models/mixed_model.hpp"
 
+#include "golden_csv.hpp"
+
 namespace {
 
 using namespace feint::models;
 
-const std::string kDir = std::string(FEINT_SOURCE_DIR) + "/tests/golden/models/";
+const std::string& kDir = feint::test::kModelGoldenDir;
 
-std::vector<std::vector<std::string>> read_csv(const std::string& path) {
-  std::ifstream in(path);
-  EXPECT_TRUE(in) << path;
-  std::vector<std::vector<std::string>> rows;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) f.push_back(cell);
-    rows.push_back(f);
-  }
-  return rows;
-}
+using feint::test::read_csv;
 
-LongData load(const std::string& name) {
-  const auto rows = read_csv(kDir + "lmm_" + name + ".csv");
-  std::map<std::string, std::size_t> col;
-  for (std::size_t i = 0; i < rows[0].size(); ++i) col[rows[0][i]] = i;
-  LongData d;
-  for (std::size_t r = 1; r < rows.size(); ++r) {
-    d.participant.push_back(rows[r][col.at("participant")]);
-    d.group.push_back(rows[r][col.at("condition")]);
-    d.time.push_back(std::stod(rows[r][col.at("iteration")]));
-    d.y.push_back(std::stod(rows[r][col.at("error")]));
-  }
-  return d;
-}
 
 using Golden = std::map<std::string, std::map<std::string, std::map<std::string, double>>>;
 const Golden& golden() {
@@ -95,7 +71,7 @@ void check_case(const std::string& c, DdfMethod ddf, bool with_tukey) {
   const auto& g = golden().at(key);
   ModelSpec spec;
   spec.ddf = ddf;
-  const MixedModelFit fit = fit_mixed_model(load(c), spec, true);
+  const MixedModelFit fit = fit_mixed_model(feint::test::load_lmm(c), spec, true);
   check_rows(g, "cells", estimated_means(fit, EmmTerm::cells), true);
   check_rows(g, "condition", estimated_means(fit, EmmTerm::condition), true);
   check_rows(g, "iteration", estimated_means(fit, EmmTerm::iteration), true);
@@ -129,9 +105,9 @@ TEST(Emmeans, PolynomialContrastsAreEmmeansIntegers) {
 TEST(Emmeans, RejectsTrendTukeyOnPolyAndBadAdjust) {
   ModelSpec trend;
   trend.time_scale = TimeScale::linear;
-  const MixedModelFit f = fit_mixed_model(load("balanced5"), trend, true);
+  const MixedModelFit f = fit_mixed_model(feint::test::load_lmm("balanced5"), trend, true);
   EXPECT_THROW(estimated_means(f, EmmTerm::cells), feint::UsageError);
-  const MixedModelFit g = fit_mixed_model(load("balanced5"), ModelSpec{}, true);
+  const MixedModelFit g = fit_mixed_model(feint::test::load_lmm("balanced5"), ModelSpec{}, true);
   EXPECT_THROW(emm_contrasts(g, EmmFamily::poly_iteration, EmmAdjust::tukey), feint::UsageError);
   EXPECT_THROW(parse_emm_adjust("scheffe"), feint::UsageError);
 }

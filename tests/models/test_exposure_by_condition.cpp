@@ -10,20 +10,10 @@
 
 #include "feint/models/exposure.hpp"
 
+#include "golden_csv.hpp"
+
 namespace {
-std::vector<std::vector<std::string>> read_csv(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    std::stringstream ss(line);
-    std::string x;
-    while (std::getline(ss, x, ',')) f.push_back(x);
-    rows.push_back(f);
-  }
-  return rows;
-}
+using feint::test::read_csv;
 }  // namespace
 
 TEST(ExposureByCondition, SlopesAndTheirDifferenceMatchLmer) {

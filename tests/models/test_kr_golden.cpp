@@ -13,6 +13,8 @@
 
 #include "feint/models/mixed_model.hpp"
 
+#include "golden_csv.hpp"
+
 namespace {
 
 using feint::models::DdfMethod;
@@ -21,36 +23,10 @@ using feint::models::MixedModelFit;
 using feint::models::ModelSpec;
 using feint::models::TimeScale;
 
-const std::string kDir = std::string(FEINT_SOURCE_DIR) + "/tests/golden/models/";
+const std::string& kDir = feint::test::kModelGoldenDir;
 
-std::vector<std::vector<std::string>> read_csv(const std::string& path) {
-  std::ifstream in(path);
-  EXPECT_TRUE(in) << path;
-  std::vector<std::vector<std::string>> rows;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) f.push_back(cell);
-    rows.push_back(f);
-  }
-  return rows;
-}
+using feint::test::read_csv;
 
-LongData load(const std::string& name) {
-  const auto rows = read_csv(kDir + "lmm_" + name + ".csv");
-  std::map<std::string, std::size_t> col;
-  for (std::size_t i = 0; i < rows[0].size(); ++i) col[rows[0][i]] = i;
-  LongData d;
-  for (std::size_t r = 1; r < rows.size(); ++r) {
-    d.participant.push_back(rows[r][col.at("participant")]);
-    d.group.push_back(rows[r][col.at("condition")]);
-    d.time.push_back(std::stod(rows[r][col.at("iteration")]));
-    d.y.push_back(std::stod(rows[r][col.at("error")]));
-  }
-  return d;
-}
 
 // g[case|ddf][quantity][name]
 using Golden = std::map<std::string, std::map<std::string, std::map<std::string, double>>>;
@@ -81,7 +57,7 @@ ModelSpec spec_of(const std::string& c, DdfMethod ddf) {
 void check(const std::string& c, DdfMethod ddf) {
   const std::string key = c + "|" + (ddf == DdfMethod::kenward_roger ? "Kenward-Roger" : "Satterthwaite");
   const auto& g = golden().at(key);
-  const MixedModelFit fit = feint::models::fit_mixed_model(load(c), spec_of(c, ddf), true);
+  const MixedModelFit fit = feint::models::fit_mixed_model(feint::test::load_lmm(c), spec_of(c, ddf), true);
   // The random slope's optimum is flatter (3e-7, as the Satterthwaite goldens); else 1e-6 is the
   // issue's bar and the reached agreement is ~1e-8.
   const double tol = 1e-6;
@@ -132,7 +108,7 @@ TEST(SatterthwaiteGolden, TrendWithAnEmptyCellMatchesLmerTest) {
 
 // Kenward-Roger is scale-invariant too (computed in the normalised units).
 TEST(KenwardRoger, ScaleInvariantFrom1e9To1e6) {
-  LongData d = load("unbalanced4_missing");
+  LongData d = feint::test::load_lmm("unbalanced4_missing");
   const ModelSpec s = spec_of("unbalanced4_missing", DdfMethod::kenward_roger);
   const MixedModelFit ref = feint::models::fit_mixed_model(d, s, true);
   for (const double c : {1e-9, 1e-6, 1e6}) {

@@ -13,6 +13,8 @@
 #include "feint/models/mixed_model.hpp"
 #include "feint/stats/p_adjust.hpp"
 
+#include "golden_csv.hpp"
+
 namespace {
 
 using feint::models::LongData;
@@ -20,24 +22,10 @@ using feint::models::MixedModelFit;
 using feint::models::ModelSpec;
 using feint::models::TimeScale;
 
-const std::string kDir = std::string(FEINT_SOURCE_DIR) + "/tests/golden/models/";
+const std::string& kDir = feint::test::kModelGoldenDir;
 constexpr double kTol = 2e-7;  // relative; reached: worst 6e-8 (an optimiser tolerance, see docs)
 
-std::vector<std::vector<std::string>> read_csv(const std::string& path) {
-  std::ifstream in(path);
-  EXPECT_TRUE(in) << path;
-  std::vector<std::vector<std::string>> rows;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) f.push_back(cell);
-    if (!line.empty() && line.back() == ',') f.emplace_back();
-    rows.push_back(f);
-  }
-  return rows;
-}
+using feint::test::read_csv;
 
 struct Data {
   LongData long_data;
