@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "feint/analysis/options.hpp"
+#include "feint/io/file_identity.hpp"
 #include "feint/io/scores.hpp"
 #include "feint/report/study_power_render.hpp"
 #include "feint/sim/pilot_fit.hpp"
@@ -55,6 +56,7 @@ ObserverPowerPlan observer_power_plan(const ObserverPowerOptions& a, double alph
 
 std::string observer_power_report(const ObserverPowerOptions& options,
                                   const ResolvedReportOptions& r) {
+  io::refuse_overwriting_inputs({options.pilot, options.observer_file}, {r.output});
   const ObserverPowerPlan plan = observer_power_plan(options, r.alpha);
   const auto result = sim::study_power(plan.settings);
   return report::render_study_power(result, plan.source, r.format, r.presentation);

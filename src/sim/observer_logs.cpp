@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "feint/error.hpp"
+#include "feint/io/file_identity.hpp"
 #include "feint/io/trace.hpp"
 #include "feint/sim/robot_path.hpp"
 #include "feint/sim/trajectory_measures.hpp"
@@ -12,6 +13,7 @@
 namespace feint::sim {
 
 models::ObserverFitSettings observer_fit_settings(const ObserverFitOptions& a) {
+  io::refuse_overwriting_inputs(io::expand_inputs(a.inputs), {a.output});  // inputs are sacred
   models::ObserverFitSettings s;
   if (a.noise == "ar1") {
     s.noise = models::PadNoise::ar1;

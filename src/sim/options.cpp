@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "feint/error.hpp"
+#include "feint/io/file_identity.hpp"
 #include "feint/io/number.hpp"
 #include "feint/sim/sweep.hpp"
 
@@ -40,6 +41,7 @@ StudySettings study_settings(const StudyOptions& o) {
 }
 
 TrajectoryMeasures trajectory_measures(const TrajectoriesOptions& o) {
+  io::refuse_overwriting_inputs({o.path}, {o.output});  // inputs are sacred
   TrajectoryMeasures m;
   models::DeceptivenessSettings& s = m.settings;
   s.observer = {o.beta, o.tau, o.prior};

@@ -216,3 +216,35 @@ TEST(InputsAreSacred, AnalyzeRecordsTheFinalScoresPathInTheSidecar) {
   EXPECT_NE(sidecar.find("\"output\": \"scores.csv\""), std::string::npos) << sidecar;
   EXPECT_EQ(sidecar.find(out.string()), std::string::npos) << sidecar;
 }
+
+// The commands added for the observer model (issues #16, #17) never write over what they read: a
+// pilot, an observer-parameter file, the logs of a fit, a path file.
+TEST(InputsAreSacred, ObserverCommandsRefuseToWriteOverTheirInputs) {
+  feint::test::TempDir dir;
+  const auto pilot = (dir.path() / "pilot.csv").string();
+  const std::string scores = "participant,condition,iteration,error\nP1,adaptive,1,0.5\n";
+  feint::test::write_text(pilot, scores);
+  const auto params = (dir.path() / "observer.txt").string();
+  feint::test::write_text(params, "beta = 0.3\n");
+  const auto path = (dir.path() / "path.csv").string();
+  feint::test::write_text(path, "t,x,y\n0,0,0\n1,0.5,1\n2,1,2\n");
+  const auto logs = dir.path() / "logs";
+  std::filesystem::create_directories(logs);
+  const auto log = (logs / "p1.csv").string();
+  const std::string log_text =
+      "participant,condition,iteration,strategy,variant,target,t,pad\nP1,adaptive,1,optimal,main,right,0,0.5\n";
+  feint::test::write_text(log, log_text);
+  for (const std::string& cmd :
+       {"power observer --pilot " + shell_quote(pilot) + " -o " + shell_quote(pilot),
+        "power observer --observer-file " + shell_quote(params) + " -o " + shell_quote(params),
+        "observer fit " + shell_quote(logs.string()) + " -o " + shell_quote(log),
+        "simulate trajectories --path " + shell_quote(path) + " -o " + shell_quote(path)}) {
+    const RunResult r = run_feint(cmd);
+    EXPECT_EQ(r.exit_code, 64) << cmd << "\n" << r.err;
+    EXPECT_NE(r.err.find("never overwrites its inputs"), std::string::npos) << cmd << "\n" << r.err;
+  }
+  EXPECT_EQ(read_text(pilot), scores);
+  EXPECT_EQ(read_text(params), "beta = 0.3\n");
+  EXPECT_EQ(read_text(path), "t,x,y\n0,0,0\n1,0.5,1\n2,1,2\n");
+  EXPECT_EQ(read_text(log), log_text);
+}

@@ -1,5 +1,5 @@
-// The committed R goldens of tests/golden/models: plain CSV (no quoting), read the same way by every
-// model golden test.
+// The committed R goldens of tests/golden/models: plain CSV (no quoting), read the same way by
+// every model golden test.
 #pragma once
 
 #include <gtest/gtest.h>

@@ -29,6 +29,7 @@ struct ObserverFitOptions {
 };
 
 /// The fit's settings (goals not yet set). Throws UsageError for an unknown --noise or --format.
+/// Throws UsageError when the output is one of the logs (feint never overwrites its inputs).
 models::ObserverFitSettings observer_fit_settings(const ObserverFitOptions& options);
 
 /// The trials of the logs as the fit sees them, and the trials left out on the way.
