@@ -13,7 +13,8 @@
 namespace feint::sim {
 
 models::ObserverFitSettings observer_fit_settings(const ObserverFitOptions& a) {
-  io::refuse_overwriting_inputs(io::expand_inputs(a.inputs), {a.output});  // inputs are sacred
+  if (!a.output.empty() && a.output != "-")  // inputs are sacred
+    io::refuse_overwriting_inputs(io::expand_inputs(a.inputs), {a.output});
   models::ObserverFitSettings s;
   if (a.noise == "ar1") {
     s.noise = models::PadNoise::ar1;
