@@ -558,20 +558,17 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
     fit.variance.icc = Sb(0, 0) / (Sb(0, 0) + fit.variance.residual);
   }
 
-  // Satterthwaite (lmerTest's as_lmerModLT), in a scale-free parametrisation: varpar = (theta,
-  // sigma) with sigma = u * sigma_hat, derivatives taken at u = 1 (numDeriv's steps are then
-  // relative in sigma, as lmerTest's are for sigma >= 1.8e-5, and never the absolute 1e-4 that
-  // ruins lmerTest's df in small units), then carried back to (theta, sigma) by the chain rule.
+  // Satterthwaite (lmerTest's as_lmerModLT) with exact derivatives (lmerTest takes numDeriv's
+  // Richardson differences, whose absolute step ruins its df in small units), in a scale-free
+  // parametrisation: varpar = (theta, sigma) with sigma = u * sigma_hat at u = 1, where the
+  // positive-eigenvalue cut of the Hessian is made; then carried back to (theta, sigma).
   const Eigen::Index nv = fit.theta.size() + 1;
-  Eigen::VectorXd vp_u(nv);
-  vp_u << fit.theta, 1.0;
-  auto to_sigma = [&](const Eigen::VectorXd& v) {
-    Eigen::VectorXd w = v;
-    w(nv - 1) *= sigma_s;
-    return w;
-  };
-  const Eigen::MatrixXd H = detail::numderiv_hessian(
-      [&](const Eigen::VectorXd& v) { return problem.reml_deviance(to_sigma(v)); }, vp_u);
+  Eigen::VectorXd vp_s(nv);
+  vp_s << fit.theta, sigma_s;
+  Eigen::VectorXd du = Eigen::VectorXd::Ones(nv);  // d varpar / d (theta, u)
+  du(nv - 1) = sigma_s;
+  const Eigen::MatrixXd H =
+      du.asDiagonal() * problem.reml_deviance_hessian(vp_s) * du.asDiagonal();
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
   Eigen::MatrixXd A_u = Eigen::MatrixXd::Zero(nv, nv);
   for (Eigen::Index i = 0; i < nv; ++i) {
@@ -579,8 +576,8 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
     if (ev_i > 1e-8) A_u += es.eigenvectors().col(i) * es.eigenvectors().col(i).transpose() / ev_i;
   }
   A_u *= 2.0;
-  std::vector<Eigen::MatrixXd> J_u = detail::numderiv_jacobian(
-      [&](const Eigen::VectorXd& v) { return problem.vcov_beta(to_sigma(v)); }, vp_u);
+  std::vector<Eigen::MatrixXd> J_u = problem.vcov_beta_jacobian(vp_s);
+  for (Eigen::Index k = 0; k < nv; ++k) J_u[static_cast<std::size_t>(k)] *= du(k);
   // Back to the units of y: d sigma = sigma_y d u; vcov(beta) scales by 2^(2k).
   fit.varpar.resize(nv);
   fit.varpar << fit.theta, fit.sigma;
