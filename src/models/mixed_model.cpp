@@ -249,7 +249,7 @@ Eigen::VectorXd nelder_mead(const std::function<double(const Eigen::VectorXd&)>&
 // Newton steps on the exact gradient and Hessian of the profiled criterion
 // (mixed_model_derivatives.cpp) from a point the direct search left near the optimum, until the
 // steps stop shrinking (rounding reached): the optimum is then the root of the gradient to
-// ~1e-15 relative, whatever path the search took, so the fit is a smooth function of the data
+// rounding (~1e-13), whatever path the search took, so the fit is a smooth function of the data
 // (scale invariance, docs/mixed-model.md). Only where the Hessian is positive definite, and a step
 // must not raise the criterion beyond rounding (it never does this close to the optimum).
 Eigen::VectorXd newton_polish(const Problem& problem, Eigen::VectorXd x) {

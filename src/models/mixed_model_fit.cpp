@@ -204,8 +204,12 @@ std::vector<Eigen::MatrixXd> type3_hypotheses(const Layout& lay, const Eigen::Ma
 
 }  // namespace
 
-Eigen::VectorXd MixedModelFit::cell_row(std::size_t group_level, double time) const {
-  const Layout lay = make_layout(*this);
+namespace {
+
+// The row of X for a cell, given the layout (made once per fit: make_layout formats names).
+Eigen::VectorXd cell_row_of(const MixedModelFit& fit, const Layout& lay, std::size_t group_level,
+                            double time) {
+  const auto& time_levels = fit.time_levels;
   Eigen::VectorXd row = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(lay.coef_names.size()));
   row(0) = 1;
   const Term* g = lay.has_group ? &lay.terms[0] : nullptr;
@@ -223,6 +227,12 @@ Eigen::VectorXd MixedModelFit::cell_row(std::size_t group_level, double time) co
       row(lay.terms[2].cols[(j - 1) * (lay.n_group - 1) + (group_level - 1)]) = 1;
   }
   return row;
+}
+
+}  // namespace
+
+Eigen::VectorXd MixedModelFit::cell_row(std::size_t group_level, double time) const {
+  return cell_row_of(*this, make_layout(*this), group_level, time);
 }
 
 Contrast contrast(const MixedModelFit& fit, const Eigen::VectorXd& L, double conf_level) {
@@ -502,7 +512,7 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
   for (std::size_t r = 0; r < n; ++r) {
     const std::size_t i = order[r];
     const auto row = static_cast<Eigen::Index>(r);
-    X.row(row) = fit.cell_row(gi[i], data.time[i]).transpose();
+    X.row(row) = cell_row_of(fit, lay, gi[i], data.time[i]).transpose();
     Z(row, 0) = 1;
     if (q == 2) Z(row, 1) = data.time[i];
     y(row) = data.y[i];
