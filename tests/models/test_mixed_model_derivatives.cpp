@@ -12,6 +12,8 @@
 
 #include "../../src/models/mixed_model_detail.hpp"
 
+#include "mixed_model_normal.hpp"
+
 namespace {
 
 using feint::models::detail::Problem;
@@ -72,17 +74,7 @@ Eigen::MatrixXd num_jacobian(const std::function<Eigen::VectorXd(const Eigen::Ve
   return J;
 }
 
-struct Normal {
-  std::uint64_t s;
-  double uniform() {
-    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (static_cast<double>(s >> 11) + 0.5) / 9007199254740992.0;
-  }
-  double operator()() {
-    const double u = uniform(), v = uniform();
-    return std::sqrt(-2 * std::log(u)) * std::cos(2 * std::numbers::pi * v);
-  }
-};
+using feint::test::Normal;
 
 // Two conditions, a linear trend (intercept, condition, time, condition x time), random intercept
 // (and slope), unbalanced with missing trials.
