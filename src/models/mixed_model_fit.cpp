@@ -539,7 +539,7 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
   fit.coef_names = lay.coef_names;
 
   // Scale invariance: the response is divided by a power of two near its spread, so that every
-  // step below (optimiser, numerical derivatives, tolerances) sees numbers of order 1 whatever the
+  // step below (optimiser, its tolerances, the eigenvalue cut) sees numbers of order 1 whatever the
   // unit of the response, and multiplying back is exact. y * 2^k gives bit-identical F, df and p.
   const int scale_exp = detail::response_scale_exponent(y);
   const Eigen::VectorXd ys = y.unaryExpr([&](double v) { return std::ldexp(v, -scale_exp); });
