@@ -1,5 +1,6 @@
-// Benchmarks of the repeated-measures models (issue 10): the mixed ANOVA of the paper's design
-// (2 conditions x 20 iterations, 30 participants each) and simulation power (studies per second).
+// Benchmarks of the repeated-measures models (issue 10): the mixed ANOVA and the linear mixed model
+// (REML fit, Satterthwaite df, type-III table) of the paper's design (2 conditions x 20 iterations,
+// 30 participants each) and simulation power (studies per second).
 //   cmake -S . -B build -DFEINT_BUILD_BENCH=ON && cmake --build build --target bench_models
 //   build/bench/bench_models
 #include <benchmark/benchmark.h>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "feint/models/mixed_anova.hpp"
+#include "feint/models/mixed_model.hpp"
 #include "feint/models/power_sim.hpp"
 
 namespace {
@@ -45,6 +47,25 @@ void BM_MixedAnovaPaperDesign(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_MixedAnovaPaperDesign)->Unit(benchmark::kMicrosecond);
+
+// fit_mixed_model alone (no CSV, no rendering): iteration as a factor (random intercept), or a
+// linear trend with a random slope (the slowest: Nelder-Mead over three parameters).
+void BM_MixedModelPaperDesign(benchmark::State& state) {
+  LongData d;
+  for (const auto& o : paper_observations()) {
+    d.participant.push_back(o.participant);
+    d.group.push_back(o.condition);
+    d.time.push_back(static_cast<double>(o.iteration));
+    d.y.push_back(*o.value);
+  }
+  ModelSpec spec;
+  if (state.range(0) == 1) {
+    spec.time_scale = TimeScale::linear;
+    spec.random_slope = true;
+  }
+  for (auto _ : state) benchmark::DoNotOptimize(fit_mixed_model(d, spec, true));
+}
+BENCHMARK(BM_MixedModelPaperDesign)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 void BM_SimulationPower(benchmark::State& state) {
   SimulationOptions o;

@@ -246,6 +246,36 @@ Eigen::VectorXd nelder_mead(const std::function<double(const Eigen::VectorXd&)>&
   return s[static_cast<std::size_t>(it - fs.begin())];
 }
 
+// Newton steps on the exact gradient and Hessian of the profiled criterion
+// (mixed_model_derivatives.cpp) from a point the direct search left near the optimum, until the
+// steps stop shrinking (rounding reached): the optimum is then the root of the gradient to
+// rounding (~1e-13), whatever path the search took, so the fit is a smooth function of the data
+// (scale invariance, docs/mixed-model.md). Only where the Hessian is positive definite, and a step
+// must not raise the criterion beyond rounding (it never does this close to the optimum).
+Eigen::VectorXd newton_polish(const Problem& problem, Eigen::VectorXd x) {
+  double last = std::numeric_limits<double>::infinity();
+  double fx = problem.profiled_reml(x);
+  Eigen::VectorXd g;
+  Eigen::MatrixXd H;
+  for (int it = 0; it < 50; ++it) {
+    if (!problem.profiled_reml_derivatives(x, g, H)) break;
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
+    if (!(es.eigenvalues().minCoeff() > 0)) break;
+    const Eigen::VectorXd step =
+        -es.eigenvectors() * (es.eigenvectors().transpose() * g).cwiseQuotient(es.eigenvalues());
+    const double size = step.cwiseAbs().maxCoeff();
+    if (!(size < 0.5 * last) || !(size < 0.1 * (1 + x.cwiseAbs().maxCoeff()))) break;
+    const Eigen::VectorXd xn = x + step;
+    const double fn = problem.profiled_reml(xn);
+    if (!(fn <= fx + 1e-12 * (1 + std::abs(fx)))) break;
+    x = xn;
+    fx = fn;
+    last = size;
+    if (size == 0) break;
+  }
+  return x;
+}
+
 // One-dimensional: theta >= 0. A grid on log(theta) brackets the global minimum, Brent refines
 // it; theta = 0 (a singular fit) wins when its criterion is lower.
 double optimise_intercept(const Problem& problem) {
@@ -278,19 +308,10 @@ double optimise_intercept(const Problem& problem) {
                                                           std::numeric_limits<double>::digits / 2);
     if (r2.second <= f_theta) theta = r2.first;
     // Brent's minimum is only sqrt(eps) precise where the criterion is flat; Newton steps on
-    // the root of its (Richardson) derivative find the optimum to ~1e-10 relative.
-    auto fv = [&](const Eigen::VectorXd& v) { return f(v(0)); };
-    for (int it = 0; it < 4; ++it) {
-      Eigen::VectorXd v(1);
-      v(0) = theta;
-      const double g = numderiv_gradient(fv, v)(0);
-      const double h = numderiv_hessian(fv, v)(0, 0);
-      if (!(h > 0)) break;
-      const double step = -g / h;
-      if (!(std::abs(step) < 1e-3 * theta)) break;
-      theta += step;
-      if (std::abs(step) < 1e-13 * theta) break;
-    }
+    // its exact derivatives find the root of the gradient to rounding.
+    Eigen::VectorXd v(1);
+    v(0) = theta;
+    theta = std::abs(newton_polish(problem, v)(0));  // the criterion is even in theta
   }
   return theta;
 }
@@ -308,27 +329,7 @@ Eigen::VectorXd optimise_theta(const Problem& problem) {
   x << 1.0, 0.0, 1.0;  // lme4's start
   for (int restart = 0; restart < 4; ++restart)
     x = nelder_mead(f, x, restart == 0 ? 0.5 : 0.05, 4000);
-  // Newton polish with Richardson derivatives (the criterion is smooth inside the domain).
-  // Near the optimum the criterion is flat to rounding, so a step is judged by the gradient it
-  // leaves (Richardson derivatives are ~1e-10 precise), not by the noisy criterion alone.
-  Eigen::VectorXd g = numderiv_gradient(f, x);
-  for (int it = 0; it < 8; ++it) {
-    const Eigen::MatrixXd H = numderiv_hessian(f, x);
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
-    if (es.eigenvalues().minCoeff() <= 0) break;
-    const Eigen::VectorXd step =
-        -es.eigenvectors() * (es.eigenvectors().transpose() * g).cwiseQuotient(es.eigenvalues());
-    const Eigen::VectorXd xn = x + step;
-    const double fx = f(x), fn = f(xn);
-    const Eigen::VectorXd gn = numderiv_gradient(f, xn);
-    if (fn <= fx || (fn <= fx + 1e-10 * (1 + std::abs(fx)) && gn.norm() < g.norm())) {
-      x = xn;
-      g = gn;
-    } else {
-      break;
-    }
-    if (step.norm() < 1e-13 * (1 + x.norm())) break;
-  }
+  x = newton_polish(problem, x);
   // Canonical signs: diagonal of the Cholesky factor >= 0 (the criterion is invariant).
   if (x(0) < 0) {
     x(0) = -x(0);
@@ -336,111 +337,6 @@ Eigen::VectorXd optimise_theta(const Problem& problem) {
   }
   if (x(2) < 0) x(2) = -x(2);
   return x;
-}
-
-// ---------------------------------------------------------------------------------------------
-// numDeriv's Richardson extrapolation (genD and jacobian defaults)
-
-namespace {
-constexpr double kZeroTol = 1.7817974362806785e-05;  // sqrt(.Machine$double.eps / 7e-7)
-}
-
-Eigen::VectorXd numderiv_gradient(const std::function<double(const Eigen::VectorXd&)>& f,
-                                  const Eigen::VectorXd& x) {
-  const Eigen::Index n = x.size();
-  constexpr int r = 4;
-  Eigen::VectorXd g(n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    double h = std::abs(1e-4 * x(i)) + 1e-4 * (std::abs(x(i)) < kZeroTol ? 1.0 : 0.0);
-    double a[r];
-    for (int k = 0; k < r; ++k) {
-      Eigen::VectorXd xp = x, xm = x;
-      xp(i) += h;
-      xm(i) -= h;
-      a[k] = (f(xp) - f(xm)) / (2 * h);
-      h /= 2;
-    }
-    for (int m = 1; m < r; ++m)
-      for (int k = 0; k < r - m; ++k)
-        a[k] = (a[k + 1] * std::pow(4.0, m) - a[k]) / (std::pow(4.0, m) - 1);
-    g(i) = a[0];
-  }
-  return g;
-}
-
-Eigen::MatrixXd numderiv_hessian(const std::function<double(const Eigen::VectorXd&)>& f,
-                                 const Eigen::VectorXd& x) {
-  const Eigen::Index n = x.size();
-  constexpr int r = 4;
-  constexpr double d = 0.1, eps = 1e-4;
-  const double f0 = f(x);
-  Eigen::VectorXd h0(n);
-  for (Eigen::Index i = 0; i < n; ++i)
-    h0(i) = std::abs(d * x(i)) + eps * (std::abs(x(i)) < kZeroTol ? 1.0 : 0.0);
-  Eigen::VectorXd hdiag(n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    Eigen::VectorXd h = h0;
-    double ha[r];
-    for (int k = 0; k < r; ++k) {
-      Eigen::VectorXd xp = x, xm = x;
-      xp(i) += h(i);
-      xm(i) -= h(i);
-      ha[k] = (f(xp) - 2 * f0 + f(xm)) / (h(i) * h(i));
-      h /= 2;
-    }
-    for (int m = 1; m < r; ++m)
-      for (int k = 0; k < r - m; ++k)
-        ha[k] = (ha[k + 1] * std::pow(4.0, m) - ha[k]) / (std::pow(4.0, m) - 1);
-    hdiag(i) = ha[0];
-  }
-  Eigen::MatrixXd H(n, n);
-  for (Eigen::Index i = 0; i < n; ++i) {
-    H(i, i) = hdiag(i);
-    for (Eigen::Index j = 0; j < i; ++j) {
-      Eigen::VectorXd h = h0;
-      double da[r];
-      for (int k = 0; k < r; ++k) {
-        Eigen::VectorXd xp = x, xm = x;
-        xp(i) += h(i);
-        xp(j) += h(j);
-        xm(i) -= h(i);
-        xm(j) -= h(j);
-        da[k] = (f(xp) - 2 * f0 + f(xm) - hdiag(i) * h(i) * h(i) - hdiag(j) * h(j) * h(j)) /
-                (2 * h(i) * h(j));
-        h /= 2;
-      }
-      for (int m = 1; m < r; ++m)
-        for (int k = 0; k < r - m; ++k)
-          da[k] = (da[k + 1] * std::pow(4.0, m) - da[k]) / (std::pow(4.0, m) - 1);
-      H(i, j) = H(j, i) = da[0];
-    }
-  }
-  return H;
-}
-
-std::vector<Eigen::MatrixXd> numderiv_jacobian(
-    const std::function<Eigen::MatrixXd(const Eigen::VectorXd&)>& f, const Eigen::VectorXd& x) {
-  const Eigen::Index n = x.size();
-  constexpr int r = 4;
-  std::vector<Eigen::MatrixXd> out;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    double h = std::abs(1e-4 * x(i)) + 1e-4 * (std::abs(x(i)) < kZeroTol ? 1.0 : 0.0);
-    std::vector<Eigen::MatrixXd> a;
-    for (int k = 0; k < r; ++k) {
-      Eigen::VectorXd xp = x, xm = x;
-      xp(i) += h;
-      xm(i) -= h;
-      a.push_back((f(xp) - f(xm)) / (2 * h));
-      h /= 2;
-    }
-    for (int m = 1; m < r; ++m)
-      for (int k = 0; k < r - m; ++k)
-        a[static_cast<std::size_t>(k)] = (a[static_cast<std::size_t>(k + 1)] * std::pow(4.0, m) -
-                                          a[static_cast<std::size_t>(k)]) /
-                                         (std::pow(4.0, m) - 1);
-    out.push_back(a[0]);
-  }
-  return out;
 }
 
 }  // namespace detail

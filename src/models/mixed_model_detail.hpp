@@ -3,7 +3,6 @@
 
 #include <Eigen/Dense>
 #include <cstddef>
-#include <functional>
 #include <vector>
 
 namespace feint::models::detail {
@@ -17,6 +16,17 @@ struct Evaluation {
   Eigen::MatrixXd XtHX;
   Eigen::LLT<Eigen::MatrixXd> xthx_chol;
   Eigen::VectorXd beta;
+};
+
+/// Exact derivatives at one theta (mixed_model_derivatives.cpp), with P = H^-1 - H^-1 X C X' H^-1.
+struct ThetaDerivatives {
+  Evaluation ev;
+  Eigen::MatrixXd C;                ///< (X' H^-1 X)^-1
+  Eigen::VectorXd tr_pg;            ///< tr(P G_k) = d (log|H| + log|X'H^-1X|) / d theta_k
+  Eigen::MatrixXd logdet_hessian;   ///< tr(P G_kl) - tr(P G_k P G_l), its second derivatives
+  Eigen::VectorXd r2_gradient;      ///< d r2 / d theta_k = -y'P G_k P y
+  Eigen::MatrixXd r2_hessian;       ///< d2 r2 / d theta_k d theta_l
+  std::vector<Eigen::MatrixXd> B;   ///< X'H^-1 G_k H^-1 X = -d (X'H^-1X) / d theta_k
 };
 
 /// Data of a fit, rows sorted by participant (participant i owns rows start[i] .. start[i+1]-1).
@@ -39,6 +49,14 @@ struct Problem {
   double reml_deviance(const Eigen::VectorXd& varpar) const;
   /// sigma^2 (X' H^-1 X)^-1 at varpar = (theta, sigma).
   Eigen::MatrixXd vcov_beta(const Eigen::VectorXd& varpar) const;
+  ThetaDerivatives derivatives(const Eigen::VectorXd& theta) const;
+  /// Gradient and Hessian of profiled_reml at theta; false where the criterion is not finite.
+  bool profiled_reml_derivatives(const Eigen::VectorXd& theta, Eigen::VectorXd& gradient,
+                                 Eigen::MatrixXd& hessian) const;
+  /// Hessian of reml_deviance at varpar = (theta, sigma).
+  Eigen::MatrixXd reml_deviance_hessian(const Eigen::VectorXd& varpar) const;
+  /// d vcov_beta / d varpar_k, k over (theta, sigma).
+  std::vector<Eigen::MatrixXd> vcov_beta_jacobian(const Eigen::VectorXd& varpar) const;
 };
 
 Eigen::VectorXd optimise_theta(const Problem& problem);
@@ -65,12 +83,5 @@ double t_quantile_upper(double upper, double df);
 
 /// 2 P(T_df > |t|) (the normal tail when df > 1e10).
 double t_two_sided_p(double t, double df);
-
-Eigen::VectorXd numderiv_gradient(const std::function<double(const Eigen::VectorXd&)>& f,
-                                  const Eigen::VectorXd& x);
-Eigen::MatrixXd numderiv_hessian(const std::function<double(const Eigen::VectorXd&)>& f,
-                                 const Eigen::VectorXd& x);
-std::vector<Eigen::MatrixXd> numderiv_jacobian(
-    const std::function<Eigen::MatrixXd(const Eigen::VectorXd&)>& f, const Eigen::VectorXd& x);
 
 }  // namespace feint::models::detail

@@ -204,8 +204,12 @@ std::vector<Eigen::MatrixXd> type3_hypotheses(const Layout& lay, const Eigen::Ma
 
 }  // namespace
 
-Eigen::VectorXd MixedModelFit::cell_row(std::size_t group_level, double time) const {
-  const Layout lay = make_layout(*this);
+namespace {
+
+// The row of X for a cell, given the layout (made once per fit: make_layout formats names).
+Eigen::VectorXd cell_row_of(const MixedModelFit& fit, const Layout& lay, std::size_t group_level,
+                            double time) {
+  const auto& time_levels = fit.time_levels;
   Eigen::VectorXd row = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(lay.coef_names.size()));
   row(0) = 1;
   const Term* g = lay.has_group ? &lay.terms[0] : nullptr;
@@ -223,6 +227,12 @@ Eigen::VectorXd MixedModelFit::cell_row(std::size_t group_level, double time) co
       row(lay.terms[2].cols[(j - 1) * (lay.n_group - 1) + (group_level - 1)]) = 1;
   }
   return row;
+}
+
+}  // namespace
+
+Eigen::VectorXd MixedModelFit::cell_row(std::size_t group_level, double time) const {
+  return cell_row_of(*this, make_layout(*this), group_level, time);
 }
 
 Contrast contrast(const MixedModelFit& fit, const Eigen::VectorXd& L, double conf_level) {
@@ -502,7 +512,7 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
   for (std::size_t r = 0; r < n; ++r) {
     const std::size_t i = order[r];
     const auto row = static_cast<Eigen::Index>(r);
-    X.row(row) = fit.cell_row(gi[i], data.time[i]).transpose();
+    X.row(row) = cell_row_of(fit, lay, gi[i], data.time[i]).transpose();
     Z(row, 0) = 1;
     if (q == 2) Z(row, 1) = data.time[i];
     y(row) = data.y[i];
@@ -529,7 +539,7 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
   fit.coef_names = lay.coef_names;
 
   // Scale invariance: the response is divided by a power of two near its spread, so that every
-  // step below (optimiser, numerical derivatives, tolerances) sees numbers of order 1 whatever the
+  // step below (optimiser, its tolerances, the eigenvalue cut) sees numbers of order 1 whatever the
   // unit of the response, and multiplying back is exact. y * 2^k gives bit-identical F, df and p.
   const int scale_exp = detail::response_scale_exponent(y);
   const Eigen::VectorXd ys = y.unaryExpr([&](double v) { return std::ldexp(v, -scale_exp); });
@@ -558,20 +568,17 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
     fit.variance.icc = Sb(0, 0) / (Sb(0, 0) + fit.variance.residual);
   }
 
-  // Satterthwaite (lmerTest's as_lmerModLT), in a scale-free parametrisation: varpar = (theta,
-  // sigma) with sigma = u * sigma_hat, derivatives taken at u = 1 (numDeriv's steps are then
-  // relative in sigma, as lmerTest's are for sigma >= 1.8e-5, and never the absolute 1e-4 that
-  // ruins lmerTest's df in small units), then carried back to (theta, sigma) by the chain rule.
+  // Satterthwaite (lmerTest's as_lmerModLT) with exact derivatives (lmerTest takes numDeriv's
+  // Richardson differences, whose absolute step ruins its df in small units), in a scale-free
+  // parametrisation: varpar = (theta, sigma) with sigma = u * sigma_hat at u = 1, where the
+  // positive-eigenvalue cut of the Hessian is made; then carried back to (theta, sigma).
   const Eigen::Index nv = fit.theta.size() + 1;
-  Eigen::VectorXd vp_u(nv);
-  vp_u << fit.theta, 1.0;
-  auto to_sigma = [&](const Eigen::VectorXd& v) {
-    Eigen::VectorXd w = v;
-    w(nv - 1) *= sigma_s;
-    return w;
-  };
-  const Eigen::MatrixXd H = detail::numderiv_hessian(
-      [&](const Eigen::VectorXd& v) { return problem.reml_deviance(to_sigma(v)); }, vp_u);
+  Eigen::VectorXd vp_s(nv);
+  vp_s << fit.theta, sigma_s;
+  Eigen::VectorXd du = Eigen::VectorXd::Ones(nv);  // d varpar / d (theta, u)
+  du(nv - 1) = sigma_s;
+  const Eigen::MatrixXd H =
+      du.asDiagonal() * problem.reml_deviance_hessian(vp_s) * du.asDiagonal();
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
   Eigen::MatrixXd A_u = Eigen::MatrixXd::Zero(nv, nv);
   for (Eigen::Index i = 0; i < nv; ++i) {
@@ -579,8 +586,8 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
     if (ev_i > 1e-8) A_u += es.eigenvectors().col(i) * es.eigenvectors().col(i).transpose() / ev_i;
   }
   A_u *= 2.0;
-  std::vector<Eigen::MatrixXd> J_u = detail::numderiv_jacobian(
-      [&](const Eigen::VectorXd& v) { return problem.vcov_beta(to_sigma(v)); }, vp_u);
+  std::vector<Eigen::MatrixXd> J_u = problem.vcov_beta_jacobian(vp_s);
+  for (Eigen::Index k = 0; k < nv; ++k) J_u[static_cast<std::size_t>(k)] *= du(k);
   // Back to the units of y: d sigma = sigma_y d u; vcov(beta) scales by 2^(2k).
   fit.varpar.resize(nv);
   fit.varpar << fit.theta, fit.sigma;

@@ -12,23 +12,14 @@
 #include "feint/models/exposure.hpp"
 #include "feint/models/mixed_model.hpp"
 
+#include "mixed_model_normal.hpp"
+
 namespace {
 
 using feint::models::LongData;
 using feint::models::ModelSpec;
 
-// A portable normal generator (std::normal_distribution differs between standard libraries).
-struct Normal {
-  std::uint64_t s;
-  double uniform() {
-    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (static_cast<double>(s >> 11) + 0.5) / 9007199254740992.0;
-  }
-  double operator()() {
-    const double u = uniform(), v = uniform();
-    return std::sqrt(-2 * std::log(u)) * std::cos(2 * std::numbers::pi * v);
-  }
-};
+using feint::test::Normal;
 
 // a groups x n participants, b iterations, every trial present.
 LongData balanced(int a, int n, int b, std::uint64_t seed, double participant_sd = 0.3) {

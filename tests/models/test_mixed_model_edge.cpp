@@ -13,6 +13,8 @@
 #include "feint/error.hpp"
 #include "feint/models/mixed_model.hpp"
 
+#include "mixed_model_normal.hpp"
+
 namespace {
 
 using feint::InvalidData;
@@ -21,17 +23,7 @@ using feint::models::MixedModelFit;
 using feint::models::ModelSpec;
 using feint::models::TimeScale;
 
-struct Normal {
-  std::uint64_t s;
-  double uniform() {
-    s = s * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (static_cast<double>(s >> 11) + 0.5) / 9007199254740992.0;
-  }
-  double operator()() {
-    const double u = uniform(), v = uniform();
-    return std::sqrt(-2 * std::log(u)) * std::cos(2 * std::numbers::pi * v);
-  }
-};
+using feint::test::Normal;
 
 // Two conditions (n_a, n_b participants), `iterations` iterations; a share `missing` of the trials
 // dropped at random (never a whole condition x iteration cell in these sizes).
