@@ -44,6 +44,7 @@ struct Prepared {
   Eigen::Index offset = 0, n = 0;  // samples offset .. offset + n - 1 of Problem's arrays
   std::vector<double> inv_dt;      // 1 / (t_{k+1} - t_k) of each path segment (no division per sample)
   double right0 = 0, left0 = 0;    // |S - G_R|, |S - G_L|
+  double progress_end = 0;         // D at the path's last point (after the robot stops)
 };
 
 /// The trials of a fit, with their pad samples in flat arrays so that the likelihood's inner loops
@@ -63,6 +64,9 @@ struct Problem {
     double tau = std::numeric_limits<double>::quiet_NaN();
     std::size_t used = 0;
     Eigen::ArrayXd d;
+    // Per trial, the samples [first, end) whose delayed time falls while the robot moves; before
+    // them D = 0 (the robot is at S), after them D = progress_end.
+    std::vector<std::pair<Eigen::Index, Eigen::Index>> moving;
   };
   mutable std::array<ProgressSlot, 4> slots;
   mutable std::size_t clock = 0;
@@ -90,6 +94,9 @@ Problem prepare(std::span<const ObservedTrial> trials, const ObserverFitSettings
     const PathSample& s0 = tr.path.front();
     q.right0 = std::hypot(s0.x - s.goals.right.x, s0.y - s.goals.right.y);
     q.left0 = std::hypot(s0.x - s.goals.left.x, s0.y - s.goals.left.y);
+    const PathSample& s1 = tr.path.back();
+    q.progress_end = (std::hypot(s1.x - s.goals.right.x, s1.y - s.goals.right.y) - q.right0) -
+                     (std::hypot(s1.x - s.goals.left.x, s1.y - s.goals.left.y) - q.left0);
     p.trials.push_back(std::move(q));
   }
   p.samples = times.size();
@@ -105,45 +112,47 @@ Problem prepare(std::span<const ObservedTrial> trials, const ObserverFitSettings
 /// D_i for the delay tau (from the cache when it holds tau): the robot's position at t_i - tau,
 /// linear between path samples (the path's first point before it starts, its last after it ends),
 /// then both goals' distances.
-const Eigen::ArrayXd& progress_at(const Problem& p, double tau) {
+const Problem::ProgressSlot& progress_at(const Problem& p, double tau) {
   ++p.clock;
   Problem::ProgressSlot* slot = &p.slots[0];
   for (auto& s : p.slots) {
     if (s.tau == tau) {
       s.used = p.clock;
-      return s.d;
+      return s;
     }
     if (s.used < slot->used) slot = &s;
   }
   slot->d.resize(p.times.size());
+  slot->moving.resize(p.trials.size());
   const double rx = p.goals.right.x, ry = p.goals.right.y, lx = p.goals.left.x, ly = p.goals.left.y;
-  for (const auto& q : p.trials) {
+  for (std::size_t tq = 0; tq < p.trials.size(); ++tq) {
+    const Prepared& q = p.trials[tq];
     const auto& path = q.trial->path;
     const std::size_t last = path.size() - 1;
+    // Pad times increase: the samples before the robot starts and after it stops are a prefix and
+    // a suffix.
+    Eigen::Index first = q.offset, end = q.offset + q.n;
+    while (first < end && p.times[first] - tau <= path[0].t) ++first;
+    while (end > first && p.times[end - 1] - tau >= path[last].t) --end;
+    slot->d.segment(q.offset, first - q.offset).setZero();
+    slot->d.segment(end, q.offset + q.n - end).setConstant(q.progress_end);
+    slot->moving[tq] = {first - q.offset, end - q.offset};
     std::size_t k = 0;
-    for (Eigen::Index i = q.offset; i < q.offset + q.n; ++i) {
+    for (Eigen::Index i = first; i < end; ++i) {
       const double t = p.times[i] - tau;
-      if (t <= path[0].t) {
-        p.x[i] = path[0].x;
-        p.y[i] = path[0].y;
-      } else if (t >= path[last].t) {
-        p.x[i] = path[last].x;
-        p.y[i] = path[last].y;
-      } else {
-        while (path[k + 1].t <= t) ++k;
-        const double w = (t - path[k].t) * q.inv_dt[k];
-        p.x[i] = path[k].x + w * (path[k + 1].x - path[k].x);
-        p.y[i] = path[k].y + w * (path[k + 1].y - path[k].y);
-      }
+      while (path[k + 1].t <= t) ++k;
+      const double w = (t - path[k].t) * q.inv_dt[k];
+      p.x[i] = path[k].x + w * (path[k + 1].x - path[k].x);
+      p.y[i] = path[k].y + w * (path[k + 1].y - path[k].y);
     }
-    const auto x = p.x.segment(q.offset, q.n);
-    const auto y = p.y.segment(q.offset, q.n);
-    slot->d.segment(q.offset, q.n) = (((x - rx).square() + (y - ry).square()).sqrt() - q.right0) -
-                                   (((x - lx).square() + (y - ly).square()).sqrt() - q.left0);
+    const auto x = p.x.segment(first, end - first);
+    const auto y = p.y.segment(first, end - first);
+    slot->d.segment(first, end - first) = (((x - rx).square() + (y - ry).square()).sqrt() - q.right0) -
+                                          (((x - lx).square() + (y - ly).square()).sqrt() - q.left0);
   }
   slot->tau = tau;
   slot->used = p.clock;
-  return slot->d;
+  return *slot;
 }
 
 struct Likelihood {
@@ -155,15 +164,24 @@ struct Likelihood {
 /// The profile log-likelihood at theta (sigma and phi in closed form).
 Likelihood evaluate(const Problem& p, const Theta& th) {
   ++p.evaluations;
-  const Eigen::ArrayXd& progress = progress_at(p, th[kTau]);
+  const Problem::ProgressSlot& slot = progress_at(p, th[kTau]);
   double sxx = 0, sxy = 0, syy = 0;
   Eigen::Index m = 0;
-  for (const auto& q : p.trials) {
+  // b = 1 / (1 + e^-logit), logit = prior logit - beta D. Eigen's exp saturates instead of
+  // overflowing (|z| > 709), which leaves b within 1e-300 of 0 or 1. Before the robot moves, b is the
+  // prior.
+  const double b_start = 1.0 / (1.0 + std::exp(-th[kPrior]));
+  for (std::size_t tq = 0; tq < p.trials.size(); ++tq) {
+    const Prepared& q = p.trials[tq];
     const double beta = th[kBeta] * std::exp(th[kGamma] * q.trial->exposure);
+    const auto [first, end] = slot.moving[tq];
     auto r = p.resid.segment(q.offset, q.n);
-    // b = 1 / (1 + e^-logit), logit = prior logit - beta D. Eigen's exp saturates instead of
-    // overflowing (|z| > 709), which leaves b within 1e-300 of 0 or 1.
-    r = p.pads.segment(q.offset, q.n) - 1.0 / (1.0 + (beta * progress.segment(q.offset, q.n) - th[kPrior]).exp());
+    const auto pads = p.pads.segment(q.offset, q.n);
+    r.head(first) = pads.head(first) - b_start;
+    r.segment(first, end - first) =
+        pads.segment(first, end - first) -
+        1.0 / (1.0 + (beta * slot.d.segment(q.offset + first, end - first) - th[kPrior]).exp());
+    r.tail(q.n - end) = pads.tail(q.n - end) - 1.0 / (1.0 + std::exp(beta * q.progress_end - th[kPrior]));
     if (p.noise == PadNoise::independent) {
       syy += r.square().sum();
       m += q.n;
