@@ -70,6 +70,7 @@ struct Problem {
   };
   mutable std::array<ProgressSlot, 4> slots;
   mutable std::size_t clock = 0;
+  // Scratch for one trial at a time (kept in the first-level cache even in a pooled fit).
   mutable Eigen::ArrayXd x, y, resid;
 };
 
@@ -103,9 +104,11 @@ Problem prepare(std::span<const ObservedTrial> trials, const ObserverFitSettings
   const auto n = static_cast<Eigen::Index>(times.size());
   p.times = Eigen::Map<const Eigen::ArrayXd>(times.data(), n);
   p.pads = Eigen::Map<const Eigen::ArrayXd>(pads.data(), n);
-  p.x.resize(n);
-  p.y.resize(n);
-  p.resid.resize(n);
+  Eigen::Index longest = 0;
+  for (const auto& q : p.trials) longest = std::max(longest, q.n);
+  p.x.resize(longest);
+  p.y.resize(longest);
+  p.resid.resize(longest);
   return p;
 }
 
@@ -142,11 +145,11 @@ const Problem::ProgressSlot& progress_at(const Problem& p, double tau) {
       const double t = p.times[i] - tau;
       while (path[k + 1].t <= t) ++k;
       const double w = (t - path[k].t) * q.inv_dt[k];
-      p.x[i] = path[k].x + w * (path[k + 1].x - path[k].x);
-      p.y[i] = path[k].y + w * (path[k + 1].y - path[k].y);
+      p.x[i - first] = path[k].x + w * (path[k + 1].x - path[k].x);
+      p.y[i - first] = path[k].y + w * (path[k + 1].y - path[k].y);
     }
-    const auto x = p.x.segment(first, end - first);
-    const auto y = p.y.segment(first, end - first);
+    const auto x = p.x.head(end - first);
+    const auto y = p.y.head(end - first);
     slot->d.segment(first, end - first) = (((x - rx).square() + (y - ry).square()).sqrt() - q.right0) -
                                           (((x - lx).square() + (y - ly).square()).sqrt() - q.left0);
   }
@@ -175,7 +178,7 @@ Likelihood evaluate(const Problem& p, const Theta& th) {
     const Prepared& q = p.trials[tq];
     const double beta = th[kBeta] * std::exp(th[kGamma] * q.trial->exposure);
     const auto [first, end] = slot.moving[tq];
-    auto r = p.resid.segment(q.offset, q.n);
+    auto r = p.resid.head(q.n);
     const auto pads = p.pads.segment(q.offset, q.n);
     r.head(first) = pads.head(first) - b_start;
     r.segment(first, end - first) =
