@@ -433,7 +433,8 @@ StandardErrors standard_errors(const Problem& p, const Box& box, const Theta& th
 
 /// Grid start, then Nelder-Mead. (A premature stop would show in the profile, which never finds a
 /// higher value than the maximum: see profile_interval.)
-std::pair<Theta, double> global_max(const Problem& p, const Box& box, Theta base) {
+std::pair<Theta, double> global_max(const Problem& p, const Box& box, Theta base,
+                                    const std::optional<Theta>& start) {
   Theta best = base;
   double vbest = -std::numeric_limits<double>::infinity();
   // tau in the outer loop: the positions along the path are computed once per tau.
@@ -446,8 +447,16 @@ std::pair<Theta, double> global_max(const Problem& p, const Box& box, Theta base
       if (v > vbest) { vbest = v; best = th; }
     }
   }
+  // A start near the maximum (a pooled fit's, from its participants' fits) that beats the grid
+  // needs a smaller first simplex.
+  double step = 0.5;
+  if (start) {
+    const Theta th = clamp(*start, box);
+    const double v = evaluate(p, th).loglik;
+    if (v > vbest) { vbest = v; best = th; step = 0.1; }
+  }
   auto f = [&](const Theta& th) { return evaluate(p, th).loglik; };
-  auto r = nelder_mead(f, best, box, box.free, 0.5, 3000);
+  auto r = nelder_mead(f, best, box, box.free, step, 3000);
   return r;
 }
 
@@ -645,7 +654,8 @@ namespace {
 /// The fit of the free parameters; CIs for all of them, or only for `ci_only` (the learning test
 /// needs gamma's alone; the others get NaN ends).
 ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, std::string unit, bool gamma,
-                        Theta base, std::size_t ntrials, std::size_t ci_only = kParams) {
+                        Theta base, std::size_t ntrials, std::size_t ci_only = kParams,
+                        const std::optional<Theta>& start = std::nullopt) {
   const Box box = make_box(settings, gamma);
   // The learning model starts from the pooled fit (gamma = 0), already near its maximum; beta0 and
   // gamma are strongly correlated, so Nelder-Mead is restarted until it stops improving.
@@ -660,7 +670,7 @@ ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, s
     }
     return r;
   };
-  const auto [th, lmax] = gamma ? learning_max() : global_max(p, box, base);
+  const auto [th, lmax] = gamma ? learning_max() : global_max(p, box, base, start);
   ObserverFit fit;
   fit.unit = std::move(unit);
   fit.trials = ntrials;
@@ -719,7 +729,7 @@ ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, s
 }  // namespace
 
 ObserverFit fit_observer(std::span<const ObservedTrial> trials, const ObserverFitSettings& settings,
-                         std::string unit) {
+                         std::string unit, const std::optional<GoalObserver>& start) {
   settings.validate();
   if (trials.empty()) throw InvalidData(fmt::format("{}: no usable trial to fit the observer to", unit));
   for (const auto& tr : trials) {
@@ -728,8 +738,15 @@ ObserverFit fit_observer(std::span<const ObservedTrial> trials, const ObserverFi
     }
   }
   const Problem p = prepare(trials, settings);
+  std::optional<Theta> from;
+  if (start) {
+    validate(*start);
+    from = Theta{start->beta, start->tau,
+                 settings.fit_prior ? prior_logit(start->prior_right) : prior_logit(settings.prior_right), 0.0};
+  }
   ObserverFit fit = fit_problem(p, settings, std::move(unit), false,
-                                Theta{1.0, 0.0, prior_logit(settings.prior_right), 0.0}, trials.size());
+                                Theta{1.0, 0.0, prior_logit(settings.prior_right), 0.0}, trials.size(), kParams,
+                                from);
   if (!trials.empty()) fit.condition = trials.front().condition;
   return fit;
 }
