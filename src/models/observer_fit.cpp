@@ -37,44 +37,125 @@ double logistic(double z) noexcept {
   return e / (1.0 + e);
 }
 
-/// A trial ready for the likelihood: the pad samples kept after thinning, the start's distances.
+/// A trial ready for the likelihood: where its pad samples (kept after thinning) sit in the
+/// problem's flat arrays, and the start's distances.
 struct Prepared {
   const ObservedTrial* trial = nullptr;
-  std::vector<double> times, pads;
-  std::vector<double> inv_dt;    // 1 / (t_{k+1} - t_k) of each path segment (no division per sample)
-  double right0 = 0, left0 = 0;  // |S - G_R|, |S - G_L|
+  Eigen::Index offset = 0, n = 0;  // samples offset .. offset + n - 1 of Problem's arrays
+  std::vector<double> inv_dt;      // 1 / (t_{k+1} - t_k) of each path segment (no division per sample)
+  double right0 = 0, left0 = 0;    // |S - G_R|, |S - G_L|
+  double progress_end = 0;         // D at the path's last point (after the robot stops)
 };
 
+/// The trials of a fit, with their pad samples in flat arrays so that the likelihood's inner loops
+/// run over contiguous memory (vectorised by Eigen).
 struct Problem {
   std::vector<Prepared> trials;
+  Eigen::ArrayXd times, pads;
   Goals goals;
   PadNoise noise = PadNoise::ar1;
   std::size_t samples = 0;
   mutable std::size_t evaluations = 0;
+  // The progress difference D_i = (V_R(Q_i) - V_R(S)) - (V_L(Q_i) - V_L(S)) at each sample's delayed
+  // position Q_i = xi(t_i - tau) depends on tau alone. It is kept for the last few taus (least
+  // recently used replaced): most evaluations change only beta or the prior (the grid, tau's
+  // profile), or come back to a recent tau (a parabola's centre, the Hessian's stencil).
+  struct ProgressSlot {
+    double tau = std::numeric_limits<double>::quiet_NaN();
+    std::size_t used = 0;
+    Eigen::ArrayXd d;
+    // Per trial, the samples [first, end) whose delayed time falls while the robot moves; before
+    // them D = 0 (the robot is at S), after them D = progress_end.
+    std::vector<std::pair<Eigen::Index, Eigen::Index>> moving;
+  };
+  mutable std::array<ProgressSlot, 4> slots;
+  mutable std::size_t clock = 0;
+  // Scratch for one trial at a time (kept in the first-level cache even in a pooled fit).
+  mutable Eigen::ArrayXd x, y, resid;
 };
 
 Problem prepare(std::span<const ObservedTrial> trials, const ObserverFitSettings& s) {
   Problem p;
   p.goals = s.goals;
   p.noise = s.noise;
+  std::vector<double> times, pads;
   for (const auto& tr : trials) {
     Prepared q;
     q.trial = &tr;
+    q.offset = static_cast<Eigen::Index>(times.size());
     double last = -std::numeric_limits<double>::infinity();
     for (std::size_t i = 0; i < tr.times.size(); ++i) {
       if (s.thin > 0 && tr.times[i] - last < s.thin * (1 - 1e-9)) continue;
       last = tr.times[i];
-      q.times.push_back(tr.times[i]);
-      q.pads.push_back(tr.pads[i]);
+      times.push_back(tr.times[i]);
+      pads.push_back(tr.pads[i]);
     }
+    q.n = static_cast<Eigen::Index>(times.size()) - q.offset;
     for (std::size_t k = 0; k + 1 < tr.path.size(); ++k) q.inv_dt.push_back(1.0 / (tr.path[k + 1].t - tr.path[k].t));
     const PathSample& s0 = tr.path.front();
     q.right0 = std::hypot(s0.x - s.goals.right.x, s0.y - s.goals.right.y);
     q.left0 = std::hypot(s0.x - s.goals.left.x, s0.y - s.goals.left.y);
-    p.samples += q.times.size();
+    const PathSample& s1 = tr.path.back();
+    q.progress_end = (std::hypot(s1.x - s.goals.right.x, s1.y - s.goals.right.y) - q.right0) -
+                     (std::hypot(s1.x - s.goals.left.x, s1.y - s.goals.left.y) - q.left0);
     p.trials.push_back(std::move(q));
   }
+  p.samples = times.size();
+  const auto n = static_cast<Eigen::Index>(times.size());
+  p.times = Eigen::Map<const Eigen::ArrayXd>(times.data(), n);
+  p.pads = Eigen::Map<const Eigen::ArrayXd>(pads.data(), n);
+  Eigen::Index longest = 0;
+  for (const auto& q : p.trials) longest = std::max(longest, q.n);
+  p.x.resize(longest);
+  p.y.resize(longest);
+  p.resid.resize(longest);
   return p;
+}
+
+/// D_i for the delay tau (from the cache when it holds tau): the robot's position at t_i - tau,
+/// linear between path samples (the path's first point before it starts, its last after it ends),
+/// then both goals' distances.
+const Problem::ProgressSlot& progress_at(const Problem& p, double tau) {
+  ++p.clock;
+  Problem::ProgressSlot* slot = &p.slots[0];
+  for (auto& s : p.slots) {
+    if (s.tau == tau) {
+      s.used = p.clock;
+      return s;
+    }
+    if (s.used < slot->used) slot = &s;
+  }
+  slot->d.resize(p.times.size());
+  slot->moving.resize(p.trials.size());
+  const double rx = p.goals.right.x, ry = p.goals.right.y, lx = p.goals.left.x, ly = p.goals.left.y;
+  for (std::size_t tq = 0; tq < p.trials.size(); ++tq) {
+    const Prepared& q = p.trials[tq];
+    const auto& path = q.trial->path;
+    const std::size_t last = path.size() - 1;
+    // Pad times increase: the samples before the robot starts and after it stops are a prefix and
+    // a suffix.
+    Eigen::Index first = q.offset, end = q.offset + q.n;
+    while (first < end && p.times[first] - tau <= path[0].t) ++first;
+    while (end > first && p.times[end - 1] - tau >= path[last].t) --end;
+    slot->d.segment(q.offset, first - q.offset).setZero();
+    slot->d.segment(end, q.offset + q.n - end).setConstant(q.progress_end);
+    slot->moving[tq] = {first - q.offset, end - q.offset};
+    std::size_t k = 0;
+    for (Eigen::Index i = first; i < end; ++i) {
+      const double t = p.times[i] - tau;
+      while (path[k + 1].t <= t) ++k;
+      const double w = (t - path[k].t) * q.inv_dt[k];
+      p.x[i - first] = path[k].x + w * (path[k + 1].x - path[k].x);
+      p.y[i - first] = path[k].y + w * (path[k + 1].y - path[k].y);
+    }
+    const auto x = p.x.head(end - first);
+    const auto y = p.y.head(end - first);
+    slot->d.segment(first, end - first) = (((x - rx).square() + (y - ry).square()).sqrt() - q.right0) -
+                                          (((x - lx).square() + (y - ly).square()).sqrt() - q.left0);
+  }
+  slot->tau = tau;
+  slot->used = p.clock;
+  return *slot;
 }
 
 struct Likelihood {
@@ -86,44 +167,34 @@ struct Likelihood {
 /// The profile log-likelihood at theta (sigma and phi in closed form).
 Likelihood evaluate(const Problem& p, const Theta& th) {
   ++p.evaluations;
+  const Problem::ProgressSlot& slot = progress_at(p, th[kTau]);
   double sxx = 0, sxy = 0, syy = 0;
-  std::size_t m = 0;
-  const double rx = p.goals.right.x, ry = p.goals.right.y, lx = p.goals.left.x, ly = p.goals.left.y;
-  for (const auto& q : p.trials) {
-    const auto& path = q.trial->path;
+  Eigen::Index m = 0;
+  // b = 1 / (1 + e^-logit), logit = prior logit - beta D. Eigen's exp saturates instead of
+  // overflowing (|z| > 709), which leaves b within 1e-300 of 0 or 1. Before the robot moves, b is the
+  // prior.
+  const double b_start = 1.0 / (1.0 + std::exp(-th[kPrior]));
+  for (std::size_t tq = 0; tq < p.trials.size(); ++tq) {
+    const Prepared& q = p.trials[tq];
     const double beta = th[kBeta] * std::exp(th[kGamma] * q.trial->exposure);
-    const std::size_t last = path.size() - 1;
-    std::size_t k = 0;
-    double prev = 0;
-    for (std::size_t i = 0; i < q.times.size(); ++i) {
-      const double t = q.times[i] - th[kTau];
-      double x, y;
-      if (t <= path[0].t) {
-        x = path[0].x;
-        y = path[0].y;
-      } else if (t >= path[last].t) {
-        x = path[last].x;
-        y = path[last].y;
-      } else {
-        while (path[k + 1].t <= t) ++k;
-        const double w = (t - path[k].t) * q.inv_dt[k];
-        x = path[k].x + w * (path[k + 1].x - path[k].x);
-        y = path[k].y + w * (path[k + 1].y - path[k].y);
-      }
-      const double dr = std::sqrt((x - rx) * (x - rx) + (y - ry) * (y - ry)) - q.right0;
-      const double dl = std::sqrt((x - lx) * (x - lx) + (y - ly) * (y - ly)) - q.left0;
-      // 1 / (1 + e^-z) needs no branch: e^-z overflows to inf for z < -709, giving exactly 0.
-      const double r = q.pads[i] - 1.0 / (1.0 + std::exp(beta * (dr - dl) - th[kPrior]));
-      if (p.noise == PadNoise::independent) {
-        syy += r * r;
-        ++m;
-      } else if (i > 0) {
-        sxx += prev * prev;
-        sxy += prev * r;
-        syy += r * r;
-        ++m;
-      }
-      prev = r;
+    const auto [first, end] = slot.moving[tq];
+    auto r = p.resid.head(q.n);
+    const auto pads = p.pads.segment(q.offset, q.n);
+    r.head(first) = pads.head(first) - b_start;
+    r.segment(first, end - first) =
+        pads.segment(first, end - first) -
+        1.0 / (1.0 + (beta * slot.d.segment(q.offset + first, end - first) - th[kPrior]).exp());
+    r.tail(q.n - end) = pads.tail(q.n - end) - 1.0 / (1.0 + std::exp(beta * q.progress_end - th[kPrior]));
+    if (p.noise == PadNoise::independent) {
+      syy += r.square().sum();
+      m += q.n;
+    } else {
+      // Pairs of consecutive samples within the trial (conditional on its first sample).
+      const auto prev = r.head(q.n - 1), cur = r.tail(q.n - 1);
+      sxx += prev.square().sum();
+      sxy += (prev * cur).sum();
+      syy += cur.square().sum();
+      m += q.n - 1;
     }
   }
   Likelihood out;
@@ -230,7 +301,8 @@ std::pair<Theta, double> nelder_mead(const std::function<double(const Theta&)>& 
 /// profile); nullopt when the points are not concave (the caller falls back to Brent).
 std::optional<std::pair<Theta, double>> parabolic_max(const std::function<double(const Theta&)>& f, Theta th,
                                                       std::size_t k, double h, const Box& box) {
-  auto at = [&](double x) { Theta y = th; y[k] = std::clamp(x, box.lo[k], box.hi[k]); return std::pair{y, f(y)}; };
+  auto point = [&](double x) { Theta y = th; y[k] = std::clamp(x, box.lo[k], box.hi[k]); return y; };
+  auto at = [&](double x) { const Theta y = point(x); return std::pair{y, f(y)}; };
   auto best = at(th[k]);
   for (int iter = 0; iter < 8; ++iter) {
     const double b = best.first[k];
@@ -252,8 +324,8 @@ std::optional<std::pair<Theta, double>> parabolic_max(const std::function<double
     // Vertex of the parabola through the three points, kept within 3 h of the centre.
     const double xv = std::clamp((x0 + x1) / 2 - d01 / (2 * curv), b - 3 * h, b + 3 * h);
     auto cand = at(xv);
-    for (const auto& q : pt)
-      if (q.second > cand.second) cand = at(q.first);
+    for (const auto& q : pt)  // a known point beats the vertex: take it (its value is known too)
+      if (q.second > cand.second) cand = {point(q.first), q.second};
     const double moved = std::abs(cand.first[k] - b);
     if (cand.second >= best.second) best = cand;
     if (moved < 0.05 * h) return best;
@@ -308,15 +380,21 @@ std::pair<Theta, double> maximise(const Problem& p, const Box& box, Theta start,
   return nelder_mead(f, start, box, free, warm ? 0.2 : 0.5, 2000);
 }
 
-/// Observed information at the maximum by central differences (points kept in the box): returns the
-/// Wald SE and the conditional SE (1 / sqrt(-H_jj)) of each free parameter; zeros where the
-/// Hessian is not negative definite.
-std::pair<Theta, Theta> standard_errors(const Problem& p, const Box& box, const Theta& th, double l0) {
+/// What the observed information at the maximum gives: the Wald SE and the conditional SE
+/// (1 / sqrt(-H_jj)) of each free parameter (zeros where the Hessian is not negative definite), and
+/// the ridge of the quadratic approximation: where the other parameters' maximum moves per unit of
+/// parameter j, ridge[j][k] = cov(k, j) / cov(j, j).
+struct StandardErrors {
+  Theta wald{}, cond{};
+  std::array<Theta, kParams> ridge{};
+};
+
+/// The observed information at the maximum by central differences (points kept in the box).
+StandardErrors standard_errors(const Problem& p, const Box& box, const Theta& th, double l0) {
   std::vector<std::size_t> idx;
   for (std::size_t j = 0; j < kParams; ++j)
     if (box.free[j]) idx.push_back(j);
   const std::size_t d = idx.size();
-  Theta wald{}, cond{};
   Eigen::MatrixXd H(d, d);
   Theta c = th;
   Theta h{};
@@ -339,24 +417,29 @@ std::pair<Theta, Theta> standard_errors(const Problem& p, const Box& box, const 
                           (4 * h[idx[a]] * h[idx[b]]);
     }
   }
+  StandardErrors out;
   const Eigen::MatrixXd info = -H;
   Eigen::LLT<Eigen::MatrixXd> llt(info);
-  if (llt.info() != Eigen::Success) return {wald, cond};
+  if (llt.info() != Eigen::Success) return out;
   const Eigen::MatrixXd cov = llt.solve(Eigen::MatrixXd::Identity(static_cast<Eigen::Index>(d), static_cast<Eigen::Index>(d)));
   for (std::size_t a = 0; a < d; ++a) {
-    wald[idx[a]] = std::sqrt(cov(a, a));
-    cond[idx[a]] = 1 / std::sqrt(info(a, a));
+    out.wald[idx[a]] = std::sqrt(cov(a, a));
+    out.cond[idx[a]] = 1 / std::sqrt(info(a, a));
+    for (std::size_t b = 0; b < d; ++b)
+      if (b != a) out.ridge[idx[a]][idx[b]] = cov(b, a) / cov(a, a);
   }
-  return {wald, cond};
+  return out;
 }
 
 /// Grid start, then Nelder-Mead. (A premature stop would show in the profile, which never finds a
 /// higher value than the maximum: see profile_interval.)
-std::pair<Theta, double> global_max(const Problem& p, const Box& box, Theta base) {
+std::pair<Theta, double> global_max(const Problem& p, const Box& box, Theta base,
+                                    const std::optional<Theta>& start) {
   Theta best = base;
   double vbest = -std::numeric_limits<double>::infinity();
-  for (double b : {0.1, 0.3, 1.0, 3.0, 10.0}) {
-    for (double t : {0.0, 0.25, 0.6, 1.2}) {
+  // tau in the outer loop: the positions along the path are computed once per tau.
+  for (double t : {0.0, 0.25, 0.6, 1.2}) {
+    for (double b : {0.1, 0.3, 1.0, 3.0, 10.0}) {
       Theta th = base;
       if (box.free[kBeta]) th[kBeta] = std::min(b, box.hi[kBeta]);
       if (box.free[kTau]) th[kTau] = std::min(t, box.hi[kTau]);
@@ -364,8 +447,16 @@ std::pair<Theta, double> global_max(const Problem& p, const Box& box, Theta base
       if (v > vbest) { vbest = v; best = th; }
     }
   }
+  // A start near the maximum (a pooled fit's, from its participants' fits) that beats the grid
+  // needs a smaller first simplex.
+  double step = 0.5;
+  if (start) {
+    const Theta th = clamp(*start, box);
+    const double v = evaluate(p, th).loglik;
+    if (v > vbest) { vbest = v; best = th; step = 0.1; }
+  }
   auto f = [&](const Theta& th) { return evaluate(p, th).loglik; };
-  auto r = nelder_mead(f, best, box, box.free, 0.5, 3000);
+  auto r = nelder_mead(f, best, box, box.free, step, 3000);
   return r;
 }
 
@@ -380,9 +471,10 @@ struct Interval {
 /// close to linear in v: secant steps from the Wald end, kept inside a bracket once one is known
 /// (bisection otherwise), to |r - z| < 1e-3 (the deviance within ~0.004 of chi2_1(level)).
 Interval profile_interval(const Problem& p, const Box& box, const Theta& th, double lmax, std::size_t j,
-                          double level, const Theta& wald, const Theta& cond) {
+                          double level, const StandardErrors& ses) {
   const double z = std::sqrt(boost::math::quantile(boost::math::chi_squared(1.0), level));
-  Theta step = cond;
+  const Theta& wald = ses.wald;
+  Theta step = ses.cond;
   for (std::size_t k = 0; k < kParams; ++k)
     if (!(step[k] > 0)) step[k] = 0.1 * box.scale[k];
   const double se = wald[j] > 0 ? wald[j] : 0.25 * box.scale[j];
@@ -396,6 +488,13 @@ Interval profile_interval(const Problem& p, const Box& box, const Theta& th, dou
     auto s_of = [&](double v) {
       Theta x = warm;
       x[j] = v;
+      // Start the re-maximisation on the ridge: the others moved as the quadratic approximation
+      // predicts from the last point (at most 3 conditional SEs), so that it needs fewer steps.
+      for (std::size_t k = 0; k < kParams; ++k) {
+        if (k == j || ses.ridge[j][k] == 0) continue;
+        const double move = std::clamp(ses.ridge[j][k] * (v - warm[j]), -3 * step[k], 3 * step[k]);
+        x[k] = std::clamp(warm[k] + move, box.lo[k], box.hi[k]);
+      }
       const auto r = maximise(p, box, x, j, true, step);
       if (r.second > lmax) return 0.0;  // a higher maximum along the profile: inside the interval
       warm = r.first;
@@ -555,7 +654,8 @@ namespace {
 /// The fit of the free parameters; CIs for all of them, or only for `ci_only` (the learning test
 /// needs gamma's alone; the others get NaN ends).
 ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, std::string unit, bool gamma,
-                        Theta base, std::size_t ntrials, std::size_t ci_only = kParams) {
+                        Theta base, std::size_t ntrials, std::size_t ci_only = kParams,
+                        const std::optional<Theta>& start = std::nullopt) {
   const Box box = make_box(settings, gamma);
   // The learning model starts from the pooled fit (gamma = 0), already near its maximum; beta0 and
   // gamma are strongly correlated, so Nelder-Mead is restarted until it stops improving.
@@ -570,7 +670,7 @@ ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, s
     }
     return r;
   };
-  const auto [th, lmax] = gamma ? learning_max() : global_max(p, box, base);
+  const auto [th, lmax] = gamma ? learning_max() : global_max(p, box, base, start);
   ObserverFit fit;
   fit.unit = std::move(unit);
   fit.trials = ntrials;
@@ -591,7 +691,7 @@ ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, s
     }
     Interval ci{std::nan(""), std::nan(""), false, false, false};
     if (ci_only == kParams || ci_only == j) {
-      ci = profile_interval(p, box, th, lmax, j, settings.level, ses.first, ses.second);
+      ci = profile_interval(p, box, th, lmax, j, settings.level, ses);
     }
     if (ci.hull) {
       fit.notes.push_back(fmt::format(
@@ -629,7 +729,7 @@ ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, s
 }  // namespace
 
 ObserverFit fit_observer(std::span<const ObservedTrial> trials, const ObserverFitSettings& settings,
-                         std::string unit) {
+                         std::string unit, const std::optional<GoalObserver>& start) {
   settings.validate();
   if (trials.empty()) throw InvalidData(fmt::format("{}: no usable trial to fit the observer to", unit));
   for (const auto& tr : trials) {
@@ -638,8 +738,15 @@ ObserverFit fit_observer(std::span<const ObservedTrial> trials, const ObserverFi
     }
   }
   const Problem p = prepare(trials, settings);
+  std::optional<Theta> from;
+  if (start) {
+    validate(*start);
+    from = Theta{start->beta, start->tau,
+                 settings.fit_prior ? prior_logit(start->prior_right) : prior_logit(settings.prior_right), 0.0};
+  }
   ObserverFit fit = fit_problem(p, settings, std::move(unit), false,
-                                Theta{1.0, 0.0, prior_logit(settings.prior_right), 0.0}, trials.size());
+                                Theta{1.0, 0.0, prior_logit(settings.prior_right), 0.0}, trials.size(), kParams,
+                                from);
   if (!trials.empty()) fit.condition = trials.front().condition;
   return fit;
 }

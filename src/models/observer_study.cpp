@@ -87,8 +87,24 @@ StudyObserverFit fit_study(std::vector<ObservedTrial> trials, const ObserverFitS
     while (j < good.size() && good[j].condition == good[i].condition) ++j;
     const std::span<const ObservedTrial> cond(good.data() + i, j - i);
     const std::string name = good[i].condition.empty() ? "all" : good[i].condition;
+    // The pooled maximum lies near the participants' fits: their mean, weighted by samples, is a
+    // start besides the grid.
+    std::optional<GoalObserver> start;
+    {
+      double w = 0, beta = 0, tau = 0, logit = 0;
+      for (const auto& f : out.participants) {
+        if (f.condition != good[i].condition) continue;
+        const auto n = static_cast<double>(f.samples);
+        const GoalObserver o = f.observer();
+        w += n;
+        beta += n * o.beta;
+        tau += n * o.tau;
+        logit += n * (std::log(o.prior_right) - std::log1p(-o.prior_right));
+      }
+      if (w > 0) start = GoalObserver{beta / w, tau / w, 1.0 / (1.0 + std::exp(-logit / w))};
+    }
     try {
-      auto fit = fit_observer(cond, settings, name);
+      auto fit = fit_observer(cond, settings, name, start);
       fit.condition = good[i].condition;
       for (const auto& n : fit.notes) out.issues.push_back({name, without_unit(n, name)});
       if (settings.learning) {

@@ -100,9 +100,11 @@ struct ObserverFit {
 std::optional<std::string> trial_problem(const ObservedTrial& trial);
 
 /// The maximum-likelihood fit of beta, tau (and the prior) to `trials` (all must pass
-/// trial_problem). Throws InvalidData when `trials` is empty.
+/// trial_problem). Throws InvalidData when `trials` is empty. `start`, if given, is tried besides the
+/// grid of starting points (fit_study gives a pooled fit its participants' mean); when it is the
+/// best of them, Nelder-Mead starts from it with a smaller simplex.
 ObserverFit fit_observer(std::span<const ObservedTrial> trials, const ObserverFitSettings& settings,
-                         std::string unit);
+                         std::string unit, const std::optional<GoalObserver>& start = std::nullopt);
 
 /// The profile log-likelihood (sigma, phi profiled) at the given parameters.
 double observer_log_likelihood(std::span<const ObservedTrial> trials, const ObserverFitSettings& settings,
