@@ -96,11 +96,77 @@ constexpr std::size_t kSyncThreads = 16;  // fdatasync() calls in flight at once
 struct GroupCommitter::Group {
   std::vector<Append> items;
   std::vector<Result> results;
-  bool done = false;
-  std::condition_variable cv;
+  Done done;  // empty: nobody waits (enqueue())
+  bool direct = false;  // `done` only wakes a waiting thread: called on the writer's thread
 };
 
-GroupCommitter::GroupCommitter() : thread_([this] { writer(); }) {}
+/// Threads kept for the parallel fdatasync() of a group (started once, not per group).
+struct GroupCommitter::SyncPool {
+  std::mutex mu;
+  std::condition_variable cv, finished;
+  std::function<void(std::size_t)> task;
+  std::size_t count = 0;
+  std::atomic<std::size_t> next{0};
+  std::size_t active = 0;
+  std::uint64_t generation = 0;
+  bool stop = false;
+  std::vector<std::thread> threads;
+
+  explicit SyncPool(std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) threads.emplace_back([this] { loop(); });
+  }
+  ~SyncPool() {
+    {
+      std::lock_guard lock(mu);
+      stop = true;
+    }
+    cv.notify_all();
+    for (auto& t : threads) t.join();
+  }
+  void work(const std::function<void(std::size_t)>& f, std::size_t n) {
+    for (std::size_t i; (i = next++) < n;) f(i);
+  }
+  void loop() {
+    std::uint64_t seen = 0;
+    std::unique_lock lock(mu);
+    for (;;) {
+      cv.wait(lock, [&] { return stop || generation != seen; });
+      if (stop) return;
+      seen = generation;
+      ++active;
+      const auto f = task;
+      const std::size_t n = count;
+      lock.unlock();
+      work(f, n);
+      lock.lock();
+      if (--active == 0) finished.notify_all();
+    }
+  }
+  /// f(0) ... f(n - 1), spread over the pool and the calling thread; returns when all are done.
+  void run(std::size_t n, std::function<void(std::size_t)> f) {
+    {
+      std::lock_guard lock(mu);
+      task = std::move(f);
+      count = n;
+      next = 0;
+      ++generation;
+    }
+    cv.notify_all();
+    std::function<void(std::size_t)> mine;
+    {
+      std::lock_guard lock(mu);
+      mine = task;
+    }
+    work(mine, n);
+    std::unique_lock lock(mu);
+    finished.wait(lock, [&] { return active == 0; });
+  }
+};
+
+GroupCommitter::GroupCommitter()
+    : pool_(std::make_unique<SyncPool>(kSyncThreads - 1)),
+      thread_([this] { writer(); }),
+      completion_thread_([this] { completer(); }) {}
 
 GroupCommitter::~GroupCommitter() {
   {
@@ -108,28 +174,48 @@ GroupCommitter::~GroupCommitter() {
     stop_ = true;
   }
   work_.notify_all();
-  thread_.join();
+  thread_.join();  // writes and syncs everything queued, then hands it to the completer
+  completed_.notify_all();
+  completion_thread_.join();
 }
 
-std::vector<GroupCommitter::Result> GroupCommitter::commit(std::vector<Append> items) {
+void GroupCommitter::commit_async(std::vector<Append> items, Done done) {
   auto g = std::make_shared<Group>();
   g->items = std::move(items);
   g->results.resize(g->items.size());
-  std::unique_lock lock(mu_);
-  queue_.push_back(g);
-  work_.notify_one();
-  g->cv.wait(lock, [&] { return g->done; });
-  return std::move(g->results);
-}
-
-void GroupCommitter::enqueue(std::vector<Append> items) {
-  auto g = std::make_shared<Group>();
-  g->items = std::move(items);
-  g->results.resize(g->items.size());
+  g->done = std::move(done);
   std::lock_guard lock(mu_);
   queue_.push_back(std::move(g));
   work_.notify_one();
 }
+
+std::vector<GroupCommitter::Result> GroupCommitter::commit(std::vector<Append> items) {
+  std::mutex m;
+  std::condition_variable cv;
+  bool finished = false;
+  std::vector<Result> out;
+  auto g = std::make_shared<Group>();
+  g->items = std::move(items);
+  g->results.resize(g->items.size());
+  // Woken from the writer's thread, not the completer's: a completion callback may wait here.
+  g->direct = true;
+  g->done = [&](std::vector<Result> r) {
+    std::lock_guard lock(m);
+    out = std::move(r);
+    finished = true;
+    cv.notify_one();
+  };
+  {
+    std::lock_guard lock(mu_);
+    queue_.push_back(std::move(g));
+    work_.notify_one();
+  }
+  std::unique_lock lock(m);
+  cv.wait(lock, [&] { return finished; });
+  return out;
+}
+
+void GroupCommitter::enqueue(std::vector<Append> items) { commit_async(std::move(items), {}); }
 
 std::uint64_t GroupCommitter::append(const fs::path& path, std::string_view header,
                                      std::string data) {
@@ -149,23 +235,60 @@ std::uint64_t GroupCommitter::appends() const noexcept {
   return appends_;
 }
 
+void GroupCommitter::set_sync_delay(std::chrono::milliseconds delay) noexcept {
+  sync_delay_ms_ = delay.count();
+}
+
 void GroupCommitter::writer() {
   std::unique_lock lock(mu_);
   for (;;) {
     work_.wait(lock, [&] { return stop_ || !queue_.empty(); });
-    if (queue_.empty()) return;  // stopping, nothing left
-    // Everything that arrived while the previous group was being written and synced.
-    std::vector<std::shared_ptr<Group>> batch(queue_.begin(), queue_.end());
-    queue_.clear();
+    if (queue_.empty()) break;  // stopping, nothing left
+    // Everything that arrived while the previous group was being written and synced, up to
+    // kMaxGroupFiles distinct files (each is open until the group's sync).
+    std::vector<std::shared_ptr<Group>> batch;
+    std::vector<const fs::path*> files;
+    while (!queue_.empty()) {
+      const auto& g = *queue_.front();
+      std::size_t more = 0;
+      for (const auto& item : g.items)
+        if (std::none_of(files.begin(), files.end(), [&](const fs::path* f) { return *f == item.path; }))
+          ++more;
+      if (!batch.empty() && files.size() + more > kMaxGroupFiles) break;
+      for (const auto& item : g.items)
+        if (std::none_of(files.begin(), files.end(), [&](const fs::path* f) { return *f == item.path; }))
+          files.push_back(&item.path);
+      batch.push_back(std::move(queue_.front()));
+      queue_.pop_front();
+    }
     lock.unlock();
     write_batch(batch);
     lock.lock();
     ++groups_;
-    for (auto& g : batch) {
-      appends_ += g->items.size();
-      g->done = true;
-      g->cv.notify_all();
-    }
+    for (auto& g : batch) appends_ += g->items.size();
+    lock.unlock();
+    for (auto& g : batch)
+      if (g->direct) g->done(std::move(g->results));
+    lock.lock();
+    done_.push_back(std::move(batch));
+    completed_.notify_one();
+  }
+  writer_stopped_ = true;
+  completed_.notify_all();
+}
+
+void GroupCommitter::completer() {
+  std::unique_lock lock(mu_);
+  for (;;) {
+    completed_.wait(lock, [&] { return writer_stopped_ || !done_.empty(); });
+    if (done_.empty()) return;  // the writer has stopped and everything is answered
+    auto batch = std::move(done_.front());
+    done_.pop_front();
+    lock.unlock();
+    // Outside the lock: a callback may commit again (even synchronously: the writer goes on).
+    for (auto& g : batch)
+      if (g->done && !g->direct) g->done(std::move(g->results));
+    lock.lock();
   }
 }
 
@@ -238,6 +361,8 @@ void GroupCommitter::write_batch(std::vector<std::shared_ptr<Group>>& batch) {
   for (auto& [p, f] : files)
     if (!f->results.empty() || f->created) touched.push_back(f.get());
   if (touched.empty()) return;
+  if (const auto ms = sync_delay_ms_.load(); ms > 0)
+    std::this_thread::sleep_for(std::chrono::milliseconds(ms));
   auto fail_all = [&](File& f, const std::string& why) {
     for (Result* r : f.results)
       if (r->error.empty()) r->error = why;
@@ -262,9 +387,7 @@ void GroupCommitter::write_batch(std::vector<std::shared_ptr<Group>>& batch) {
       if (f->created && std::find(dirs.begin(), dirs.end(), p.parent_path()) == dirs.end())
         dirs.push_back(p.parent_path());
     std::vector<std::string> errors(touched.size() + dirs.size());
-    std::atomic<std::size_t> next{0};
-    auto work = [&] {
-      for (std::size_t i; (i = next++) < errors.size();) {
+    auto work = [&](std::size_t i) {
         if (i < touched.size()) {
           if (::fdatasync(touched[i]->fd.fd) != 0)
             errors[i] = fmt::format("cannot sync: {}", std::strerror(errno));
@@ -275,13 +398,8 @@ void GroupCommitter::write_batch(std::vector<std::shared_ptr<Group>>& batch) {
             errors[i] = e.what();
           }
         }
-      }
     };
-    std::vector<std::thread> helpers;
-    const std::size_t n = std::min<std::size_t>(kSyncThreads, errors.size());
-    for (std::size_t t = 1; t < n; ++t) helpers.emplace_back(work);
-    work();
-    for (auto& t : helpers) t.join();
+    pool_->run(errors.size(), work);
     for (std::size_t i = 0; i < touched.size(); ++i)
       if (!errors[i].empty()) fail_all(*touched[i], errors[i]);
     for (std::size_t d = 0; d < dirs.size(); ++d) {
