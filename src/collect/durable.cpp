@@ -2,6 +2,7 @@
 #include "durable.hpp"
 
 #include <fcntl.h>
+#include <fmt/compile.h>
 #include <fmt/format.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
@@ -151,7 +153,8 @@ struct GroupCommitter::SyncPool {
       next = 0;
       ++generation;
     }
-    cv.notify_all();
+    // Only as many helpers as there are calls besides the caller's own (each wake is a switch).
+    for (std::size_t i = 1; i < std::min(n, threads.size() + 1); ++i) cv.notify_one();
     std::function<void(std::size_t)> mine;
     {
       std::lock_guard lock(mu);
@@ -491,6 +494,41 @@ std::string bounded_detail(std::string_view text) {
     out += c < 0x20 || c == 0x7F ? '?' : c == '"' ? '\'' : text[i];
   }
   return out + suffix;
+}
+
+void append_double(std::string& out, double v) {
+  char buf[32];  // the longest shortest form is 24 characters (-2.2250738585072014e-308)
+  const char* end = fmt::format_to(buf, FMT_COMPILE("{}"), v);
+  out.append(buf, static_cast<std::size_t>(end - buf));
+}
+
+void append_metres(std::string& out, double metres) {
+  const double tenths = std::round(metres * 1e4);
+  if (!(std::fabs(tenths) < 1e15)) {  // far beyond any geometry: the general form
+    append_double(out, tenths / 1e4 + 0.0);
+    return;
+  }
+  // k / 10^4 with at most 4 decimals, trailing zeros dropped: the shortest form that reads back
+  // as the double nearest to it, which is what fmt writes for round(m * 1e4) / 1e4.
+  auto k = static_cast<long long>(tenths);
+  if (k < 0) {
+    out += '-';
+    k = -k;
+  }
+  out += fmt::format_int(k / 10000).c_str();
+  int frac = static_cast<int>(k % 10000);
+  if (frac == 0) return;
+  char digits[5] = {'.', 0, 0, 0, 0};
+  int n = 4;
+  while (frac % 10 == 0) {
+    frac /= 10;
+    --n;
+  }
+  for (int i = n; i >= 1; --i) {
+    digits[i] = static_cast<char>('0' + frac % 10);
+    frac /= 10;
+  }
+  out.append(digits, static_cast<std::size_t>(n) + 1);
 }
 
 std::string csv_field(std::string_view text) {

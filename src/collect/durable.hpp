@@ -122,6 +122,14 @@ std::int64_t unix_now();
 inline constexpr std::size_t kMaxDetail = 380;
 std::string bounded_detail(std::string_view text);
 
+/// Appends a finite `v` as io::format_double() writes it (fmt's shortest round-trip form), with
+/// no temporary string: the log rows are mostly numbers.
+void append_double(std::string& out, double v);
+
+/// Appends `metres` as sim::format_metres() writes it (to 0.1 mm, -0 as 0), from its integer
+/// count of 0.1 mm instead of a floating-point formatting.
+void append_metres(std::string& out, double metres);
+
 /// A CSV field, quoted when it holds a comma, quote or line break (RFC 4180).
 std::string csv_field(std::string_view text);
 

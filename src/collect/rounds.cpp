@@ -46,9 +46,6 @@ std::exception_ptr io_error(const std::string& what) {
   return std::make_exception_ptr(IoError(what));
 }
 
-/// fmt's shortest round-trip form (io::format_double), appended without a temporary string.
-void append_number(std::string& out, double v) { fmt::format_to(std::back_inserter(out), "{}", v); }
-
 }  // namespace
 
 // ---- join: new participants are assigned in batches, one per sync ----------------------------
@@ -309,17 +306,16 @@ void Study::submit_round(const std::string& id, RoundKind kind, int iteration,
       block.reserve(s.size() * (key.size() + 64));
       for (std::size_t i = 0; i < s.size(); ++i) {
         block += key;
-        append_number(block, s[i].t);
+        detail::append_double(block, s[i].t);
         block += ',';
-        append_number(block, s[i].pad);
+        detail::append_double(block, s[i].pad);
         block += ',';
         block += speed;
         if (!legacy) {
-          // sim::format_metres(): to 0.1 mm, -0 written as 0.
           block += ',';
-          append_number(block, std::round(robot[i].x * 1e4) / 1e4 + 0.0);
+          detail::append_metres(block, robot[i].x);
           block += ',';
-          append_number(block, std::round(robot[i].y * 1e4) / 1e4 + 0.0);
+          detail::append_metres(block, robot[i].y);
         }
         block += '\n';
       }

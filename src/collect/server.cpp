@@ -93,7 +93,7 @@ void json_array(std::string& out, std::string_view name,
     if (i) out += ',';
     const double v = path[i].*coordinate;
     if (std::isfinite(v)) {
-      fmt::format_to(std::back_inserter(out), "{}", v);  // io::json_number()
+      detail::append_double(out, v);  // io::json_number()
     } else {
       out += "null";
     }
