@@ -22,8 +22,13 @@
 // save (median, 99th percentile, max); the syncs and the appends they covered (group commit); the
 // CPU time of the server and of the clients (per round); and the process's peak resident memory.
 //
+// The study folder is removed at the end, unless --keep. (Keep it when measuring again soon after:
+// ext4 without a journal, as on the development machine, does not reuse the inodes of files
+// deleted in the last minutes, and creating the next run's thousands of logs then spends most of
+// its time skipping them.)
+//
 //   collect_load [participants=50] [--threads N=4] [--client-threads C=1] [--pace] [--seconds S=30]
-//                [--dir D]
+//                [--dir D=/tmp/feint-collect-load] [--keep]
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -216,7 +221,7 @@ class Participant : public std::enable_shared_from_this<Participant> {
 int main(int argc, char** argv) {
   int people = 50;
   unsigned threads = 4, client_threads = 1;
-  bool pace = false;
+  bool pace = false, keep = false;
   double seconds = 30;
   std::filesystem::path dir = "/tmp/feint-collect-load";
   for (int i = 1; i < argc; ++i) {
@@ -227,6 +232,8 @@ int main(int argc, char** argv) {
       client_threads = std::max(1u, static_cast<unsigned>(std::atoi(argv[++i])));
     } else if (a == "--pace") {
       pace = true;
+    } else if (a == "--keep") {
+      keep = true;
     } else if (a == "--seconds" && i + 1 < argc) {
       seconds = std::atof(argv[++i]);
     } else if (a == "--dir" && i + 1 < argc) {
@@ -293,15 +300,18 @@ int main(int argc, char** argv) {
   std::printf("rounds/s %.0f\n", rounds / secs);
   std::printf("time to durable save: median %.2f ms, p99 %.2f ms, max %.2f ms\n", q(0.5), q(0.99),
               lat.empty() ? 0.0 : lat.back());
-  std::printf("syncs %llu for %llu appends (%.1f appends per sync)\n",
+  std::printf("syncs %llu for %llu appends (%.1f appends per sync), %.1f ms per group written and "
+              "synced, writer busy %.0f%% of the time\n",
               static_cast<unsigned long long>(cs.syncs),
               static_cast<unsigned long long>(cs.appends),
-              cs.syncs ? static_cast<double>(cs.appends) / static_cast<double>(cs.syncs) : 0.0);
+              cs.syncs ? static_cast<double>(cs.appends) / static_cast<double>(cs.syncs) : 0.0,
+              cs.syncs ? cs.busy_seconds * 1e3 / static_cast<double>(cs.syncs) : 0.0,
+              100.0 * cs.busy_seconds / secs);
   std::printf("CPU: %.2f s in all, server %.2f s (%.0f us per round), clients %.2f s (%.0f us per "
               "round)\n",
               cpu, cpu - client_cpu.load(), rounds > 0 ? (cpu - client_cpu.load()) / rounds * 1e6 : 0.0,
               client_cpu.load(), rounds > 0 ? client_cpu.load() / rounds * 1e6 : 0.0);
   std::printf("peak memory (server + clients, one process): %.1f MB\n", ru.ru_maxrss / 1024.0);
-  std::filesystem::remove_all(dir);
+  if (!keep) std::filesystem::remove_all(dir);
   return b.failures.load() == 0 ? 0 : 1;
 }

@@ -237,6 +237,10 @@ std::uint64_t GroupCommitter::appends() const noexcept {
   std::lock_guard lock(mu_);
   return appends_;
 }
+double GroupCommitter::busy_seconds() const noexcept {
+  std::lock_guard lock(mu_);
+  return busy_seconds_;
+}
 
 void GroupCommitter::set_sync_delay(std::chrono::milliseconds delay) noexcept {
   sync_delay_ms_ = delay.count();
@@ -265,8 +269,11 @@ void GroupCommitter::writer() {
       queue_.pop_front();
     }
     lock.unlock();
+    const auto t0 = std::chrono::steady_clock::now();
     write_batch(batch);
+    const std::chrono::duration<double> busy = std::chrono::steady_clock::now() - t0;
     lock.lock();
+    busy_seconds_ += busy.count();
     ++groups_;
     for (auto& g : batch) appends_ += g->items.size();
     lock.unlock();

@@ -69,6 +69,8 @@ class GroupCommitter {
   /// Groups synced so far, and appends in them (for the benchmark's figures).
   std::uint64_t groups() const noexcept;
   std::uint64_t appends() const noexcept;
+  /// Seconds spent writing and syncing groups (the writer's busy time).
+  double busy_seconds() const noexcept;
   /// Test hook: a pause before every group's sync (a slow disk).
   void set_sync_delay(std::chrono::milliseconds delay) noexcept;
 
@@ -84,6 +86,7 @@ class GroupCommitter {
   std::deque<std::vector<std::shared_ptr<Group>>> done_;  // synced groups, for the completer
   bool stop_ = false, writer_stopped_ = false;
   std::uint64_t groups_ = 0, appends_ = 0;
+  double busy_seconds_ = 0;
   std::atomic<long long> sync_delay_ms_{0};
   std::unique_ptr<SyncPool> pool_;
   std::thread thread_, completion_thread_;

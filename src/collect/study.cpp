@@ -494,7 +494,7 @@ Stage Study::stage(const ParticipantStatus& s) const noexcept {
 }
 
 Study::CommitStats Study::commit_stats() const {
-  return {committer_->groups(), committer_->appends()};
+  return {committer_->groups(), committer_->appends(), committer_->busy_seconds()};
 }
 
 std::optional<ParticipantStatus> Study::status(const std::string& id) const {

@@ -191,6 +191,7 @@ class Study {
   struct CommitStats {
     std::uint64_t syncs = 0;
     std::uint64_t appends = 0;
+    double busy_seconds = 0;  // writing and syncing
   };
   CommitStats commit_stats() const;
 
