@@ -36,6 +36,7 @@
 #include <boost/asio/connect.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/steady_timer.hpp>
+#include <boost/asio/strand.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
 #include <chrono>
@@ -118,11 +119,21 @@ struct Bench {
 class Participant : public std::enable_shared_from_this<Participant> {
  public:
   Participant(Bench& b, int who)
-      : b_(b), id_("L" + std::to_string(who)), sock_(b.ioc), timer_(b.ioc) {}
+      : b_(b),
+        id_("L" + std::to_string(who)),
+        strand_(net::make_strand(b.ioc)),
+        sock_(strand_),
+        timer_(strand_) {}
+
+  /// --pace: the time is up; a participant watching a round leaves without submitting it.
+  void finish() {
+    net::post(strand_, [self = shared_from_this()] { self->timer_.cancel(); });
+  }
 
   void begin(Clock::time_point at) {
     timer_.expires_at(at);
     timer_.async_wait([self = shared_from_this()](beast::error_code) {
+      if (self->b_.pace && Clock::now() >= self->b_.end) return;
       self->request("/api/join?participant=" + self->id_, "", &Participant::on_join);
     });
   }
@@ -181,6 +192,7 @@ class Participant : public std::enable_shared_from_this<Participant> {
     body_ = &body;
     round_samples_ = n;
     if (!b_.pace) return submit();
+    if (Clock::now() >= b_.end) return;  // the time is up: this round is not played
     // As a person does: watch the robot drive, then a second more.
     timer_.expires_after(std::chrono::duration_cast<Clock::duration>(
         std::chrono::duration<double>(dur + 1.0)));
@@ -204,6 +216,7 @@ class Participant : public std::enable_shared_from_this<Participant> {
 
   Bench& b_;
   std::string id_;
+  net::strand<net::io_context::executor_type> strand_;  // this participant's handlers, in turn
   tcp::socket sock_;
   net::steady_timer timer_;
   beast::flat_buffer buf_;
@@ -263,11 +276,20 @@ int main(int argc, char** argv) {
   const double cpu0 = cpu_seconds(RUSAGE_SELF);
   const auto t0 = Clock::now();
   b.end = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+  std::vector<std::shared_ptr<Participant>> all;
   for (int i = 0; i < people; ++i) {
     const auto at = pace ? t0 + std::chrono::duration_cast<Clock::duration>(
                                     std::chrono::duration<double>(7.0 * i / people))
                          : t0;
-    std::make_shared<Participant>(b, i)->begin(at);
+    all.push_back(std::make_shared<Participant>(b, i));
+    all.back()->begin(at);
+  }
+  net::steady_timer stop(b.ioc);
+  if (pace) {
+    stop.expires_at(b.end);
+    stop.async_wait([&](beast::error_code) {
+      for (auto& p : all) p->finish();
+    });
   }
   std::vector<std::thread> clients;
   std::atomic<double> client_cpu{0};
