@@ -5,14 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
-#include <boost/asio/ip/tcp.hpp>
-#include <boost/beast/core.hpp>
-#include <boost/beast/http.hpp>
 #include <chrono>
 #include <future>
 #include <thread>
 
 #include "collect_helpers.hpp"
+#include "http_helpers.hpp"
 #include "feint/collect/server.hpp"
 #include "feint/io/csv.hpp"
 #include "feint/io/number.hpp"
@@ -21,37 +19,9 @@ namespace feint::collect {
 namespace {
 
 namespace fs = std::filesystem;
-namespace beast = boost::beast;
-namespace http = beast::http;
-namespace net = boost::asio;
-using tcp = net::ip::tcp;
+namespace http = boost::beast::http;
 using namespace testing;
 using namespace std::chrono_literals;
-
-/// One request on a new connection.
-std::pair<int, std::string> request(unsigned short port, http::verb method,
-                                    const std::string& target, const std::string& body = "") {
-  net::io_context ioc;
-  tcp::socket sock(ioc);
-  sock.connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), port));
-  http::request<http::string_body> req(method, target, 11);
-  req.set(http::field::host, "127.0.0.1");
-  req.keep_alive(false);
-  req.body() = body;
-  req.prepare_payload();
-  http::write(sock, req);
-  beast::flat_buffer buf;
-  http::response<http::string_body> res;
-  http::read(sock, buf, res);
-  return {static_cast<int>(res.result_int()), res.body()};
-}
-
-std::string body_of(const Round& r, double speed) {
-  std::string body;
-  for (const auto& x : valid_trace(r, speed))
-    body += io::format_double(x.t) + "," + io::format_double(x.pad) + "\n";
-  return body;
-}
 
 struct Serving {
   Study study;
@@ -80,10 +50,11 @@ TEST(CollectAsync, ASlowSyncBlocksNeitherPagesNorOtherParticipants) {
   for (int i = 0; i < 6; ++i) s.study.join("S" + std::to_string(i));
   s.study.join("Other");
   std::vector<std::string> bodies;
-  for (int i = 0; i < 6; ++i) bodies.push_back(body_of(s.study.start_round("S" + std::to_string(i)), 0.8));
+  for (int i = 0; i < 6; ++i)
+    bodies.push_back(trace_body(valid_trace(s.study.start_round("S" + std::to_string(i)), 0.8)));
   // From now on every sync takes 1.5 s. Six saves at once: three times the two server threads.
   s.study.set_sync_delay(1500ms);
-  std::vector<std::future<std::pair<int, std::string>>> saves;
+  std::vector<std::future<HttpReply>> saves;
   for (int i = 0; i < 6; ++i)
     saves.push_back(std::async(std::launch::async, [&, i] {
       return request(s.port(), http::verb::post,
@@ -94,18 +65,18 @@ TEST(CollectAsync, ASlowSyncBlocksNeitherPagesNorOtherParticipants) {
   std::this_thread::sleep_for(200ms);  // the saves are in, waiting for their sync
   // The page, the admin page and another participant's round (which writes nothing that it must
   // wait for) are answered while the saves still wait.
-  EXPECT_EQ(request(s.port(), http::verb::get, "/").first, 200);
-  EXPECT_EQ(request(s.port(), http::verb::get, "/game.js").first, 200);
-  EXPECT_EQ(request(s.port(), http::verb::get, "/api/admin?token=tok").first, 200);
+  EXPECT_EQ(request(s.port(), http::verb::get, "/").status, 200);
+  EXPECT_EQ(request(s.port(), http::verb::get, "/game.js").status, 200);
+  EXPECT_EQ(request(s.port(), http::verb::get, "/api/admin?token=tok").status, 200);
   const auto other = request(s.port(), http::verb::post, "/api/round/start?participant=Other");
-  EXPECT_EQ(other.first, 200) << other.second;
+  EXPECT_EQ(other.status, 200) << other.body;
   int waiting = 0;
   for (auto& f : saves)
     if (f.wait_for(0ms) != std::future_status::ready) ++waiting;
   EXPECT_EQ(waiting, 6) << "a save was answered before its sync";
   for (auto& f : saves) {
     const auto r = f.get();
-    EXPECT_EQ(r.first, 200) << r.second;
+    EXPECT_EQ(r.status, 200) << r.body;
   }
   s.study.set_sync_delay(0ms);
   for (int i = 0; i < 6; ++i) EXPECT_EQ(s.study.status("S" + std::to_string(i))->practice_saved, 1);
@@ -118,7 +89,7 @@ TEST(CollectAsync, SavesArrivingTogetherShareOneSyncWhateverTheThreadCount) {
   std::vector<std::string> bodies;
   for (int i = 0; i < kN; ++i) {
     s.study.join("T" + std::to_string(i));
-    bodies.push_back(body_of(s.study.start_round("T" + std::to_string(i)), 0.8));
+    bodies.push_back(trace_body(valid_trace(s.study.start_round("T" + std::to_string(i)), 0.8)));
   }
   s.study.record_event("", "test", "synced after the round_shown lines before it");
   s.study.set_sync_delay(300ms);
@@ -130,7 +101,7 @@ TEST(CollectAsync, SavesArrivingTogetherShareOneSyncWhateverTheThreadCount) {
                      "/api/round/submit?participant=T" + std::to_string(i) +
                          "&kind=practice&iteration=1",
                      bodies[static_cast<std::size_t>(i)])
-          .first;
+          .status;
     }));
   for (auto& f : saves) EXPECT_EQ(f.get(), 200);
   const auto after = s.study.commit_stats();
