@@ -61,7 +61,8 @@ class GroupCommitter {
   /// The same, blocking until synced (also from a completion callback).
   std::vector<Result> commit(std::vector<Append> items);
   /// Queues appends for the next group without waiting for their sync (for audit lines that
-  /// acknowledge nothing); an error is ignored.
+  /// acknowledge nothing); an error is ignored. They do not start a group by themselves: they are
+  /// written with the next appends somebody waits for, or within half a second.
   void enqueue(std::vector<Append> items);
   /// One append; throws IoError when it fails.
   std::uint64_t append(const std::filesystem::path& path, std::string_view header,
@@ -85,6 +86,7 @@ class GroupCommitter {
   std::deque<std::shared_ptr<Group>> queue_;
   std::deque<std::vector<std::shared_ptr<Group>>> done_;  // synced groups, for the completer
   bool stop_ = false, writer_stopped_ = false;
+  std::size_t waiters_ = 0;  // groups queued that somebody waits for
   std::uint64_t groups_ = 0, appends_ = 0;
   double busy_seconds_ = 0;
   std::atomic<long long> sync_delay_ms_{0};
