@@ -7,6 +7,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
+#include <future>
+#include <iterator>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/beast/core.hpp>
 #include <map>
@@ -79,13 +82,23 @@ std::map<std::string, std::string> parse_form(std::string_view q) {
   return out;
 }
 
-std::string json_array(const std::vector<double>& v) {
-  std::string s = "[";
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    if (i) s += ',';
-    s += io::json_number(v[i]);
+/// `,"name":[v0,v1,...]` of one coordinate of a path, appended without temporaries.
+void json_array(std::string& out, std::string_view name,
+                const std::vector<sim::TrajectorySample>& path,
+                double sim::TrajectorySample::*coordinate) {
+  out += ",\"";
+  out += name;
+  out += "\":[";
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (i) out += ',';
+    const double v = path[i].*coordinate;
+    if (std::isfinite(v)) {
+      detail::append_double(out, v);  // io::json_number()
+    } else {
+      out += "null";
+    }
   }
-  return s + "]";
+  out += ']';
 }
 
 std::string_view stage_name(Stage s) {
@@ -296,7 +309,10 @@ std::string client_address(const std::string& peer, std::string_view forwarded_f
   return peer;
 }
 
-std::size_t reserved_descriptors(unsigned threads) noexcept { return 32 + 4 * std::size_t{threads}; }
+std::size_t reserved_descriptors(unsigned threads) noexcept {
+  // The files of one commit group are open together until its sync.
+  return 32 + detail::GroupCommitter::kMaxGroupFiles + 4 * std::size_t{threads};
+}
 
 struct ServerState::Impl {
   int per_minute;
@@ -316,7 +332,8 @@ ServerState::ServerState(int per_minute) : impl_(std::make_unique<Impl>()) {
 ServerState::~ServerState() = default;
 
 void ServerState::record_rejection(Study& study, const std::string& client,
-                                   const std::string& participant, const std::string& detail) {
+                                   const std::string& participant, const std::string& detail,
+                                   std::function<void()> then) {
   constexpr std::size_t kMaxClients = 4096;  // beyond, the clients share one count
   const std::int64_t minute = detail::unix_now() / 60;
   long count = 0, not_logged = 0;
@@ -337,23 +354,37 @@ void ServerState::record_rejection(Study& study, const std::string& client,
     count = ++c.count;
   }
   const std::string from = client.empty() ? "" : "from " + client + ": ";
-  try {
-    if (not_logged > 0) {
-      study.record_event(participant, "rate_limited",
-                         fmt::format("{}{} more rejections in an earlier minute were not logged",
-                                     from, not_logged));
-    }
-    if (count <= impl_->per_minute) {
-      study.record_event(participant, "rejected", from + detail);
-    } else if (count == impl_->per_minute + 1) {
-      study.record_event(participant, "rate_limited",
-                         fmt::format("{}more than {} rejections this minute; the rest of the minute "
-                                     "is counted, not logged",
-                                     from, impl_->per_minute));
-    }
-  } catch (const std::exception&) {
-    // The events log could not be written: the client still gets its answer.
+  std::vector<std::pair<std::string, std::string>> events;  // event, detail
+  if (not_logged > 0) {
+    events.emplace_back("rate_limited",
+                        fmt::format("{}{} more rejections in an earlier minute were not logged",
+                                    from, not_logged));
   }
+  if (count <= impl_->per_minute) {
+    events.emplace_back("rejected", from + detail);
+  } else if (count == impl_->per_minute + 1) {
+    events.emplace_back("rate_limited",
+                        fmt::format("{}more than {} rejections this minute; the rest of the minute "
+                                    "is counted, not logged",
+                                    from, impl_->per_minute));
+  }
+  if (!then) {
+    for (const auto& [event, text] : events) {
+      try {
+        study.record_event(participant, event, text);
+      } catch (const std::exception&) {
+        // The events log could not be written: the client still gets its answer.
+      }
+    }
+    return;
+  }
+  if (events.empty()) return then();
+  // Appends are written and synced in the order they are queued: once the last is synced, so
+  // are the ones before it. A failure is ignored (the client still gets its answer).
+  for (std::size_t i = 0; i + 1 < events.size(); ++i)
+    study.note_event(participant, events[i].first, events[i].second);
+  study.record_event(participant, events.back().first, events.back().second,
+                     [then = std::move(then)](std::exception_ptr) { then(); });
 }
 
 void ServerState::write_failed(const std::string& what) {
@@ -373,12 +404,56 @@ std::optional<ServerState::WriteFailure> ServerState::write_failure() const {
   return impl_->failure;
 }
 
-Response handle_request(Study& study, const std::string& admin_token, const std::string& method,
-                        const std::string& target, const std::string& body,
-                        const RequestInfo& info) {
+namespace {
+
+/// The answer to a request that failed: a refusal (recorded in the events log, rate-limited) or
+/// a write that failed (503; the page retries). The answer is given once its event is synced.
+void answer_failure(Study& study, const RequestInfo& info, const std::string& method,
+                    const std::string& path, const std::string& participant,
+                    std::exception_ptr error, const Reply& reply) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const Rejection& r) {
+    const std::string who = valid_participant_id(participant) ? participant : "";
+    Response answer{r.status(), "application/json",
+                    fmt::format("{{\"error\":{},\"message\":{}}}", io::json_quote(r.code()),
+                                io::json_quote(r.what()))};
+    if (r.status() == 404 && path.rfind("/api/", 0) != 0) return reply(std::move(answer));
+    const std::string detail =
+        fmt::format("{} {} {} {}: {}", method, path, r.status(), r.code(), r.what());
+    auto then = [reply, answer = std::move(answer)]() mutable { reply(std::move(answer)); };
+    if (info.state) return info.state->record_rejection(study, info.client, who, detail, then);
+    // The events log may fail to be written: the client still gets its answer.
+    study.record_event(who, "rejected", detail, [then](std::exception_ptr) mutable { then(); });
+  } catch (const std::exception& e) {
+    // A file could not be written (disk full...): nothing was acknowledged, the page retries.
+    // The participant is told to wait (the reason, with server paths, is for the admin only).
+    if (info.state) info.state->write_failed(e.what());
+    study.record_event(valid_participant_id(participant) ? participant : "", "server_error",
+                       e.what(), [reply](std::exception_ptr) {
+                         reply({503, "application/json",
+                                "{\"error\":\"could_not_save\",\"message\":\"could not save, "
+                                "please wait: the page tries again by itself\"}"});
+                       });
+  }
+}
+
+}  // namespace
+
+void handle_request(Study& study, const std::string& admin_token, const std::string& method,
+                    const std::string& target, std::string body, const RequestInfo& info,
+                    Reply reply) {
   const auto q = target.find('?');
   const std::string path = target.substr(0, q);
   std::string participant;
+  // The answer of a write: its status, or the failure's.
+  auto answered = [&study, info, method, path, reply](const std::string& who) {
+    return [&study, info, method, path, who, reply](std::exception_ptr e, ParticipantStatus st) {
+      if (e) return answer_failure(study, info, method, path, who, e, reply);
+      if (info.state) info.state->write_succeeded();
+      reply({200, "application/json", status_json(study, st)});
+    };
+  };
   try {
     const auto query = parse_form(q == std::string::npos ? std::string_view()
                                                          : std::string_view(target).substr(q + 1));
@@ -389,19 +464,19 @@ Response handle_request(Study& study, const std::string& admin_token, const std:
     participant = arg("participant");
     if (method == "GET" || method == "HEAD") {
       if (path == "/" || path == "/index.html")
-        return {200, "text/html; charset=utf-8", std::string(asset("game.html"))};
+        return reply({200, "text/html; charset=utf-8", std::string(asset("game.html"))});
       if (path == "/game.js")
-        return {200, "text/javascript; charset=utf-8", std::string(asset("game.js"))};
+        return reply({200, "text/javascript; charset=utf-8", std::string(asset("game.js"))});
       if (path == "/game.css")
-        return {200, "text/css; charset=utf-8", std::string(asset("game.css"))};
-      if (path == "/favicon.ico") return {204, "image/x-icon", ""};  // browsers ask for it
+        return reply({200, "text/css; charset=utf-8", std::string(asset("game.css"))});
+      if (path == "/favicon.ico") return reply({204, "image/x-icon", ""});  // browsers ask for it
       if (path == "/admin" || path == "/api/admin") {
         if (!constant_time_equal(arg("token"), admin_token)) {
           throw Rejection(403, "forbidden", "the admin page needs the token printed at start-up");
         }
         const auto failure = info.state ? info.state->write_failure() : std::nullopt;
-        return path == "/admin" ? admin_page(study, admin_token, failure)
-                                : admin_json(study, failure);
+        return reply(path == "/admin" ? admin_page(study, admin_token, failure)
+                                      : admin_json(study, failure));
       }
       if (path.rfind("/api/", 0) == 0) throw Rejection(405, "method", "use POST for " + path);
       throw Rejection(404, "not_found", "no such page");
@@ -409,27 +484,29 @@ Response handle_request(Study& study, const std::string& admin_token, const std:
     if (method != "POST") throw Rejection(405, "method", "only GET and POST are served");
     if (path == "/api/join") {
       if (participant.empty()) participant = arg("PROLIFIC_PID");
-      const auto st = study.join(participant);
-      participant = st.id;
-      if (!info.client.empty()) study.note_event(st.id, "joined", "from " + info.client);
-      if (info.state) info.state->write_succeeded();
-      return {200, "application/json", status_json(study, st)};
+      return study.join(participant, [&study, info, method, path, participant, reply](
+                                         std::exception_ptr e, ParticipantStatus st) {
+        if (e) return answer_failure(study, info, method, path, participant, e, reply);
+        if (!info.client.empty()) study.note_event(st.id, "joined", "from " + info.client);
+        if (info.state) info.state->write_succeeded();
+        reply({200, "application/json", status_json(study, st)});
+      });
     }
     if (path == "/api/round/start") {
-      const Round r = study.start_round(participant);
-      std::vector<double> t, x, y;
-      for (const auto& p : r.path) {
-        t.push_back(p.t);
-        x.push_back(p.x);
-        y.push_back(p.y);
-      }
-      const int total =
-          r.kind == RoundKind::practice ? study.settings().practice : study.settings().iterations;
-      return {200, "application/json",
-              fmt::format("{{\"kind\":\"{}\",\"iteration\":{},\"of\":{},\"duration\":{},\"t\":{},"
-                          "\"x\":{},\"y\":{}}}",
-                          to_string(r.kind), r.iteration, total, io::json_number(r.duration()),
-                          json_array(t), json_array(x), json_array(y))};
+      return study.start_round(participant, [&study, info, method, path, participant, reply](
+                                                std::exception_ptr e, Round r) {
+        if (e) return answer_failure(study, info, method, path, participant, e, reply);
+        const int total = r.kind == RoundKind::practice ? study.settings().practice
+                                                        : study.settings().iterations;
+        std::string out = fmt::format("{{\"kind\":\"{}\",\"iteration\":{},\"of\":{},\"duration\":{}",
+                                      to_string(r.kind), r.iteration, total,
+                                      io::json_number(r.duration()));
+        json_array(out, "t", r.path, &sim::TrajectorySample::t);
+        json_array(out, "x", r.path, &sim::TrajectorySample::x);
+        json_array(out, "y", r.path, &sim::TrajectorySample::y);
+        out += '}';
+        reply({200, "application/json", std::move(out)});
+      });
     }
     if (path == "/api/round/submit") {
       const std::string kind = arg("kind");
@@ -438,50 +515,29 @@ Response handle_request(Study& study, const std::string& admin_token, const std:
       const auto it = io::parse_integer(arg("iteration"));
       if (!it || *it < 1 || *it > 100000)
         throw Rejection(400, "malformed", "iteration must be a whole number >= 1");
-      const auto samples = parse_trace(body);
-      const auto st = study.submit_round(participant,
-                                         kind == "practice" ? RoundKind::practice : RoundKind::main,
-                                         static_cast<int>(*it), samples);
-      if (info.state) info.state->write_succeeded();
-      return {200, "application/json", status_json(study, st)};
+      auto samples = parse_trace(body);
+      return study.submit_round(participant,
+                                kind == "practice" ? RoundKind::practice : RoundKind::main,
+                                static_cast<int>(*it), std::move(samples), answered(participant));
     }
     if (path == "/api/questionnaire") {
-      const auto st = study.submit_questionnaire(participant, parse_form(body));
-      if (info.state) info.state->write_succeeded();
-      return {200, "application/json", status_json(study, st)};
+      return study.submit_questionnaire(participant, parse_form(body), answered(participant));
     }
     throw Rejection(404, "not_found", "no such page");
-  } catch (const Rejection& r) {
-    const std::string who = valid_participant_id(participant) ? participant : "";
-    if (r.status() != 404 || path.rfind("/api/", 0) == 0) {
-      const std::string detail =
-          fmt::format("{} {} {} {}: {}", method, path, r.status(), r.code(), r.what());
-      if (info.state) {
-        info.state->record_rejection(study, info.client, who, detail);
-      } else {
-        try {
-          study.record_event(who, "rejected", detail);
-        } catch (const std::exception&) {
-          // The events log could not be written: the client still gets its answer.
-        }
-      }
-    }
-    return {r.status(), "application/json",
-            fmt::format("{{\"error\":{},\"message\":{}}}", io::json_quote(r.code()),
-                        io::json_quote(r.what()))};
-  } catch (const std::exception& e) {
-    // A file could not be written (disk full...): nothing was acknowledged, the page retries.
-    // The participant is told to wait (the reason, with server paths, is for the admin only).
-    if (info.state) info.state->write_failed(e.what());
-    try {
-      study.record_event(valid_participant_id(participant) ? participant : "", "server_error",
-                         e.what());
-    } catch (const std::exception&) {
-    }
-    return {503, "application/json",
-            "{\"error\":\"could_not_save\",\"message\":\"could not save, please wait: the "
-            "page tries again by itself\"}"};
+  } catch (...) {
+    answer_failure(study, info, method, path, participant, std::current_exception(), reply);
   }
+}
+
+Response handle_request(Study& study, const std::string& admin_token, const std::string& method,
+                        const std::string& target, const std::string& body,
+                        const RequestInfo& info) {
+  std::promise<Response> promise;
+  auto answer = promise.get_future();
+  auto shared = std::make_shared<std::promise<Response>>(std::move(promise));
+  handle_request(study, admin_token, method, target, body, info,
+                 [shared](Response r) { shared->set_value(std::move(r)); });
+  return answer.get();
 }
 
 }  // namespace feint::collect

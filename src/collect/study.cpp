@@ -9,6 +9,7 @@
 #include <set>
 
 #include "durable.hpp"
+#include "participant.hpp"
 #include "feint/error.hpp"
 #include "feint/io/csv.hpp"
 #include "feint/io/number.hpp"
@@ -19,18 +20,13 @@ namespace feint::collect {
 
 namespace fs = std::filesystem;
 using detail::csv_field;
+using detail::kEventsHeader;
+using detail::kLegacyLogHeader;
+using detail::kLogHeader;
+using detail::make_status;
 
 namespace {
 
-// Rows carry the robot's position at each sample (robot_x, robot_y: metres), computed here from
-// the round's plan, not taken from the page. A log begun before these columns existed keeps its
-// layout (kLegacyLogHeader) when its study is resumed, so that no file mixes the two.
-constexpr std::string_view kLogHeader =
-    "participant,condition,iteration,strategy,variant,target,t,pad,pad_speed,robot_x,robot_y\n";
-constexpr std::string_view kLegacyLogHeader =
-    "participant,condition,iteration,strategy,variant,target,t,pad,pad_speed\n";
-constexpr std::string_view kAssignmentHeader = "participant,index,condition,assigned_utc\n";
-constexpr std::string_view kEventsHeader = "time_utc,participant,event,detail\n";
 // Streams of Rng::stream(seed, .): blocks of the assignment use 0, 1, ...; a participant's run and
 // practice targets use offsets far above any block index.
 constexpr std::uint64_t kRunStream = 1000003;
@@ -116,22 +112,6 @@ bool valid_participant_id(const std::string& id) noexcept {
   });
 }
 
-struct Study::Participant {
-  std::mutex mu;  // this participant's files and counters
-  std::string id;
-  std::size_t index = 0;
-  std::size_t condition = 0;
-  std::vector<sim::Iteration> run;  // the planned analysed rounds
-  int saved[2] = {0, 0};            // practice, main
-  std::uint64_t log_size[2] = {0, 0};
-  bool legacy_log[2] = {false, false};  // the log has no robot_x/robot_y (written by an older feint)
-  bool questionnaire_done = false;
-  bool yes_no_done = false;
-  std::int64_t last_seen = 0;
-  int interruptions = 0;
-  std::optional<std::pair<RoundKind, int>> shown;  // round shown and not yet saved
-};
-
 Study::Study(fs::path dir, Settings settings)
     : dir_(std::move(dir)),
       settings_(std::move(settings)),
@@ -144,6 +124,15 @@ Study::Study(fs::path dir, Settings settings)
       throw IoError(
           fmt::format("{}: cannot create folder: {}", (dir_ / sub).string(), ec.message()));
   }
+  // The robot's paths: one per (strategy, variant, target), the same for every participant.
+  for (const auto st : {sim::Strategy::exaggerating, sim::Strategy::switching,
+                        sim::Strategy::ambiguous, sim::Strategy::optimal})
+    for (const auto v : {sim::Variant::main, sim::Variant::v2})
+      for (const auto t : {sim::Target::left, sim::Target::right}) {
+        if (st == sim::Strategy::optimal && v == sim::Variant::v2) continue;  // has one version
+        paths_[{static_cast<int>(st), static_cast<int>(v), static_cast<int>(t)}] =
+            sim::trajectory(st, v, t, settings_.geometry);
+      }
   rebuild();
 }
 
@@ -178,26 +167,90 @@ Round Study::plan_round(std::size_t index, std::size_t condition, RoundKind kind
     r.variant = it.variant;
     r.target = it.target;
   }
-  r.path = sim::trajectory(r.strategy, r.variant, r.target, settings_.geometry);
+  r.path = paths_.at({static_cast<int>(r.strategy), static_cast<int>(r.variant),
+                      static_cast<int>(r.target)});
   return r;
+}
+
+Round Study::plan_for(Participant& p, RoundKind kind, int iteration) const {
+  if (kind == RoundKind::practice) return plan_round(p.index, p.condition, kind, iteration);
+  if (p.run.empty()) {  // the run is drawn once per participant, not at every round
+    const Condition& c = settings_.conditions.at(p.condition);
+    sim::RunSettings rs;
+    rs.algorithm = c.algorithm;
+    rs.lambda = c.lambda;
+    rs.iterations = settings_.iterations;
+    Rng rng = Rng::stream(settings_.seed, kRunStream + p.index);
+    p.run = sim::generate_run(rs, rng);
+  }
+  Round r;
+  r.kind = kind;
+  r.iteration = iteration;
+  const auto& it = p.run.at(static_cast<std::size_t>(iteration - 1));
+  r.strategy = it.strategy;
+  r.variant = it.variant;
+  r.target = it.target;
+  r.path = paths_.at({static_cast<int>(r.strategy), static_cast<int>(r.variant),
+                      static_cast<int>(r.target)});
+  return r;
+}
+
+std::string Study::event_line(const std::string& participant, const std::string& event,
+                              const std::string& detail) const {
+  return fmt::format("{},{},{},{}\n", detail::utc_now(), csv_field(participant.substr(0, 64)),
+                     csv_field(event.substr(0, 32)), csv_field(detail::bounded_detail(detail)));
 }
 
 void Study::record_event(const std::string& participant, const std::string& event,
                          const std::string& detail) {
-  const std::string line =
-      fmt::format("{},{},{},{}\n", detail::utc_now(), csv_field(participant.substr(0, 64)),
-                  csv_field(event.substr(0, 32)), csv_field(detail::bounded_detail(detail)));
-  committer_->append(dir_ / "collect" / "events.csv", kEventsHeader, line);
+  committer_->append(dir_ / "collect" / "events.csv", kEventsHeader,
+                     event_line(participant, event, detail));
+}
+
+void Study::record_event(const std::string& participant, const std::string& event,
+                         const std::string& detail, std::function<void(std::exception_ptr)> then) {
+  std::vector<detail::GroupCommitter::Append> one;
+  one.push_back({dir_ / "collect" / "events.csv", std::string(kEventsHeader),
+                 event_line(participant, event, detail)});
+  committer_->commit_async(std::move(one), [then = std::move(then)](auto r) {
+    then(r[0].error.empty() ? nullptr : std::make_exception_ptr(IoError(r[0].error)));
+  });
 }
 
 void Study::note_event(const std::string& participant, const std::string& event,
                        const std::string& detail) {
   std::vector<detail::GroupCommitter::Append> one;
   one.push_back({dir_ / "collect" / "events.csv", std::string(kEventsHeader),
-                 fmt::format("{},{},{},{}\n", detail::utc_now(), csv_field(participant.substr(0, 64)),
-                             csv_field(event.substr(0, 32)),
-                             csv_field(detail::bounded_detail(detail)))});
+                 event_line(participant, event, detail)});
   committer_->enqueue(std::move(one));
+}
+
+void Study::set_sync_delay(std::chrono::milliseconds delay) { committer_->set_sync_delay(delay); }
+
+void Study::exclusive(const std::shared_ptr<Participant>& p, std::function<void()> op) {
+  {
+    std::lock_guard lock(p->mu);
+    if (p->busy) {
+      p->waiting.push_back(std::move(op));
+      return;
+    }
+    p->busy = true;
+  }
+  op();
+}
+
+void Study::release(const std::shared_ptr<Participant>& p) {
+  std::function<void()> next;
+  {
+    std::lock_guard lock(p->mu);
+    if (p->waiting.empty()) {
+      p->busy = false;
+      return;
+    }
+    next = std::move(p->waiting.front());  // stays busy: handed on to the next operation
+    p->waiting.pop_front();
+  }
+  next();
 }
 
 // Repairs a shared file after a crash, whatever state it was left in: empty, header only, cut in
@@ -277,7 +330,7 @@ void Study::recover_log(Participant& p, RoundKind kind) {
       }
       current = static_cast<int>(*it);
       current_done = false;
-      duration = plan_round(p.index, p.condition, kind, current).duration();
+      duration = plan_for(p, kind, current).duration();
     }
     if (!current_done && *t == duration) {
       current_done = true;
@@ -430,84 +483,6 @@ std::shared_ptr<Study::Participant> Study::find(const std::string& id) const {
   return it->second;
 }
 
-namespace {
-template <class P>
-ParticipantStatus make_status(const P& p, const Settings& s) {
-  ParticipantStatus st;
-  st.id = p.id;
-  st.condition = s.conditions[p.condition].name;
-  st.practice_saved = p.saved[0];
-  st.rounds_saved = p.saved[1];
-  st.questionnaire_done = p.questionnaire_done;
-  st.last_seen_unix = p.last_seen;
-  st.interruptions = p.interruptions;
-  return st;
-}
-}  // namespace
-
-ParticipantStatus Study::join(const std::string& requested) {
-  std::string id = requested;
-  auto existing = [&]() -> std::shared_ptr<Participant> {
-    std::lock_guard lock(mu_);
-    if (id.empty()) {
-      // A generated ID: random-looking, from the seed and a counter, never an existing one.
-      Rng rng = Rng::stream(settings_.seed ^ static_cast<std::uint64_t>(detail::unix_now()),
-                            participants_.size() + generated_);
-      do {
-        id = fmt::format("G{:010x}", rng() & 0xFFFFFFFFFFULL);
-        ++generated_;
-      } while (participants_.count(id));
-    }
-    if (!valid_participant_id(id)) {
-      throw Rejection(
-          400, "bad_participant",
-          "participant IDs are 1-64 letters, digits, '_' or '-' (not starting with '-')");
-    }
-    auto it = participants_.find(id);
-    return it == participants_.end() ? nullptr : it->second;
-  };
-  std::shared_ptr<Participant> p = existing();
-  if (!p) {
-    // New participants are assigned one at a time (the rows are numbered in order of arrival),
-    // but mu_ is not held during the sync: the participants already playing are not held up.
-    std::lock_guard assign(assignment_mu_);
-    p = existing();  // joined meanwhile (a double click)
-    if (!p) {
-      p = std::make_shared<Participant>();
-      p->id = id;
-      {
-        std::lock_guard lock(mu_);
-        p->index = participants_.size();
-      }
-      const std::size_t c = settings_.conditions.size();
-      const std::uint64_t block = p->index / c;
-      std::vector<std::size_t> perm(c);
-      for (std::size_t i = 0; i < c; ++i) perm[i] = i;
-      Rng rng = Rng::stream(settings_.seed, block);
-      sim::shuffle(perm, rng);
-      p->condition = perm[p->index % c];
-      const std::string& condition = settings_.conditions[p->condition].name;
-      // The assignment row and its event in one commit; the participant exists (in memory too)
-      // only once the row is on disk.
-      std::vector<detail::GroupCommitter::Append> commit;
-      commit.push_back({dir_ / "collect" / "assignment.csv", std::string(kAssignmentHeader),
-                        fmt::format("{},{},{},{}\n", id, p->index, condition, detail::utc_now())});
-      commit.push_back({dir_ / "collect" / "events.csv", std::string(kEventsHeader),
-                        fmt::format("{},{},assigned,{}\n", detail::utc_now(), id,
-                                    csv_field(condition))});
-      const auto done = committer_->commit(std::move(commit));
-      if (!done[0].error.empty()) throw IoError(done[0].error);
-      {
-        std::lock_guard lock(mu_);
-        participants_[id] = p;
-      }
-      if (!done[1].error.empty()) throw IoError(done[1].error);
-    }
-  }
-  std::lock_guard lock(p->mu);
-  p->last_seen = detail::unix_now();
-  return make_status(*p, settings_);
-}
 
 Stage Study::stage(const ParticipantStatus& s) const noexcept {
   if (s.practice_saved < settings_.practice || s.rounds_saved < settings_.iterations) {
@@ -518,188 +493,8 @@ Stage Study::stage(const ParticipantStatus& s) const noexcept {
   return s.questionnaire_done ? Stage::done : Stage::questionnaire;
 }
 
-Round Study::start_round(const std::string& id) {
-  auto p = find(id);
-  std::lock_guard lock(p->mu);
-  p->last_seen = detail::unix_now();
-  RoundKind kind = RoundKind::practice;
-  int iteration = p->saved[0] + 1;
-  if (p->saved[0] >= settings_.practice) {
-    kind = RoundKind::main;
-    iteration = p->saved[1] + 1;
-    if (p->saved[1] >= settings_.iterations) {
-      throw Rejection(409, "no_round_left", "every round of this participant is saved");
-    }
-  }
-  Round r = plan_round(p->index, p->condition, kind, iteration);
-  const std::string name = fmt::format("{} {}", to_string(kind), iteration);
-  if (p->shown && p->shown->first == kind && p->shown->second == iteration) {
-    ++p->interruptions;
-    record_event(id, "interrupted",
-                 name + " was shown before and not saved; shown again from its start");
-  }
-  p->shown = std::make_pair(kind, iteration);
-  note_event(id, "round_shown", name);  // acknowledges nothing: not waited for
-  return r;
-}
-
-ParticipantStatus Study::submit_round(const std::string& id, RoundKind kind, int iteration,
-                                      const std::vector<PadSample>& s) {
-  auto p = find(id);
-  std::lock_guard lock(p->mu);
-  p->last_seen = detail::unix_now();
-  const int k = static_cast<int>(kind);
-  const std::string name = fmt::format("{} round {}", to_string(kind), iteration);
-  // Order: practice rounds first, then the analysed ones, each 1, 2, ...
-  const bool practice_open = p->saved[0] < settings_.practice;
-  const int limit = kind == RoundKind::practice ? settings_.practice : settings_.iterations;
-  if (iteration < 1 || iteration > limit) {
-    throw Rejection(409, "out_of_order", fmt::format("{} does not exist in this study", name));
-  }
-  if (iteration <= p->saved[k]) {
-    throw Rejection(409, "duplicate", fmt::format("{} is already saved", name));
-  }
-  if (iteration != p->saved[k] + 1 || (kind == RoundKind::main && practice_open)) {
-    throw Rejection(409, "out_of_order",
-                    fmt::format("{} submitted before the rounds before it were saved", name));
-  }
-  const Round r = plan_round(p->index, p->condition, kind, iteration);
-  // Validation: the trace as the page must have recorded it.
-  auto bad = [&](const std::string& why) {
-    return Rejection(422, "invalid_trace", name + ": " + why);
-  };
-  if (s.size() < 2) throw bad("fewer than 2 samples");
-  if (s.size() > settings_.max_samples) {
-    throw Rejection(
-        413, "too_many_samples",
-        fmt::format("{}: {} samples (at most {})", name, s.size(), settings_.max_samples));
-  }
-  if (s.front().t != 0 || s.front().pad != 0.5)
-    throw bad("the first sample must be t = 0, pad = 0.5");
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (!std::isfinite(s[i].t) || !std::isfinite(s[i].pad))
-      throw bad(fmt::format("sample {} is not a number", i + 1));
-    if (s[i].pad < 0 || s[i].pad > 1) {
-      throw bad(
-          fmt::format("sample {}: pad {} is outside [0, 1]", i + 1, io::format_double(s[i].pad)));
-    }
-    if (i == 0) continue;
-    const double dt = s[i].t - s[i - 1].t;
-    if (!(dt > 0)) throw bad(fmt::format("sample {}: times must increase", i + 1));
-    const double dp = std::fabs(s[i].pad - s[i - 1].pad);
-    if (dp > settings_.pad_speed * dt * (1 + kSpeedTolerance)) {
-      throw bad(fmt::format("sample {}: the pad moved {} in {} s, faster than the pad speed {}/s",
-                            i + 1, io::format_double(dp), io::format_double(dt),
-                            io::format_double(settings_.pad_speed)));
-    }
-  }
-  if (s.back().t != r.duration()) {
-    throw bad(fmt::format("the last sample must be at the end of the round, t = {}",
-                          io::format_double(r.duration())));
-  }
-  // One block of whole lines, one write, synced before the page hears of it.
-  const std::string key =
-      fmt::format("{},{},{},{},{},{},", id, settings_.conditions[p->condition].name, iteration,
-                  sim::to_string(r.strategy), sim::to_string(r.variant), sim::to_string(r.target));
-  const std::string speed = io::format_double(settings_.pad_speed);
-  std::vector<double> times;
-  times.reserve(s.size());
-  for (const auto& x : s) times.push_back(x.t);
-  const auto robot =
-      sim::robot_positions(r.strategy, r.variant, r.target, settings_.geometry, times);
-  std::string block;
-  block.reserve(s.size() * (key.size() + 48));
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    const auto& x = s[i];
-    block += key;
-    block += io::format_double(x.t);
-    block += ',';
-    block += io::format_double(x.pad);
-    block += ',';
-    block += speed;
-    if (!p->legacy_log[k]) {
-      block += ',';
-      block += sim::format_metres(robot[i].x);
-      block += ',';
-      block += sim::format_metres(robot[i].y);
-    }
-    block += '\n';
-  }
-  const fs::path path = log_path(id, kind);
-  if (detail::file_size_or_zero(path) != p->log_size[k]) {
-    recover_log(*p, kind);  // an earlier failed write left a tail: set it aside first
-    if (iteration != p->saved[k] + 1)
-      throw Rejection(409, "out_of_order", name + ": state changed");
-  }
-  // The round and its `saved` event in one commit: synced together with whatever other rounds
-  // arrived meanwhile (group commit); the event is written only when the round was.
-  std::vector<detail::GroupCommitter::Append> commit;
-  commit.push_back(
-      {path, std::string(p->legacy_log[k] ? kLegacyLogHeader : kLogHeader), std::move(block)});
-  commit.push_back({dir_ / "collect" / "events.csv", std::string(kEventsHeader),
-                    fmt::format("{},{},saved,{}\n", detail::utc_now(), id,
-                                csv_field(fmt::format("{} ({} samples)", name, s.size())))});
-  const auto done = committer_->commit(std::move(commit));
-  if (!done[0].error.empty()) throw IoError(done[0].error);
-  p->log_size[k] = done[0].size;
-  p->saved[k] = iteration;
-  p->shown.reset();
-  if (!done[1].error.empty()) throw IoError(done[1].error);  // saved; the page hears "duplicate"
-  return make_status(*p, settings_);
-}
-
-ParticipantStatus Study::submit_questionnaire(const std::string& id,
-                                              const std::map<std::string, std::string>& answers) {
-  auto p = find(id);
-  std::lock_guard lock(p->mu);
-  p->last_seen = detail::unix_now();
-  if (p->questionnaire_done)
-    throw Rejection(409, "duplicate", "the questionnaire is already saved");
-  if (p->saved[0] < settings_.practice || p->saved[1] < settings_.iterations) {
-    throw Rejection(409, "out_of_order", "the questionnaire comes after the last round");
-  }
-  std::string row = csv_field(id) + "," + settings_.conditions[p->condition].name;
-  for (const auto& item : settings_.items) {
-    auto a = answers.find(item);
-    const auto v = a == answers.end() ? std::nullopt : io::parse_integer(a->second);
-    if (!v || *v < 1 || *v > 7) {
-      throw Rejection(422, "invalid_answer",
-                      fmt::format("item '{}': a whole number 1-7 is needed", item));
-    }
-    row += fmt::format(",{}", *v);
-  }
-  row += '\n';
-  std::string yes_no;
-  if (!settings_.yes_no_item.empty()) {
-    auto a = answers.find(settings_.yes_no_item);
-    if (a == answers.end() || (a->second != "yes" && a->second != "no")) {
-      throw Rejection(422, "invalid_answer",
-                      fmt::format("item '{}': yes or no is needed", settings_.yes_no_item));
-    }
-    yes_no = fmt::format("{},{},{}\n", id, settings_.conditions[p->condition].name, a->second);
-  }
-  for (const auto& [k, v] : answers) {
-    if (k != settings_.yes_no_item &&
-        std::find(settings_.items.begin(), settings_.items.end(), k) == settings_.items.end()) {
-      throw Rejection(422, "invalid_answer", fmt::format("'{}' is not a questionnaire item", k));
-    }
-  }
-  std::lock_guard qlock(questionnaire_mu_);
-  if (!yes_no.empty() && !p->yes_no_done) {
-    committer_->append(dir_ / "questionnaire_yesno.csv",
-                   "participant,condition," + settings_.yes_no_item + "\n", yes_no);
-    p->yes_no_done = true;
-  }
-  std::string header = "participant,condition";
-  for (const auto& i : settings_.items) header += "," + i;
-  committer_->append(dir_ / "questionnaire.csv", header + "\n", row);
-  p->questionnaire_done = true;
-  record_event(id, "questionnaire", "saved");
-  return make_status(*p, settings_);
-}
-
 Study::CommitStats Study::commit_stats() const {
-  return {committer_->groups(), committer_->appends()};
+  return {committer_->groups(), committer_->appends(), committer_->busy_seconds()};
 }
 
 std::optional<ParticipantStatus> Study::status(const std::string& id) const {

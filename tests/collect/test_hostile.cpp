@@ -272,7 +272,7 @@ double cpu_seconds(pid_t pid) {
 
 TEST(CollectDescriptors, ManyIdleConnectionsNeitherSpinNorLockOutParticipants) {
   const auto dir = fresh_dir("fds");
-  Child srv = launch_limited(dir, 96);
+  Child srv = launch_limited(dir, 160);
   ASSERT_NE(srv.port, 0) << slurp(srv.err);
   EXPECT_NE(slurp(srv.out).find("connections: at most 48 at once"), std::string::npos)
       << slurp(srv.out);
@@ -280,7 +280,7 @@ TEST(CollectDescriptors, ManyIdleConnectionsNeitherSpinNorLockOutParticipants) {
   auto participant = std::make_unique<Conn>(srv.port);
   ASSERT_EQ(participant->send(http::verb::post, "/api/join?participant=F1", "", "127.0.0.1").first,
             200);
-  // 300 connections that send nothing: more than the 96 descriptors the server has.
+  // 300 connections that send nothing: more than the 160 descriptors the server has.
   std::vector<std::unique_ptr<tcp::socket>> idle;
   net::io_context ioc;
   for (int i = 0; i < 300; ++i) {

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "collect_helpers.hpp"
+#include "http_helpers.hpp"
 #include "feint/collect/server.hpp"
 #include "feint/io/csv.hpp"
 #include "feint/io/number.hpp"
@@ -26,33 +27,6 @@ namespace http = beast::http;
 namespace net = boost::asio;
 using tcp = net::ip::tcp;
 using namespace testing;
-
-struct Reply {
-  int status = 0;
-  std::string body;
-};
-
-Reply request(unsigned short port, http::verb method, const std::string& target,
-              const std::string& body = "") {
-  net::io_context ioc;
-  tcp::socket sock(ioc);
-  sock.connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), port));
-  http::request<http::string_body> req(method, target, 11);
-  req.set(http::field::host, "127.0.0.1");
-  req.body() = body;
-  req.prepare_payload();
-  http::write(sock, req);
-  beast::flat_buffer buf;
-  http::response<http::string_body> res;
-  http::read(sock, buf, res);
-  return {static_cast<int>(res.result_int()), res.body()};
-}
-
-std::string trace_body(const std::vector<PadSample>& s) {
-  std::string b;
-  for (const auto& x : s) b += io::format_double(x.t) + "," + io::format_double(x.pad) + "\n";
-  return b;
-}
 
 int count(const std::string& text, const std::string& what) {
   int n = 0;

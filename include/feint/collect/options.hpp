@@ -33,7 +33,7 @@ struct CollectOptions {
   std::string consent_file;  // relative to the study folder
   std::string completion_url;
   std::string admin_token;
-  unsigned threads = 16;
+  unsigned threads = 4;  // connection threads (none waits for a disk)
   std::vector<std::string> allowed_hosts;
   std::vector<std::string> trusted_proxies;
   std::size_t max_connections = 0;

@@ -29,7 +29,9 @@ struct ServerOptions {
   std::string host = "127.0.0.1";
   unsigned short port = 8080;  // 0: an ephemeral port (see Server::port())
   std::string admin_token;     // empty: a random one
-  unsigned threads = 16;  // requests waiting for a sync at once: the size of a commit group
+  /// Threads running the connections. None of them waits for a disk (a save is answered when
+  /// its group is synced, from the committer's thread), so about one per core is enough.
+  unsigned threads = 4;
   std::size_t body_limit = 2 * 1024 * 1024;  // bytes per request body
   std::chrono::seconds timeout{30};          // to read one request
   std::chrono::seconds idle_timeout{10};     // a kept-alive connection waiting for its next request
@@ -68,8 +70,10 @@ class ServerState {
   explicit ServerState(int rejections_per_minute = 20);
   ~ServerState();
   /// Records a rejection of `client` in the events log, rate-limited. Never throws.
+  /// With `then`, it does not wait: `then` is called once the lines are synced (or at once when
+  /// none is written).
   void record_rejection(Study& study, const std::string& client, const std::string& participant,
-                        const std::string& detail);
+                        const std::string& detail, std::function<void()> then = {});
   void write_failed(const std::string& what);
   void write_succeeded();
   struct WriteFailure {
@@ -91,7 +95,16 @@ struct RequestInfo {
   ServerState* state = nullptr;   // null: rejections are logged without a rate limit
 };
 
-/// Answers one request. `target` is the request target (path and query). Never throws.
+using Reply = std::function<void(Response)>;
+
+/// Answers one request: `reply` is called once, when the answer is known (for a save: once it is
+/// synced), on the calling thread or on the group committer's completion thread; nothing waits
+/// for a disk meanwhile. `target` is the request target (path and query). Never throws.
+void handle_request(Study& study, const std::string& admin_token, const std::string& method,
+                    const std::string& target, std::string body, const RequestInfo& info,
+                    Reply reply);
+
+/// The same, waiting for the answer (tests, in-process callers).
 Response handle_request(Study& study, const std::string& admin_token, const std::string& method,
                         const std::string& target, const std::string& body,
                         const RequestInfo& info = {});

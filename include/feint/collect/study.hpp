@@ -21,13 +21,17 @@
 
 #include <chrono>
 #include <cstdint>
+#include <deque>
+#include <exception>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "feint/sim/selection.hpp"
@@ -125,6 +129,11 @@ struct PadSample {
   double pad = 0.5;
 };
 
+/// The completion of an asynchronous Study operation: the error (Rejection, IoError...) or the
+/// result.
+template <class T>
+using Then = std::function<void(std::exception_ptr error, T result)>;
+
 class Study {
  public:
   /// Opens (creating as needed) the study folder and rebuilds the state from its files.
@@ -159,11 +168,30 @@ class Study {
   void note_event(const std::string& participant, const std::string& event,
                   const std::string& detail);
 
+  /// The asynchronous forms, which the server uses: they never wait for a sync. `then` is called
+  /// once: with the error (as the forms above throw it) or the result, after everything the
+  /// answer acknowledges is synced; on the calling thread when nothing had to be written,
+  /// otherwise on the group committer's completion thread. The operations of one participant
+  /// run one after another, in the order they were called (a double click waits for the first
+  /// save); new participants are assigned in batches, one batch per sync, numbered in order.
+  void join(const std::string& id, Then<ParticipantStatus> then);
+  void start_round(const std::string& id, Then<Round> then);
+  void submit_round(const std::string& id, RoundKind kind, int iteration,
+                    std::vector<PadSample> samples, Then<ParticipantStatus> then);
+  void submit_questionnaire(const std::string& id, std::map<std::string, std::string> answers,
+                            Then<ParticipantStatus> then);
+  void record_event(const std::string& participant, const std::string& event,
+                    const std::string& detail, std::function<void(std::exception_ptr)> then);
+
+  /// Test hook: every group's sync is preceded by this pause (a slow disk).
+  void set_sync_delay(std::chrono::milliseconds delay);
+
   /// Syncs so far and the appends they covered (group commit: several appends per sync when
   /// requests arrive together).
   struct CommitStats {
     std::uint64_t syncs = 0;
     std::uint64_t appends = 0;
+    double busy_seconds = 0;  // writing and syncing
   };
   CommitStats commit_stats() const;
 
@@ -175,19 +203,30 @@ class Study {
 
  private:
   struct Participant;
+  struct PendingJoin;
   std::shared_ptr<Participant> find(const std::string& id) const;
   void rebuild();
   void recover_log(Participant& p, RoundKind kind);
   std::filesystem::path log_path(const std::string& id, RoundKind kind) const;
+  /// plan_round() from the participant's cached run and the cached trajectories.
+  Round plan_for(Participant& p, RoundKind kind, int iteration) const;
+  std::string event_line(const std::string& participant, const std::string& event,
+                         const std::string& detail) const;
+  /// Runs `op` when no other operation of `p` is in flight; `op` must call release(p) once done.
+  void exclusive(const std::shared_ptr<Participant>& p, std::function<void()> op);
+  void release(const std::shared_ptr<Participant>& p);
+  /// Assigns the joins waiting (called with mu_ held, no batch in flight; unlocks it).
+  void assign_waiting(std::unique_lock<std::mutex>& lock);
 
   std::filesystem::path dir_;
   Settings settings_;
-  mutable std::mutex mu_;  // participants_, assignment file, id generation
+  mutable std::mutex mu_;  // participants_, the joins waiting or in flight, id generation
   std::map<std::string, std::shared_ptr<Participant>> participants_;
-  std::mutex assignment_mu_;  // new participants are assigned (and their rows written) in turn
-  std::mutex events_mu_;
-  std::mutex questionnaire_mu_;
+  std::deque<PendingJoin> joins_waiting_;
+  std::shared_ptr<std::vector<PendingJoin>> joins_in_flight_;  // null: none
   std::uint64_t generated_ = 0;
+  /// The robot's path of every (strategy, variant, target), computed once.
+  std::map<std::tuple<int, int, int>, std::vector<sim::TrajectorySample>> paths_;
   std::unique_ptr<detail::GroupCommitter> committer_;  // every durable append goes through it
 };
 
