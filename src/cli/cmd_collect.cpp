@@ -95,8 +95,8 @@ void add_collect_command(CLI::App& app) {
   cmd->add_option("--admin-token", args->o.admin_token,
                   "Token of the admin page (default: random, printed at start)");
   cmd->add_option("--threads", args->o.threads,
-                  "Server threads (default 16; each waits for its group's sync, so more threads "
-                  "make bigger commit groups)")
+                  "Connection threads (default 4; none waits for a disk: a save is answered "
+                  "when its commit group is synced)")
       ->check(CLI::Range(1u, 64u));
   cmd->add_option("--allowed-host", args->o.allowed_hosts,
                   "Accepted Host header, NAME or NAME:PORT (repeatable). On 127.0.0.1/::1, "
