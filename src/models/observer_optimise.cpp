@@ -1,0 +1,318 @@
+// The optimisers of the observer fit (observer_optimise.hpp, docs/observer.md "Estimation and
+// CIs"): they see the log-likelihood only through the objective f.
+#include "observer_optimise.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/tools/minima.hpp>
+
+namespace feint::models::detail::observer {
+
+Theta clamp(Theta th, const Box& b) {
+  for (std::size_t j = 0; j < kParams; ++j) th[j] = std::clamp(th[j], b.lo[j], b.hi[j]);
+  return th;
+}
+
+/// Nelder & Mead (1965) on the free coordinates (standard coefficients 1, 2, 1/2, 1/2), every point
+/// projected into the box. Maximises f; returns the best point and its value.
+std::pair<Theta, double> nelder_mead(const Objective& f, Theta start, const Box& box,
+                                     const std::array<bool, kParams>& free, double step_factor, int max_evals) {
+  std::vector<std::size_t> idx;
+  for (std::size_t j = 0; j < kParams; ++j)
+    if (free[j]) idx.push_back(j);
+  start = clamp(start, box);
+  const double f0 = f(start);
+  if (idx.empty()) return {start, f0};
+  const std::size_t d = idx.size();
+  std::vector<Theta> x(d + 1, start);
+  std::vector<double> v(d + 1, f0);
+  int evals = 1;
+  for (std::size_t k = 0; k < d; ++k) {
+    const std::size_t j = idx[k];
+    double step = box.scale[j] * step_factor;
+    if (start[j] + step > box.hi[j]) step = -step;  // step into the box
+    x[k + 1][j] = std::clamp(start[j] + step, box.lo[j], box.hi[j]);
+    v[k + 1] = f(x[k + 1]);
+    ++evals;
+  }
+  std::vector<std::size_t> order(d + 1);
+  while (evals < max_evals) {
+    for (std::size_t i = 0; i <= d; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return v[a] > v[b]; });
+    const std::size_t best = order.front(), worst = order.back(), second = order[d - 1];
+    // Converged: values within 1e-5 (relative 1e-10) and the simplex within 1e-4 of each scale
+    // (the log-likelihood then is within ~1e-5 of its maximum: far below the 0.004 to which the
+    // CI ends' deviance is solved).
+    double spread = 0;
+    for (std::size_t i = 0; i <= d; ++i)
+      for (std::size_t j : idx) spread = std::max(spread, std::abs(x[i][j] - x[best][j]) / box.scale[j]);
+    if (std::abs(v[best] - v[worst]) <= 1e-5 + 1e-10 * std::abs(v[best]) && spread < 1e-4) break;
+    Theta centroid = x[best];
+    for (std::size_t j : idx) {
+      double s = 0;
+      for (std::size_t i = 0; i <= d; ++i)
+        if (i != worst) s += x[i][j];
+      centroid[j] = s / static_cast<double>(d);
+    }
+    auto along = [&](double c) {
+      Theta y = centroid;
+      for (std::size_t j : idx) y[j] = centroid[j] + c * (x[worst][j] - centroid[j]);
+      return clamp(y, box);
+    };
+    const Theta xr = along(-1.0);
+    const double vr = f(xr);
+    ++evals;
+    if (vr > v[best]) {
+      const Theta xe = along(-2.0);
+      const double ve = f(xe);
+      ++evals;
+      if (ve > vr) { x[worst] = xe; v[worst] = ve; } else { x[worst] = xr; v[worst] = vr; }
+      continue;
+    }
+    if (vr > v[second]) { x[worst] = xr; v[worst] = vr; continue; }
+    const bool outside = vr > v[worst];
+    const Theta xc = along(outside ? -0.5 : 0.5);
+    const double vc = f(xc);
+    ++evals;
+    if (vc > std::max(vr, v[worst])) { x[worst] = xc; v[worst] = vc; continue; }
+    for (std::size_t i = 0; i <= d; ++i) {  // shrink toward the best
+      if (i == best) continue;
+      for (std::size_t j : idx) x[i][j] = x[best][j] + 0.5 * (x[i][j] - x[best][j]);
+      v[i] = f(x[i]);
+      ++evals;
+    }
+  }
+  std::size_t best = 0;
+  for (std::size_t i = 1; i <= d; ++i)
+    if (v[i] > v[best]) best = i;
+  return {x[best], v[best]};
+}
+
+/// Maximises a 1-D concave-near-the-top function by successive parabolas through three points
+/// spaced `h` around the warm start (a few evaluations when the warm start is close, as it is along a
+/// profile); nullopt when the points are not concave (the caller falls back to Brent).
+std::optional<std::pair<Theta, double>> parabolic_max(const Objective& f, Theta th, std::size_t k, double h,
+                                                      const Box& box) {
+  auto point = [&](double x) { Theta y = th; y[k] = std::clamp(x, box.lo[k], box.hi[k]); return y; };
+  auto at = [&](double x) { const Theta y = point(x); return std::pair{y, f(y)}; };
+  auto best = at(th[k]);
+  for (int iter = 0; iter < 8; ++iter) {
+    const double b = best.first[k];
+    double a = std::max(box.lo[k], b - h), c = std::min(box.hi[k], b + h);
+    std::array<std::pair<double, double>, 3> pt;
+    if (b - h < box.lo[k]) {
+      pt = {std::pair{b, best.second}, std::pair{b + h / 2, at(b + h / 2).second}, std::pair{b + h, at(b + h).second}};
+    } else if (b + h > box.hi[k]) {
+      pt = {std::pair{b - h, at(b - h).second}, std::pair{b - h / 2, at(b - h / 2).second}, std::pair{b, best.second}};
+    } else {
+      pt = {std::pair{a, at(a).second}, std::pair{b, best.second}, std::pair{c, at(c).second}};
+    }
+    const auto [x0, f0] = pt[0];
+    const auto [x1, f1] = pt[1];
+    const auto [x2, f2] = pt[2];
+    const double d01 = (f1 - f0) / (x1 - x0), d12 = (f2 - f1) / (x2 - x1);
+    const double curv = (d12 - d01) / (x2 - x0);  // half the second derivative
+    if (!(curv < 0)) return std::nullopt;
+    // Vertex of the parabola through the three points, kept within 3 h of the centre.
+    const double xv = std::clamp((x0 + x1) / 2 - d01 / (2 * curv), b - 3 * h, b + 3 * h);
+    auto cand = at(xv);
+    for (const auto& q : pt)  // a known point beats the vertex: take it (its value is known too)
+      if (q.second > cand.second) cand = {point(q.first), q.second};
+    const double moved = std::abs(cand.first[k] - b);
+    if (cand.second >= best.second) best = cand;
+    if (moved < 0.05 * h) return best;
+    h = std::max(moved, 0.1 * h);
+  }
+  return best;
+}
+
+/// Maximises over the free parameters other than `fixed` (kParams = none fixed), from `start`;
+/// `h` is the step of the parabolic search (an SE of that parameter) when exactly one is free.
+std::pair<Theta, double> maximise(const Objective& f, const Box& box, const Theta& start, std::size_t fixed,
+                                  bool warm, const Theta& h) {
+  std::array<bool, kParams> free = box.free;
+  if (fixed < kParams) free[fixed] = false;
+  std::size_t nfree = 0, only = 0;
+  for (std::size_t j = 0; j < kParams; ++j)
+    if (free[j]) { ++nfree; only = j; }
+  if (nfree == 1) {
+    if (warm && h[only] > 0) {
+      if (auto r = parabolic_max(f, start, only, h[only], box)) return *r;
+    }
+    // Brent's method on the whole range.
+    Theta th = start;
+    auto g = [&](double v) { th[only] = v; return -f(th); };
+    const auto r = boost::math::tools::brent_find_minima(g, box.lo[only], box.hi[only], 20);
+    th[only] = r.first;
+    return {th, -r.second};
+  }
+  if (warm) {
+    // Cyclic parabolic searches over each free coordinate (the profile's remaining parameters are
+    // only weakly correlated once the profiled one is fixed); Nelder-Mead if a parabola fails.
+    bool ok = true;
+    for (std::size_t j = 0; j < kParams; ++j) ok = ok && (!free[j] || h[j] > 0);
+    if (ok) {
+      Theta x = start;
+      double fx = f(x);
+      for (int cycle = 0; cycle < 8 && ok; ++cycle) {
+        double moved = 0;
+        for (std::size_t j = 0; j < kParams && ok; ++j) {
+          if (!free[j]) continue;
+          const auto r = parabolic_max(f, x, j, h[j], box);
+          if (!r) { ok = false; break; }
+          moved = std::max(moved, std::abs(r->first[j] - x[j]) / h[j]);
+          x = r->first;
+          fx = r->second;
+        }
+        if (ok && moved < 0.05) return {x, fx};
+      }
+    }
+  }
+  return nelder_mead(f, start, box, free, warm ? 0.2 : 0.5, 2000);
+}
+
+/// The observed information at the maximum by central differences (points kept in the box).
+StandardErrors standard_errors(const Objective& f, const Box& box, const Theta& th, double l0) {
+  std::vector<std::size_t> idx;
+  for (std::size_t j = 0; j < kParams; ++j)
+    if (box.free[j]) idx.push_back(j);
+  const std::size_t d = idx.size();
+  Eigen::MatrixXd H(d, d);
+  Theta c = th;
+  Theta h{};
+  for (std::size_t a = 0; a < d; ++a) {
+    const std::size_t j = idx[a];
+    h[j] = 1e-3 * box.scale[j];
+    c[j] = std::clamp(th[j], box.lo[j] + h[j], box.hi[j] - h[j]);  // room for the differences
+  }
+  const double fc = c == th ? l0 : f(c);
+  auto at = [&](std::size_t a, double sa, std::size_t b, double sb) {
+    Theta y = c;
+    y[idx[a]] += sa * h[idx[a]];
+    if (b < d) y[idx[b]] += sb * h[idx[b]];
+    return f(y);
+  };
+  for (std::size_t a = 0; a < d; ++a) {
+    H(a, a) = (at(a, 1, d, 0) - 2 * fc + at(a, -1, d, 0)) / (h[idx[a]] * h[idx[a]]);
+    for (std::size_t b = a + 1; b < d; ++b) {
+      H(a, b) = H(b, a) = (at(a, 1, b, 1) - at(a, 1, b, -1) - at(a, -1, b, 1) + at(a, -1, b, -1)) /
+                          (4 * h[idx[a]] * h[idx[b]]);
+    }
+  }
+  StandardErrors out;
+  const Eigen::MatrixXd info = -H;
+  Eigen::LLT<Eigen::MatrixXd> llt(info);
+  if (llt.info() != Eigen::Success) return out;
+  const Eigen::MatrixXd cov = llt.solve(Eigen::MatrixXd::Identity(static_cast<Eigen::Index>(d), static_cast<Eigen::Index>(d)));
+  for (std::size_t a = 0; a < d; ++a) {
+    out.wald[idx[a]] = std::sqrt(cov(a, a));
+    out.cond[idx[a]] = 1 / std::sqrt(info(a, a));
+    for (std::size_t b = 0; b < d; ++b)
+      if (b != a) out.ridge[idx[a]][idx[b]] = cov(b, a) / cov(a, a);
+  }
+  return out;
+}
+
+/// Profile-likelihood interval of parameter j around the maximum (th, lmax). Each end solves
+/// r(v) = +-z for the signed root deviance r(v) = sign(v - th_j) sqrt(2 (lmax - l_p(v))), which is
+/// close to linear in v: secant steps from the Wald end, kept inside a bracket once one is known
+/// (bisection otherwise), to |r - z| < 1e-3 (the deviance within ~0.004 of chi2_1(level)).
+Interval profile_interval(const Objective& f, const Box& box, const Theta& th, double lmax, std::size_t j,
+                          double level, const StandardErrors& ses) {
+  const double z = std::sqrt(boost::math::quantile(boost::math::chi_squared(1.0), level));
+  const Theta& wald = ses.wald;
+  Theta step = ses.cond;
+  for (std::size_t k = 0; k < kParams; ++k)
+    if (!(step[k] > 0)) step[k] = 0.1 * box.scale[k];
+  const double se = wald[j] > 0 ? wald[j] : 0.25 * box.scale[j];
+  Interval out;
+  for (int side : {-1, 1}) {
+    const double bound = side < 0 ? box.lo[j] : box.hi[j];
+    double& end = side < 0 ? out.low : out.high;
+    bool& at_bound = side < 0 ? out.low_at_bound : out.high_at_bound;
+    Theta warm = th;
+    // s(v) = side * r(v): 0 at the maximum, increasing outward; the end is s = z.
+    auto s_of = [&](double v) {
+      Theta x = warm;
+      x[j] = v;
+      // Start the re-maximisation on the ridge: the others moved as the quadratic approximation
+      // predicts from the last point (at most 3 conditional SEs), so that it needs fewer steps.
+      for (std::size_t k = 0; k < kParams; ++k) {
+        if (k == j || ses.ridge[j][k] == 0) continue;
+        const double move = std::clamp(ses.ridge[j][k] * (v - warm[j]), -3 * step[k], 3 * step[k]);
+        x[k] = std::clamp(warm[k] + move, box.lo[k], box.hi[k]);
+      }
+      const auto r = maximise(f, box, x, j, true, step);
+      if (r.second > lmax) return 0.0;  // a higher maximum along the profile: inside the interval
+      warm = r.first;
+      return std::sqrt(2 * (lmax - r.second));
+    };
+    if (th[j] == bound) {
+      end = bound;
+      at_bound = true;
+      continue;
+    }
+    // One search outward from a point inside (s < z) to the crossing s = z.
+    auto search = [&](double from, double s_from) {
+      double v_in = from;            // inside: s < z
+      double v_out = std::nan("");   // outside: s >= z (once known)
+      double v_prev = from, s_prev = s_from;
+      double v = std::clamp(from + side * std::max(z - s_from, 0.1) * se, box.lo[j], box.hi[j]);
+      for (int iter = 0; iter < 40; ++iter) {
+        const double sv = s_of(v);
+        if (sv < z) v_in = v; else v_out = v;
+        if (std::abs(sv - z) < 1e-3) return v;
+        if (std::isnan(v_out) && v == bound) { at_bound = true; return bound; }
+        // Secant on (v_prev, s_prev), (v, sv); fall back to bisection of the bracket.
+        double next = sv != s_prev ? v + (z - sv) * (v - v_prev) / (sv - s_prev) : std::nan("");
+        v_prev = v;
+        s_prev = sv;
+        if (!std::isnan(v_out)) {
+          const double lo = std::min(v_in, v_out), hi = std::max(v_in, v_out);
+          if (!(next > lo && next < hi)) next = (v_in + v_out) / 2;
+          if (hi - lo < 1e-9 * box.scale[j]) return (v_in + v_out) / 2;
+        } else if (!(side * (next - v_in) > 0)) {
+          next = v_in + side * 2 * std::max(std::abs(v_in - th[j]), se);  // keep going outward
+        }
+        v = std::clamp(next, box.lo[j], box.hi[j]);
+      }
+      return std::isnan(v_out) ? v_in : (v_in + v_out) / 2;
+    };
+    // The profile need not be unimodal (over tau it can be rough: the pad moves in steps). Probe
+    // 0.5, 1 and 2 SE beyond each end; where the profile comes back below the cut-off, search on
+    // from there: the interval reported is the hull of the region below the cut-off that was found.
+    double from = th[j], s_from = 0;
+    for (int round = 0; round < 6; ++round) {
+      end = search(from, s_from);
+      if (at_bound) break;
+      bool reentry = false;
+      for (double k : {0.5, 1.0, 2.0}) {
+        const double v = std::clamp(end + side * k * se, box.lo[j], box.hi[j]);
+        if (v == end) break;
+        // One evaluation at the other parameters' last values bounds the profile from below (s is
+        // at most this); only a near miss pays for the re-maximisation.
+        Theta x = warm;
+        x[j] = v;
+        const double l_fixed = f(x);
+        const double s_fixed = l_fixed > lmax ? 0.0 : std::sqrt(2 * (lmax - l_fixed));
+        const double sv = s_fixed < z || s_fixed > z + 1 ? s_fixed : s_of(v);
+        if (sv < z) {
+          from = v;
+          s_from = sv;
+          reentry = true;
+          out.hull = true;
+          break;
+        }
+      }
+      if (!reentry) break;
+    }
+  }
+  return out;
+}
+
+}  // namespace feint::models::detail::observer

@@ -1,0 +1,69 @@
+// src/models/observer_optimise.hpp - the optimisers of the observer fit (observer_optimise.cpp):
+// Nelder-Mead, the 1-D parabola search, the observed information and the profile-likelihood CI
+// search. They see the log-likelihood only as a function of the parameter vector; the likelihood
+// and the fit are in observer_fit.cpp (docs/observer.md, "Estimation and CIs").
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <utility>
+
+namespace feint::models::detail::observer {
+
+// Full parameter vector: beta (1/m), tau (s), logit of the prior, gamma (learning rate).
+enum Param : std::size_t { kBeta = 0, kTau = 1, kPrior = 2, kGamma = 3 };
+constexpr std::size_t kParams = 4;
+using Theta = std::array<double, kParams>;
+
+/// The log-likelihood (profiled over sigma and phi) at a parameter vector: what is maximised.
+using Objective = std::function<double(const Theta&)>;
+
+/// The parameters' range, their scales (the steps and tolerances are in these units) and which of
+/// them the fit moves.
+struct Box {
+  Theta lo{}, hi{}, scale{};
+  std::array<bool, kParams> free{};
+};
+
+Theta clamp(Theta th, const Box& b);
+
+/// Nelder & Mead (1965) on the free coordinates, every point projected into the box. Maximises f;
+/// returns the best point and its value.
+std::pair<Theta, double> nelder_mead(const Objective& f, Theta start, const Box& box,
+                                     const std::array<bool, kParams>& free, double step_factor, int max_evals);
+
+/// Maximises f over coordinate k by successive parabolas through points spaced h around th;
+/// nullopt when the points are not concave.
+std::optional<std::pair<Theta, double>> parabolic_max(const Objective& f, Theta th, std::size_t k, double h,
+                                                      const Box& box);
+
+/// Maximises f over the box's free parameters except `fixed` (kParams: none). Warm (a start near
+/// the maximum, steps h): parabolas; otherwise Brent (one parameter) or Nelder-Mead.
+std::pair<Theta, double> maximise(const Objective& f, const Box& box, const Theta& start, std::size_t fixed,
+                                  bool warm, const Theta& h = Theta{});
+
+/// What the observed information at the maximum gives: the Wald SE and the conditional SE
+/// (1 / sqrt(-H_jj)) of each free parameter (zeros where the Hessian is not negative definite), and
+/// the ridge of the quadratic approximation: where the other parameters' maximum moves per unit of
+/// parameter j, ridge[j][k] = cov(k, j) / cov(j, j).
+struct StandardErrors {
+  Theta wald{}, cond{};
+  std::array<Theta, kParams> ridge{};
+};
+
+/// The observed information at the maximum (th, l0) by central differences.
+StandardErrors standard_errors(const Objective& f, const Box& box, const Theta& th, double l0);
+
+struct Interval {
+  double low = 0, high = 0;
+  bool low_at_bound = false, high_at_bound = false;
+  bool hull = false;  // the profile fell below the cut-off again beyond a first crossing
+};
+
+/// Profile-likelihood interval at `level` of parameter j around the maximum (th, lmax).
+Interval profile_interval(const Objective& f, const Box& box, const Theta& th, double lmax, std::size_t j,
+                          double level, const StandardErrors& ses);
+
+}  // namespace feint::models::detail::observer
