@@ -186,6 +186,7 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   t.p_adjust = study.tests.p_adjust;
   t.equivalence = study.settings.equivalence;
   t.apa = study.tests.apa;
+  t.bf_prior_r = study.tests.bf_prior_r;
   io::ScoresOptions load;
   // A study of two conditions never pools a table without its condition column (issue 18).
   load.expected_conditions = s.reading.expected_conditions;
