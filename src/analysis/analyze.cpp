@@ -321,6 +321,17 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
       r.figures.exposure.push_back(
           metrics::exposure_trend(r.scores, r.figures.labels, m, t.test.conf_level));
     }
+    // Its table (slopes per condition and their difference): two conditions, in the model's order.
+    if (r.model && !r.model->models.empty() && !r.model->models.front().group1.empty()) {
+      const std::vector<std::string> order = {r.model->models.front().group1, r.model->models.front().group2};
+      try {
+        for (const auto& m : load.metrics)
+          r.exposure.push_back(exposure_table(r.scores, r.figures.labels, m, order, t.test.conf_level));
+      } catch (const std::exception& e) {
+        r.exposure.clear();  // the findings say why, from their own fit
+        note_left_out(d, "exposure", fmt::format("no condition x exposure table: {}", e.what()));
+      }
+    }
   }
   // The mixed model's fitted trend (the linear-trend model: the line the trend F-test is about).
   if (r.trend_model) {
