@@ -19,6 +19,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <map>
 #include <cstdlib>
 #include <string>
 #include <vector>
@@ -35,6 +37,42 @@ double cpu_seconds() {
   ::getrusage(RUSAGE_SELF, &u);
   return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
          static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec) / 1e6;
+}
+
+// Under the null, z = estimate / SE of an exposure-slope difference is standard normal when the SE
+// is right: its SD over studies is the factor by which the reported SE is too small (> 1) or large.
+void print_se_check(const std::vector<CalibrationOutcome>& outcomes) {
+  std::map<std::string, std::vector<double>> est, z;
+  for (const auto& o : outcomes)
+    for (std::size_t i = 0; i < o.contrast_names.size(); ++i) {
+      est[o.contrast_names[i]].push_back(o.contrast_estimates[i]);
+      z[o.contrast_names[i]].push_back(o.contrast_estimates[i] / o.contrast_se[i]);
+    }
+  fmt::print("| exposure-slope difference | studies | mean estimate | SD of estimates | mean SE | SD of z | "
+             "share |z| > 1.96 |\n|---|---|---|---|---|---|---|\n");
+  for (const auto& [name, e] : est) {
+    const auto& zs = z[name];
+    auto mean = [](const std::vector<double>& v) {
+      double s = 0;
+      for (double x : v) s += x;
+      return s / static_cast<double>(v.size());
+    };
+    auto sd = [&](const std::vector<double>& v) {
+      const double m = mean(v);
+      double s = 0;
+      for (double x : v) s += (x - m) * (x - m);
+      return std::sqrt(s / static_cast<double>(v.size() - 1));
+    };
+    double se = 0;
+    int big = 0;
+    for (std::size_t i = 0; i < e.size(); ++i) {
+      se += e[i] / zs[i];
+      big += std::abs(zs[i]) > 1.96;
+    }
+    fmt::print("| {} | {} | {:.4f} | {:.4f} | {:.4f} | {:.2f} | {:.1f} % |\n", name, e.size(), mean(e), sd(e),
+               se / static_cast<double>(e.size()), sd(zs), 100.0 * big / static_cast<double>(e.size()));
+  }
+  fmt::print("\n");
 }
 
 void print_rates(const std::vector<CalibrationOutcome>& outcomes, Strength strength, const std::string& what) {
@@ -76,6 +114,7 @@ int main(int argc, char** argv) {
     const auto null = run("Null (adaptive with lambda 0 = random)", o, 1000, null_studies, threads);
     print_rates(null, Strength::evidence_for_difference, "false \"evidence for a difference\"");
     print_rates(null, Strength::evidence_for_no_difference, "\"evidence for no difference\"");
+    print_se_check(null);
   }
   if (planted_studies > 0) {
     o.participants = planted_participants;

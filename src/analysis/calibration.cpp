@@ -122,6 +122,13 @@ CalibrationOutcome calibration_study(const sim::StudyOptions& options, const Ana
       if (row.result.bf01 && (row.result.test == "welch_t" || row.result.test == "student_t"))
         out.bf01.push_back(*row.result.bf01);
   }
+  for (const auto& t : r.exposure)
+    for (const auto& d : t.result.differences)
+      if (d.test.computed && d.test.estimate) {
+        out.contrast_names.push_back(t.metric + " " + d.strategy);
+        out.contrast_estimates.push_back(*d.test.estimate);
+        out.contrast_se.push_back(d.std_error);
+      }
   if (r.comparison)
     for (const auto& row : r.comparison->rows)
       if (row.result.bf01 && (row.result.test == "welch_t" || row.result.test == "student_t"))

@@ -33,6 +33,11 @@ struct CalibrationOutcome {
   /// BF01 of every two-sample t test the findings rest on (per-iteration contrasts, questionnaire
   /// items between the conditions): under the null these grow with n.
   std::vector<double> bf01;
+  /// Every exposure-slope difference between the conditions (report's exposure table), named
+  /// "METRIC STRATEGY": its estimate and reported SE, to compare the SE with the spread of the
+  /// estimates over studies (under the null the mean of estimate / SE is 0 and its SD 1).
+  std::vector<std::string> contrast_names;
+  std::vector<double> contrast_estimates, contrast_se;
 };
 
 /// The settings `feint analyze` runs the demo with (data/demo/feint.toml): compare adaptive,random;
