@@ -15,35 +15,13 @@
 #include "feint/error.hpp"
 #include "feint/io/csv.hpp"
 #include "feint/io/trace.hpp"
+#include "scratch_folder.hpp"
 
 namespace feint::analysis {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-// A private folder for the scores file, removed however analyze() ends.
-class ScratchFolder {
- public:
-  ScratchFolder() {
-    std::string tmpl = (fs::temp_directory_path() / "feint-analyze-XXXXXX").string();
-    if (mkdtemp(tmpl.data()) == nullptr) {
-      throw IoError(fmt::format("cannot create a temporary folder in '{}'",
-                                fs::temp_directory_path().string()));
-    }
-    path_ = tmpl;
-  }
-  ~ScratchFolder() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  ScratchFolder(const ScratchFolder&) = delete;
-  ScratchFolder& operator=(const ScratchFolder&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 std::string read_all(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -151,7 +129,7 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
 
   // 1. Score every trial (into the scratch folder: the scores file with its sidecar is the
   // study's record of how each number was made, and Table 1 reads its provenance from there).
-  const ScratchFolder scratch;
+  const detail::ScratchFolder scratch("feint-analyze");  // the scores file, removed however this ends
   metrics::ScoreSettings s = study.scoring;
   s.tool_version = tool_version;
   s.on_warning = [&d](const std::string& w) { d.warnings.push_back(w); };

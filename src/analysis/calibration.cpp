@@ -1,11 +1,8 @@
 // The findings against a known truth: see feint/analysis/calibration.hpp.
 #include "feint/analysis/calibration.hpp"
 
-#include <stdlib.h>
-
 #include <algorithm>
 #include <atomic>
-#include <filesystem>
 #include <map>
 #include <thread>
 
@@ -16,32 +13,11 @@
 #include "feint/analysis/study.hpp"
 #include "feint/error.hpp"
 #include "feint/sim/study.hpp"
+#include "scratch_folder.hpp"
 
 namespace feint::analysis {
 
 namespace {
-
-namespace fs = std::filesystem;
-
-class TempFolder {
- public:
-  TempFolder() {
-    std::string tmpl = (fs::temp_directory_path() / "feint-calibration-XXXXXX").string();
-    if (mkdtemp(tmpl.data()) == nullptr)
-      throw IoError(fmt::format("cannot create a temporary folder in '{}'", fs::temp_directory_path().string()));
-    path_ = tmpl;
-  }
-  ~TempFolder() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  TempFolder(const TempFolder&) = delete;
-  TempFolder& operator=(const TempFolder&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 bool starts_with(const std::string& s, const std::string& prefix) { return s.rfind(prefix, 0) == 0; }
 
@@ -77,7 +53,7 @@ AnalysisSettings calibration_analysis_settings() {
 }
 
 CalibrationOutcome calibration_study(const sim::StudyOptions& options, const AnalysisSettings& settings) {
-  const TempFolder tmp;
+  const detail::ScratchFolder tmp("feint-calibration");
   const sim::StudySettings study = sim::study_settings(options);
   sim::write_study(study, tmp.path().string());
   const StudyResults r = analyze(load_study(tmp.path().string(), settings), "calibration");
