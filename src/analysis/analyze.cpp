@@ -15,35 +15,13 @@
 #include "feint/error.hpp"
 #include "feint/io/csv.hpp"
 #include "feint/io/trace.hpp"
+#include "scratch_folder.hpp"
 
 namespace feint::analysis {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-// A private folder for the scores file, removed however analyze() ends.
-class ScratchFolder {
- public:
-  ScratchFolder() {
-    std::string tmpl = (fs::temp_directory_path() / "feint-analyze-XXXXXX").string();
-    if (mkdtemp(tmpl.data()) == nullptr) {
-      throw IoError(fmt::format("cannot create a temporary folder in '{}'",
-                                fs::temp_directory_path().string()));
-    }
-    path_ = tmpl;
-  }
-  ~ScratchFolder() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  ScratchFolder(const ScratchFolder&) = delete;
-  ScratchFolder& operator=(const ScratchFolder&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 std::string read_all(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -151,7 +129,7 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
 
   // 1. Score every trial (into the scratch folder: the scores file with its sidecar is the
   // study's record of how each number was made, and Table 1 reads its provenance from there).
-  const ScratchFolder scratch;
+  const detail::ScratchFolder scratch("feint-analyze");  // the scores file, removed however this ends
   metrics::ScoreSettings s = study.scoring;
   s.tool_version = tool_version;
   s.on_warning = [&d](const std::string& w) { d.warnings.push_back(w); };
@@ -186,6 +164,7 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   t.p_adjust = study.tests.p_adjust;
   t.equivalence = study.settings.equivalence;
   t.apa = study.tests.apa;
+  t.bf_prior_r = study.tests.bf_prior_r;
   io::ScoresOptions load;
   // A study of two conditions never pools a table without its condition column (issue 18).
   load.expected_conditions = s.reading.expected_conditions;
@@ -319,6 +298,17 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
     for (const auto& m : load.metrics) {
       r.figures.exposure.push_back(
           metrics::exposure_trend(r.scores, r.figures.labels, m, t.test.conf_level));
+    }
+    // Its table (slopes per condition and their difference): two conditions, in the model's order.
+    if (r.model && !r.model->models.empty() && !r.model->models.front().group1.empty()) {
+      const std::vector<std::string> order = {r.model->models.front().group1, r.model->models.front().group2};
+      try {
+        for (const auto& m : load.metrics)
+          r.exposure.push_back(exposure_table(r.scores, r.figures.labels, m, order, t.test.conf_level));
+      } catch (const std::exception& e) {
+        r.exposure.clear();  // the findings say why, from their own fit
+        note_left_out(d, "exposure", fmt::format("no condition x exposure table: {}", e.what()));
+      }
     }
   }
   // The mixed model's fitted trend (the linear-trend model: the line the trend F-test is about).

@@ -10,6 +10,7 @@
 #include "feint/io/csv.hpp"
 #include "feint/io/number.hpp"
 #include "feint/io/questionnaire.hpp"
+#include "feint/stats/bayes_factor.hpp"
 #include "feint/stats/reliability.hpp"
 
 namespace feint::analysis {
@@ -116,7 +117,23 @@ ResolvedReportOptions resolve_report_options(const ReportOptions& o) {
   r.presentation.label = o.label;
   r.presentation.caption = o.caption;
   r.presentation.wide = o.latex_wide;
+  r.bf_prior_r = parse_bf_prior_scale(o.bf_prior_scale);
   return r;
+}
+
+double parse_bf_prior_scale(std::string_view text) {
+  const std::string s = io::to_lower(std::string(text));
+  if (s == "medium") return stats::kJzsMediumScale;
+  if (s == "wide") return 1.0;
+  if (s == "ultrawide") return std::sqrt(2.0);
+  const std::optional<double> r = io::parse_double(text);
+  if (!r || !std::isfinite(*r) || !(*r > 0)) {
+    throw UsageError(fmt::format(
+        "--bf-prior-scale '{}': expected the Cauchy prior scale r of the JZS Bayes factor, a "
+        "number > 0 (e.g. 0.5) or medium (sqrt(2)/2, the default), wide (1) or ultrawide (sqrt(2))",
+        text));
+  }
+  return *r;
 }
 
 stats::PAdjustMethod parse_p_adjust_option(std::string_view text) {
@@ -195,6 +212,7 @@ report::LikertSettings likert_settings(const LikertOptions& o, const ResolvedRep
   s.alpha = r.alpha;
   s.p_adjust = r.p_adjust;
   s.apa = r.apa;
+  s.bf_prior_r = r.bf_prior_r;
   return s;
 }
 

@@ -110,6 +110,7 @@ std::string settings_toml(const AnalysisSettings& a) {
   t.str("alternative", a.report.alternative);
   t.num("conf-level", a.report.conf_level);
   t.str("p-adjust", a.report.p_adjust);
+  t.str("bf-prior-scale", a.report.bf_prior_scale);
   return t.text;
 }
 

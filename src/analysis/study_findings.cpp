@@ -139,10 +139,16 @@ std::vector<Finding> study_findings(const StudyResults& r, const std::vector<rep
       const ExposureInput in = exposure_input(r.scores, r.figures.labels, m.column);
       std::vector<Finding> fs;
       try {
-        const auto e = models::exposure_slopes_by_condition(in.participant, in.condition, in.strategy,
-                                                            in.exposure, in.y, conditions_order,
-                                                            r.table1.options.test.conf_level);
-        fs = exposure_findings(e, rules, source, m.column);
+        // The report's exposure table when the analysis made one (the findings link to it), else
+        // fitted here from the labels.
+        const report::ExposureTable* table = nullptr;
+        for (const auto& t : r.exposure)
+          if (t.metric == m.column) table = &t;
+        const auto e = table ? table->result
+                             : models::exposure_slopes_by_condition(in.participant, in.condition, in.strategy,
+                                                                    in.exposure, in.y, conditions_order,
+                                                                    r.table1.options.test.conf_level);
+        fs = exposure_findings(e, rules, table ? "exposure" : source, m.column);
       } catch (const std::exception& e) {
         Finding f;
         f.id = "H1-exposure-" + m.column;
@@ -168,6 +174,14 @@ std::vector<Finding> study_findings(const StudyResults& r, const std::vector<rep
   likert(r.likert, false);
   likert(r.likert_compare, true);
   return out;
+}
+
+report::ExposureTable exposure_table(const io::ScoresTable& scores, const std::vector<TrialLabel>& labels,
+                                     const std::string& metric, const std::vector<std::string>& conditions,
+                                     double conf_level) {
+  const ExposureInput in = exposure_input(scores, labels, metric);
+  return {metric, models::exposure_slopes_by_condition(in.participant, in.condition, in.strategy, in.exposure,
+                                                       in.y, conditions, conf_level)};
 }
 
 std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, const report::ModelAnalysis* trend,

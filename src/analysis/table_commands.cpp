@@ -31,6 +31,7 @@ std::string table1_report(const TableCommandOptions& a, const ResolvedReportOpti
   o.test = r.test;
   o.p_adjust = r.p_adjust;
   o.apa = r.apa;
+  o.bf_prior_r = r.bf_prior_r;
 
   io::ScoresOptions so = a.columns;
   so.metrics.clear();

@@ -114,6 +114,8 @@ void add_analyze_command(CLI::App& app) {
                   "none, bonferroni, holm, hochberg, hommel, "
                   "BH or BY (family: one metric column / the items)")
       ->capture_default_str();
+  cmd->add_option("--bf-prior-scale", args->s.report.bf_prior_scale, analysis::kBfPriorScaleHelp)
+      ->capture_default_str();
   cmd->callback([cmd, args] { run(*cmd, *args); });
 }
 

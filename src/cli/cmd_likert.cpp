@@ -40,7 +40,7 @@ void add_likert_command(CLI::App& app) {
   cmd->add_option(
       "--summary", args->o.summary,
       "Also write per-item descriptives and counts per scale point as CSV to this file");
-  add_report_options(*cmd, args->report, {.tests = true, .presentation = true});
+  add_report_options(*cmd, args->report, {.tests = true, .presentation = true, .bayes = true});
   cmd->callback([args] { run(*args); });
 }
 

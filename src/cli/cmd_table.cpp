@@ -34,7 +34,7 @@ void add_table_command(CLI::App& app) {
       "--equivalence", args->o.equivalence,
       "Equivalence margin delta (> 0, metric units): '≈' is earned by TOST within +-delta");
   add_scores_column_options(*cmd, args->o.columns);
-  add_report_options(*cmd, args->report, {.tests = true, .presentation = true});
+  add_report_options(*cmd, args->report, {.tests = true, .presentation = true, .bayes = true});
   cmd->callback([args, equivalence] {
     args->o.equivalence_given = equivalence->count() > 0;  // TOST only when asked for
     run_report(*args, analysis::table1_report);

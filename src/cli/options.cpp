@@ -42,8 +42,8 @@ void add_report_options(CLI::App& cmd, ReportOptions& options, ReportOptionSet s
   if (set.presentation) add_presentation_options(cmd, options);
   if (!set.tests) return;
   cmd.add_flag("--apa", options.apa,
-               "Add an APA-style string per test, e.g. 't(29) = 2.93, p = .007, d = 0.53' "
-               "(column 'apa' in csv/json)");
+               "Add an APA-style string per test, e.g. 't(29) = 2.93, p = .007, d = 0.53' (column "
+               "'apa' in csv/json)");
   cmd.add_option("--alpha", options.alpha, "Significance level for the labels, in (0, 1)")
       ->capture_default_str();
   cmd.add_option("--alternative", options.alternative,
@@ -56,6 +56,9 @@ void add_report_options(CLI::App& cmd, ReportOptions& options, ReportOptionSet s
                  "Multiple-comparison adjustment within a family (R's p.adjust): none, bonferroni, "
                  "holm, hochberg, hommel, BH (alias fdr), BY; any case")
       ->capture_default_str();
+  if (set.bayes)
+    cmd.add_option("--bf-prior-scale", options.bf_prior_scale, analysis::kBfPriorScaleHelp)
+        ->capture_default_str();
 }
 
 void add_questionnaire_options(CLI::App& cmd, analysis::LikertOptions& o, bool in_analyze,
@@ -90,21 +93,21 @@ void add_questionnaire_options(CLI::App& cmd, analysis::LikertOptions& o, bool i
                  fmt::format("{}Long layout: response column", q))
       ->capture_default_str();
   one_per_use(cmd.add_option("--reverse", o.reverse,
-                             "Reverse-coded items (comma-separated, repeatable), recoded x -> "
-                             "min + max - x before anything else"));
+                             "Reverse-coded items (comma-separated, repeatable), recoded x -> min "
+                             "+ max - x before anything else"));
   one_per_use(cmd.add_option("--composite", o.composites,
-                             "Multi-item scale NAME=ITEM,ITEM,... (repeatable): mean of its "
-                             "items, Cronbach's alpha"));
+                             "Multi-item scale NAME=ITEM,ITEM,... (repeatable): mean of its items, "
+                             "Cronbach's alpha"));
   cmd.add_option(p + "reference", o.reference,
-                 "Reference value of the one-sample tests (default: the scale midpoint; "
-                 "the paper used 3.5)");
+                 "Reference value of the one-sample tests (default: the scale midpoint; the paper "
+                 "used 3.5)");
   cmd.add_option("--alpha-missing", o.alpha_missing,
-                 "Cronbach's alpha with missing answers: pairwise (psych::alpha's default) "
-                 "or complete (complete cases)")
+                 "Cronbach's alpha with missing answers: pairwise (psych::alpha's default) or "
+                 "complete (complete cases)")
       ->capture_default_str();
   cmd.add_flag("--keep-unfinished", o.keep_unfinished,
-               "Survey exports: keep responses with Finished = False or Progress < 100 "
-               "(excluded by default, and named in the note)");
+               "Survey exports: keep responses with Finished = False or Progress < 100 (excluded "
+               "by default, and named in the note)");
   cmd.add_flag("--keep-previews", o.keep_previews,
                "Survey exports: keep Status = Survey Preview, Survey Test, Spam (excluded by "
                "default, and named in the note)");
@@ -137,67 +140,60 @@ void add_score_options(CLI::App& cmd, ScoreOptions& o, const std::string& group)
                  "Fraction of the duration excluded at the end, in [0, 1) (default 0.05)")
       ->excludes(trim);
   cmd.add_option("--deadband", o.deadband,
-                 "Dead band eps in pad units: a segment moving <= eps has no "
-                 "direction for the reversal rule (default 1e-9)");
+                 "Dead band eps in pad units: a segment moving <= eps has no direction for the "
+                 "reversal rule (default 1e-9)");
   cmd.add_option("--belief-deadband", o.belief_deadband,
-                 "Dead band delta in pad units of the belief-trace measures: flips "
-                 "smaller than delta are ignored, and the pad is on a side of 0.5 "
-                 "only beyond delta (default 0.05)");
+                 "Dead band delta in pad units of the belief-trace measures: flips smaller than "
+                 "delta are ignored, and the pad is on a side of 0.5 only beyond delta (default "
+                 "0.05)");
   cmd.add_option("--confusion-norm", o.norm,
-                 "Confusion normalisation: 'speed' = moving fraction at the pad "
-                 "speed, in [0, 1] (default); 'raw' = the paper's eq. 4 as printed "
-                 "(unbounded)")
+                 "Confusion normalisation: 'speed' = moving fraction at the pad speed, in [0, 1] "
+                 "(default); 'raw' = the paper's eq. 4 as printed (unbounded)")
       ->check(CLI::IsMember({"speed", "raw"}, CLI::ignore_case));
   cmd.add_option("--pad-speed", o.pad_speed,
-                 "Pad speed v in pad units per second for every trial; replaces a "
-                 "pad_speed column (needed by --confusion-norm speed when the logs "
-                 "have none)");
+                 "Pad speed v in pad units per second for every trial; replaces a pad_speed column "
+                 "(needed by --confusion-norm speed when the logs have none)");
   // One value per use: CLI11 2.1 would otherwise let a list option swallow a positional argument.
   cmd.add_option("--map", o.maps,
-                 "NAME=COLUMN: read field NAME (participant, condition, iteration, "
-                 "strategy, variant, target, t, pad, pad_speed) from the study's "
-                 "column COLUMN; repeatable")
+                 "NAME=COLUMN: read field NAME (participant, condition, iteration, strategy, "
+                 "variant, target, t, pad, pad_speed) from the study's column COLUMN; repeatable")
       ->allow_extra_args(false)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd.add_option("--delimiter", o.delimiter,
-                 "Field separator: , ; tab | (default: detected per file from its "
-                 "header)");
+                 "Field separator: , ; tab | (default: detected per file from its header)");
   cmd.add_option("--on-error", o.on_error,
-                 "strict = stop at the first invalid trial (default); skip = leave "
-                 "invalid trials out and list them in the rejects file")
+                 "strict = stop at the first invalid trial (default); skip = leave invalid trials "
+                 "out and list them in the rejects file")
       ->check(CLI::IsMember({"strict", "skip"}));
   cmd.add_option("--time-unit", o.time_unit,
-                 "Unit of the logs' t column: s (default) or ms (converted to "
-                 "seconds; jsPsych and many loggers write ms)")
+                 "Unit of the logs' t column: s (default) or ms (converted to seconds; jsPsych and "
+                 "many loggers write ms)")
       ->check(CLI::IsMember({"s", "ms"}, CLI::ignore_case));
   cmd.add_option("--decimal", o.decimal,
-                 "Decimal mark of the logs' numbers: . or , (default: '.' in a "
-                 "comma-separated file; otherwise detected from the first number "
-                 "holding one)");
+                 "Decimal mark of the logs' numbers: . or , (default: '.' in a comma-separated "
+                 "file; otherwise detected from the first number holding one)");
   cmd.add_flag("--no-header", o.no_header,
-               "The logs have no header row (MATLAB): name the columns with "
-               "--columns, or by number with --map FIELD=N (N from 1)");
+               "The logs have no header row (MATLAB): name the columns with --columns, or by "
+               "number with --map FIELD=N (N from 1)");
   cmd.add_option("--columns", o.columns,
-                 "With --no-header: the columns' names in order, comma-separated, "
-                 "e.g. participant,iteration,target,t,pad (a column not named is "
-                 "called by its number)");
+                 "With --no-header: the columns' names in order, comma-separated, e.g. "
+                 "participant,iteration,target,t,pad (a column not named is called by its number)");
   cmd.add_option("--iteration-base", o.iteration_base,
-                 "0 = the logs number iterations from 0 (PsychoPy; 1 is added, so "
-                 "0..19 become 1..20); 1 = from 1 (an iteration 0 is invalid). "
-                 "Default: as written, with a warning when they start at 0")
+                 "0 = the logs number iterations from 0 (PsychoPy; 1 is added, so 0..19 become "
+                 "1..20); 1 = from 1 (an iteration 0 is invalid). Default: as written, with a "
+                 "warning when they start at 0")
       ->check(CLI::IsMember({"0", "1"}));
   cmd.add_option("--participant-from-path", o.participant_from_path,
-                 "Take the participant id from each log's path instead of a "
-                 "column: filename (name without extensions), dirname (folder "
-                 "name), or a regular expression whose first group is the id, "
-                 "e.g. 'sub-([0-9]+)'");
+                 "Take the participant id from each log's path instead of a column: filename (name "
+                 "without extensions), dirname (folder name), or a regular expression whose first "
+                 "group is the id, e.g. 'sub-([0-9]+)'");
   cmd.add_option("--samples-column", o.samples_column,
                  "A column holding each trial's samples as JSON (jsPsych): "
-                 "[{\"t\":0,\"pad\":0.5},...] or {\"t\":[...],\"pad\":[...]}; "
-                 "keys follow --map t=KEY / pad=KEY");
+                 "[{\"t\":0,\"pad\":0.5},...] or {\"t\":[...],\"pad\":[...]}; keys follow --map "
+                 "t=KEY / pad=KEY");
   cmd.add_flag("--single-condition", o.single_condition,
-               "Read every trial as one condition although a column looks like "
-               "a condition (group, cond..., arm, treatment)");
+               "Read every trial as one condition although a column looks like a condition (group, "
+               "cond..., arm, treatment)");
   cmd.option_defaults()->group(previous);
 }
 

@@ -34,6 +34,7 @@ using analysis::ResolvedReportOptions;
 struct ReportOptionSet {
   bool tests = true;          ///< --apa --alpha --alternative --conf-level --p-adjust
   bool presentation = false;  ///< --label --caption --latex-wide
+  bool bayes = false;         ///< --bf-prior-scale (the commands that compute Bayes factors)
 };
 
 /// Registers `--format`, `-o/--output` and (unless `set.tests` is false) `--apa`, `--alpha`,

@@ -49,6 +49,10 @@ std::vector<ReportTable> tables(const analysis::StudyResults& r) {
     add("model-trend", "Mixed model (linear trend over the iterations)", "model_trend",
         [&](OutputFormat f) { return report::render_model(*r.trend_model, f); });
   }
+  if (!r.exposure.empty()) {
+    add("exposure", "Condition \u00d7 exposure per strategy", "exposure_by_condition",
+        [&](OutputFormat f) { return report::render_exposure(r.exposure, f); });
+  }
   if (r.likert) {
     add("questionnaire", "Questionnaire", "likert",
         [&](OutputFormat f) { return report::render_likert(*r.likert, f); });
@@ -356,6 +360,7 @@ std::string study_results_json(const analysis::StudyResults& r) {
     else if (t.stem == "anova") json = report::render_anova(*r.anova, OutputFormat::json, r.table1.options.apa);
     else if (t.stem == "model") json = report::render_model(*r.model, OutputFormat::json);
     else if (t.stem == "model_trend") json = report::render_model(*r.trend_model, OutputFormat::json);
+    else if (t.stem == "exposure_by_condition") json = report::render_exposure(r.exposure, OutputFormat::json);
     else if (t.stem == "likert") json = report::render_likert(*r.likert, OutputFormat::json);
     else if (t.stem == "likert_compare") json = report::render_likert(*r.likert_compare, OutputFormat::json);
     o += fmt::format(",\n  {}: {}", q(t.stem), trimmed(json));

@@ -70,6 +70,10 @@ WrittenStudy write_study(const analysis::Study& study, const analysis::StudyResu
     write_all("model_trend",
               [&](report::OutputFormat f) { return report::render_model(*r.trend_model, f); });
   }
+  if (!r.exposure.empty()) {
+    write_all("exposure_by_condition",
+              [&](report::OutputFormat f) { return report::render_exposure(r.exposure, f); });
+  }
   if (r.likert) {
     write_all("likert", [&](report::OutputFormat f) {
       return report::render_likert(*r.likert, f, presentation);

@@ -32,6 +32,14 @@ std::string no_leading_zero(double x) {
   return s;
 }
 
+/// The 95 % interval of generalized eta squared as effectsize's eta_squared(model, generalized =
+/// TRUE) gives it on an afex model: the pseudo-F of ges with the uncorrected df (stats::
+/// generalized_eta2), one-sided "greater" (upper bound 1).
+std::optional<stats::EtaSquared> ges_interval(const models::AnovaEffect& e) {
+  if (!(e.ges >= 0 && e.ges < 1 && e.num_df > 0 && e.den_df > 0)) return std::nullopt;
+  return stats::generalized_eta2(e.ges, e.num_df, e.den_df, 0.95);
+}
+
 std::string design_text(const models::MixedAnova& a) {
   if (a.one_way()) {
     return fmt::format("one-way repeated measures: iteration ({} levels) within participants",
@@ -133,9 +141,12 @@ AnovaReport build_anova_report(const io::ScoresTable& scores,
 }
 
 std::string anova_apa(const models::AnovaEffect& e) {
-  return fmt::format("F({}, {}) = {}, {}, \u03b7G\u00b2 = {}", df_text(e.report_num_df),
+  const auto ci = ges_interval(e);
+  return fmt::format("F({}, {}) = {}, {}, \u03b7G\u00b2 = {}{}", df_text(e.report_num_df),
                      df_text(e.report_den_df), format_mean(e.f, 2), apa_p(e.report_p),
-                     no_leading_zero(e.ges));
+                     no_leading_zero(e.ges),
+                     ci ? fmt::format(" [{}, {}]", no_leading_zero(ci->low), no_leading_zero(ci->high))
+                        : std::string());
 }
 
 std::vector<std::string_view> anova_columns(bool apa) {
@@ -146,6 +157,8 @@ std::vector<std::string_view> anova_columns(bool apa) {
                                      "MSE",
                                      "F",
                                      "ges",
+                                     "ges_low",
+                                     "ges_high",
                                      "pes",
                                      "pes_low",
                                      "pes_high",
@@ -193,6 +206,11 @@ Cell pes_bound(const models::AnovaEffect& e, bool low) {
   return Cell::num(low ? ci.low : ci.high);
 }
 
+Cell ges_bound(const models::AnovaEffect& e, bool low) {
+  const auto ci = ges_interval(e);
+  return ci ? Cell::num(low ? ci->low : ci->high) : Cell::none();
+}
+
 std::vector<Record> tidy(const AnovaReport& r, bool apa) {
   std::vector<Record> out;
   for (const auto& a : r.analyses) {
@@ -205,6 +223,8 @@ std::vector<Record> tidy(const AnovaReport& r, bool apa) {
                     Cell::num(e.mse),
                     Cell::num(e.f),
                     Cell::num(e.ges),
+                    ges_bound(e, true),
+                    ges_bound(e, false),
                     Cell::num(e.pes),
                     pes_bound(e, true),
                     pes_bound(e, false),
@@ -309,7 +329,10 @@ TextTable people_table(const AnovaReport& r, bool apa) {
   t.notes.push_back(fmt::format(
       "Type-III sums of squares with sum-to-zero contrasts (afex::aov_ez). Within-participant "
       "effects: {}; MSE = error SS / reported df2. ges = generalized eta squared (all factors "
-      "manipulated), pes = partial eta squared. GG eps = Greenhouse-Geisser, HF eps = Huynh-Feldt "
+      "manipulated), with its one-sided 95 % interval [ges_low, 1] as effectsize's eta_squared(generalized "
+      "= TRUE) (the noncentral-F interval of the pseudo-F of ges on the uncorrected df; CSV/JSON "
+      "ges_low, ges_high; APA strings), pes = partial eta squared (pes_low, pes_high: F_to_eta2 on "
+      "the reported df). GG eps = Greenhouse-Geisser, HF eps = Huynh-Feldt "
       "(Lecoutre's correction, capped at 1 when applied); Mauchly's W tests sphericity (p < .05: "
       "violated). '1 df' = two iterations, sphericity holds trivially; 'singular' = fewer error df "
       "than iteration contrasts, not computable.",

@@ -297,7 +297,7 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
       for (double v : x) nonzero += !std::isnan(v) && v != a.reference;
       stats::add_effect_size_intervals(primary.result, a.two_sample ? 0 : nonzero);
       stats::add_effect_size_intervals(paper.result);
-      stats::add_bayes_factor(paper.result);
+      stats::add_bayes_factor(paper.result, settings.bf_prior_r);
       if (comp) primary.cronbach_alpha = paper.cronbach_alpha = alpha_of[k];
       a.rows.push_back(std::move(primary));
       a.rows.push_back(std::move(paper));
@@ -378,6 +378,10 @@ LikertAnalysis analyze_likert(const io::Questionnaire& q, const LikertSettings& 
       "{2} = not significantly different at alpha = {1}, which is not evidence of equality.",
       a.two_sample ? "A>B / A<B" : "M>R / M<R", detail::fmt_number(settings.alpha),
       a.two_sample ? fmt::format("A{}B", kApprox) : fmt::format("M{}R", kApprox)));
+  notes.push_back(fmt::format(
+      "BF10 / BF01 of the t-tests: JZS Bayes factor (Rouder et al. 2009), Cauchy prior on the "
+      "standardised effect, scale {}; docs/bayes-factors.md.",
+      stats::jzs_prior_text(settings.bf_prior_r)));
   if (settings.test.alternative != stats::Alternative::two_sided) {
     notes.push_back(
         fmt::format("Alternative hypothesis: {}.", to_string(settings.test.alternative)));

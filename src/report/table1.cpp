@@ -292,7 +292,7 @@ Table1 build_table1(const io::ScoresTable& scores, const Table1Options& options)
           return t.rows.size() - 1;
         };
         stats::add_effect_size_intervals(diff);
-        stats::add_bayes_factor(diff);
+        stats::add_bayes_factor(diff, o.bf_prior_r);
         blk.cells[ii][m].difference_row = add_row(std::move(diff));
         family.push_back(blk.cells[ii][m].difference_row);
         if (o.equivalence) {
@@ -414,6 +414,12 @@ std::vector<std::string> table1_note(const Table1& t) {
   notes.push_back(
       "Means to 4 decimals; p-values to 4 decimals, in scientific notation below 0.001 "
       "(1.5e-04 = 1.5 \u00d7 10^-4).");
+  if (std::any_of(t.rows.begin(), t.rows.end(), [](const TidyRow& r) { return r.result.bf10.has_value(); })) {
+    notes.push_back(fmt::format(
+        "BF10 / BF01 (bf10, bf01 in the CSV and JSON tables; in the APA strings): JZS Bayes factor of each t-test (Rouder et al. 2009), "
+        "Cauchy prior on the standardised effect, scale {}; docs/bayes-factors.md.",
+        stats::jzs_prior_text(o.bf_prior_r)));
+  }
   const bool has_confusion = std::any_of(o.metrics.begin(), o.metrics.end(), [](const MetricSpec& m) {
     return io::to_lower(m.column) == "confusion";
   });

@@ -209,6 +209,14 @@ BayesFactor jzs_bf_interval_null(double t, double n_eff, double df, double margi
   return bf;
 }
 
+std::string jzs_prior_text(double r) {
+  const std::string name = std::abs(r - kJzsMediumScale) < 1e-12  ? " (medium)"
+                           : std::abs(r - 1) < 1e-12              ? " (wide)"
+                           : std::abs(r - std::sqrt(2.0)) < 1e-12 ? " (ultrawide)"
+                                                                  : "";
+  return fmt::format("r = {:.4g}{}", r, name);
+}
+
 void add_bayes_factor(TestResult& test, double r) {
   if (!test.computed || !test.statistic || !std::isfinite(*test.statistic)) return;
   BayesFactor bf;

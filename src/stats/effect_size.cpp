@@ -75,6 +75,14 @@ EffectInterval cohen_d_interval_two_sample(double t, std::size_t n1, std::size_t
   return {i.low * s, i.high * s};
 }
 
+EtaSquared generalized_eta2(double ges, double df1, double df2, double conf_level, Alternative alternative) {
+  if (!(ges >= 0 && ges < 1) || !(df1 > 0) || !(df2 > 0))
+    throw InvalidData(fmt::format("generalized eta squared: ges = {}, df = {}, {}", ges, df1, df2));
+  EtaSquared out = f_to_eta2((ges / df1) / ((1 - ges) / df2), df1, df2, conf_level, alternative);
+  out.estimate = ges;  // F* maps back to ges; keep it exact
+  return out;
+}
+
 EtaSquared f_to_eta2(double f, double df1, double df2, double conf_level, Alternative alternative) {
   if (!std::isfinite(f) || f < 0 || !(df1 > 0) || !(df2 > 0))
     throw InvalidData(fmt::format("eta squared: F = {}, df = {}, {}", f, df1, df2));

@@ -175,8 +175,24 @@ TEST(StudyFindings, DemoExposureFindingsPerStrategyEqualTheModel) {
     EXPECT_TRUE(contains(f->sentence, fmt::format("adaptive: {:.3f} per exposure", *e.slopes[i].test.estimate)));
     EXPECT_TRUE(contains(f->statistics, "Holm-adjusted " + report::apa_p(*adj[i]))) << f->statistics;
     EXPECT_EQ(f->strength, *adj[i] < 0.05 ? Strength::evidence_for_difference : Strength::no_evidence_either_way);
-    EXPECT_EQ(f->source, "fig-exposure-error");  // the condition x exposure figure
+    EXPECT_EQ(f->source, "exposure");  // the report's condition x exposure table
   }
+  // That table holds the same slopes and differences, and renders the Holm-adjusted p.
+  const report::ExposureTable* table = nullptr;
+  for (const auto& t : r.exposure)
+    if (t.metric == "error") table = &t;
+  ASSERT_TRUE(table);
+  ASSERT_EQ(table->result.differences.size(), e.differences.size());
+  for (std::size_t i = 0; i < e.differences.size(); ++i) {
+    EXPECT_NEAR(*table->result.differences[i].test.estimate, *e.differences[i].test.estimate, 1e-12);
+    EXPECT_NEAR(*table->result.slopes[i].test.estimate, *e.slopes[i].test.estimate, 1e-12);
+  }
+  const std::string csv = report::render_exposure(r.exposure, report::OutputFormat::csv);
+  EXPECT_TRUE(contains(csv, "metric,strategy,condition,estimate,std_error,df,statistic,p_value,p_adjusted"));
+  EXPECT_TRUE(contains(csv, "error,exaggerating,adaptive-random,")) << csv;
+  const std::string text = report::render_exposure(r.exposure, report::OutputFormat::markdown);
+  EXPECT_TRUE(contains(text, "Metric: error")) << text;
+  EXPECT_TRUE(contains(text, "p Holm")) << text;
 }
 
 namespace {
@@ -285,8 +301,10 @@ TEST(StudyFindings, SimulatedExposureEffectInOneConditionIsFound) {
   const auto fs_partial = analysis::study_findings(partial, metrics);
   const Finding* fp = by_id(fs_partial, "H1-exposure-error-A");
   ASSERT_TRUE(fp);
-  ASSERT_EQ(fp->warnings.size(), 1u);
-  EXPECT_TRUE(contains(fp->warnings[0], "1 scored trial of error without a strategy")) << fp->warnings[0];
+  ASSERT_EQ(fp->warnings.size(), 2u);
+  // The calibration's warning (docs/findings.md), then the unlabelled trial.
+  EXPECT_TRUE(contains(fp->warnings[0], "claimed a difference in 25.5 % of studies")) << fp->warnings[0];
+  EXPECT_TRUE(contains(fp->warnings[1], "1 scored trial of error without a strategy")) << fp->warnings[1];
 }
 
 TEST(StudyFindings, OneConditionOnlyGivesNoModelFindingButSaysSo) {

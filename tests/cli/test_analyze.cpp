@@ -199,3 +199,36 @@ TEST(Analyze, RejectsBadStudiesAndSettingsWithDistinctExitCodes) {
   EXPECT_EQ(r.exit_code, 64);
   EXPECT_NE(r.err.find("expected two conditions A,B"), std::string::npos) << r.err;
 }
+
+// The JZS prior scale from feint.toml and the command line (issue 15): recorded in settings.toml,
+// applied to the tables' Bayes factors, and refused when it is not a positive number or a name.
+TEST(Analyze, BayesFactorPriorScaleFromTheSettingsFileAndTheCommandLine) {
+  TempDir dir;
+  make_study(dir.path());
+  write_text(dir / "feint.toml", "formats = [\"csv\"]\nbf-prior-scale = \"wide\"\n");
+  const auto wide = dir / "wide";
+  auto r = run_feint("analyze " + shell_quote(dir.path().string()) + " --no-figures -o " +
+                     shell_quote(wide.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(read_text(wide / "settings.toml").find("bf-prior-scale = \"wide\""), std::string::npos);
+  const auto medium = dir / "medium";
+  r = run_feint("analyze " + shell_quote(dir.path().string()) + " --no-figures --bf-prior-scale medium -o " +
+                shell_quote(medium.string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(read_text(medium / "settings.toml").find("bf-prior-scale = \"medium\""), std::string::npos);
+  // Same t, other prior: every Bayes factor changes, none of the t statistics.
+  const auto a = read_rows(wide / "table1.csv"), b = read_rows(medium / "table1.csv");
+  ASSERT_EQ(a.size(), b.size());
+  int changed = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].at("statistic"), b[i].at("statistic"));
+    if (!a[i].at("bf10").empty()) changed += a[i].at("bf10") != b[i].at("bf10");
+  }
+  EXPECT_GT(changed, 0);
+  for (const std::string bad : {"0", "-2", "huge"}) {
+    r = run_feint("analyze " + shell_quote(dir.path().string()) + " --bf-prior-scale " + bad + " -o " +
+                  shell_quote((dir / ("bad" + bad)).string()));
+    EXPECT_EQ(r.exit_code, 64) << bad;
+    EXPECT_NE(r.err.find("--bf-prior-scale"), std::string::npos) << r.err;
+  }
+}

@@ -251,3 +251,23 @@ TEST(LikertCli, ListOptionsAreRepeatableAndDoNotSwallowTheFile) {
             std::string::npos)
       << r.out;
 }
+
+// --bf-prior-scale (issue 15): accepted by name or number, stated in the note, and changes the
+// t-tests' Bayes factors (the values themselves: tests/report/test_likert.cpp, against the exact
+// JZS integral); bad scales are usage errors that name the option.
+TEST(LikertCli, BayesFactorPriorScaleIsSettable) {
+  const auto medium = run_feint("likert " + data("wide.csv") + " --format csv");
+  const auto wide = run_feint("likert " + data("wide.csv") + " --format csv --bf-prior-scale wide");
+  const auto one = run_feint("likert " + data("wide.csv") + " --format csv --bf-prior-scale 1");
+  ASSERT_EQ(medium.exit_code, 0) << medium.err;
+  ASSERT_EQ(wide.exit_code, 0) << wide.err;
+  EXPECT_EQ(wide.out, one.out);
+  EXPECT_NE(wide.out, medium.out);
+  const auto text = run_feint("likert " + data("wide.csv") + " --bf-prior-scale ultrawide");
+  EXPECT_NE(text.out.find("scale r = 1.414 (ultrawide)"), std::string::npos) << text.out;
+  for (const std::string bad : {"0", "-0.5", "broad", "inf"}) {
+    const auto r = run_feint("likert " + data("wide.csv") + " --bf-prior-scale " + bad);
+    EXPECT_EQ(r.exit_code, 64) << bad;
+    EXPECT_NE(r.err.find("--bf-prior-scale '" + bad + "'"), std::string::npos) << r.err;
+  }
+}

@@ -240,3 +240,54 @@ TEST(TableCli, UnreadableInputExits74) {
   const auto r = run_feint("table /nonexistent/scores.csv");
   EXPECT_EQ(r.exit_code, 74) << r.err;
 }
+
+// --bf-prior-scale (issue 15): the JZS Bayes factors at another Cauchy scale r, against the exact
+// integral of the definition (tests/golden/bayes/make_bf_prior_golden.R, rel.tol 1e-12) at r =
+// sqrt(2)/2, 1, sqrt(2) and 0.5, for every test of the table; the note names the scale.
+TEST(TableCli, BayesFactorPriorScaleIsSettableAndMatchesTheExactIntegral) {
+  const std::string dir = std::string(FEINT_SOURCE_DIR) + "/tests/golden/bayes/";
+  const Csv golden = read_csv(dir + "bf_prior_golden.csv");
+  ASSERT_EQ(golden.rows.size(), 9u);
+  TempDir tmp;
+  const std::map<std::string, std::string> scales = {
+      {"medium", "log_bf_medium"}, {"WIDE", "log_bf_wide"}, {"1", "log_bf_wide"},
+      {"ultrawide", "log_bf_ultrawide"}, {"0.5", "log_bf_half"}, {"", "log_bf_medium"}};
+  for (const auto& [scale, column] : scales) {
+    SCOPED_TRACE(scale);
+    for (const std::string mode : {"--compare adaptive,random", ""}) {
+      const std::string out = (tmp.path() / "t.csv").string();
+      const auto r = run_feint("table " + shell_quote(dir + "prior_scale_scores.csv") + " --metric error=0.5 " +
+                               mode + (scale.empty() ? "" : " --bf-prior-scale " + scale) +
+                               " --format csv -o " + shell_quote(out));
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      const Csv c = read_csv(out);
+      int matched = 0;
+      for (const auto& g : golden.rows) {
+        const bool two = g.at("test") == "two_sample";
+        if (two != !mode.empty()) continue;
+        for (const auto& row : c.rows) {
+          if (row.at("iteration") != g.at("iteration") || row.at("group1") != g.at("group1")) continue;
+          if (row.at("test") != (two ? "welch_t" : "one_sample_t")) continue;
+          const double exact = std::stod(g.at(column));
+          EXPECT_NEAR(std::log(std::stod(row.at("bf10"))), exact, 1e-6 * std::max(1.0, std::abs(exact)))
+              << g.at("test") << " " << g.at("group1") << " " << g.at("iteration");
+          ++matched;
+        }
+      }
+      EXPECT_EQ(matched, mode.empty() ? 6 : 3);
+    }
+  }
+  // The note says which prior was used.
+  const auto wide = run_feint("table " + shell_quote(dir + "prior_scale_scores.csv") +
+                              " --metric error=0.5 --compare adaptive,random --bf-prior-scale wide");
+  EXPECT_NE(wide.out.find("scale r = 1 (wide)"), std::string::npos) << wide.out;
+  const auto medium = run_feint("table " + shell_quote(dir + "prior_scale_scores.csv") + " --metric error=0.5");
+  EXPECT_NE(medium.out.find("scale r = 0.7071 (medium)"), std::string::npos) << medium.out;
+  // Rejected: zero, negative, text, infinite, NaN; each named.
+  for (const std::string bad : {"0", "-1", "abc", "inf", "nan", "1e400", "''"}) {
+    const auto r = run_feint("table " + shell_quote(kSmall) + " --bf-prior-scale " + bad);
+    EXPECT_EQ(r.exit_code, 64) << bad << ": " << r.err;
+    EXPECT_NE(r.err.find("--bf-prior-scale"), std::string::npos) << bad << ": " << r.err;
+    EXPECT_NE(r.err.find("medium"), std::string::npos) << r.err;
+  }
+}

@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -249,4 +250,30 @@ TEST(LikertRender, LongScalesShowOnlyBelowAtAbove) {
   EXPECT_EQ(text.find(" 99 "), std::string::npos);
   EXPECT_NE(text.find("vas    25%   25%   50%"), std::string::npos) << text;
   std::remove(path.c_str());
+}
+
+// The JZS prior scale (issue 15: settable): every t-test row carries the Bayes factor at the
+// settings' r. Against the exact integral of the definition: entertainment in adaptive, t(4) =
+// 5.8797 against 4 (7 6 6 5 7), log BF10 by integrate(rel.tol = 1e-12) in R with
+// tests/golden/bayes/make_bf_golden.R's log_bf_point(t, 5, 4, r).
+constexpr double kLogBfMedium = 2.5846784571506802;  // r = sqrt(2)/2
+constexpr double kLogBfWide = 2.7753595797574162;    // r = 1
+
+TEST(LikertAnalysis, BayesFactorPriorScaleIsTheSettingsAndMatchesTheExactIntegral) {
+  LikertSettings s;
+  const auto medium = analyze_likert_file(data("wide.csv"), s);
+  s.bf_prior_r = 1.0;
+  const auto wide = analyze_likert_file(data("wide.csv"), s);
+  ASSERT_EQ(medium.rows.size(), wide.rows.size());
+  const auto& m = medium.rows[1].result;
+  const auto& w = wide.rows[1].result;
+  ASSERT_EQ(m.test, "one_sample_t");
+  ASSERT_TRUE(m.log_bf10 && w.log_bf10);
+  EXPECT_EQ(*m.bf_prior_r, 0.70710678118654752440);
+  EXPECT_EQ(*w.bf_prior_r, 1.0);
+  EXPECT_NEAR(*m.log_bf10, kLogBfMedium, 1e-6 * std::abs(kLogBfMedium));
+  EXPECT_NEAR(*w.log_bf10, kLogBfWide, 1e-6 * std::abs(kLogBfWide));
+  // The note states the scale.
+  const std::string text = render_likert(wide, OutputFormat::text);
+  EXPECT_EQ(count(text, "scale r = 1 (wide)"), 1u) << text;
 }

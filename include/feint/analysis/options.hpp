@@ -55,6 +55,9 @@ struct ReportOptions {
   std::string label;
   std::string caption;
   bool latex_wide = false;
+  /// Scale r of the JZS Bayes factors' Cauchy prior (docs/bayes-factors.md): a number > 0 or
+  /// BayesFactor's names medium (sqrt(2)/2), wide (1), ultrawide (sqrt(2)).
+  std::string bf_prior_scale = "medium";
 };
 
 struct ResolvedReportOptions {
@@ -65,10 +68,18 @@ struct ResolvedReportOptions {
   stats::TestOptions test;
   stats::PAdjustMethod p_adjust = stats::PAdjustMethod::none;
   report::TablePresentation presentation;
+  double bf_prior_r = 0.7071067811865476;  ///< sqrt(2)/2, BayesFactor's "medium"
 };
 
 /// Checks and converts; UsageError names the option (--alpha, --conf-level, ...).
 ResolvedReportOptions resolve_report_options(const ReportOptions& options);
+
+inline constexpr const char* kBfPriorScaleHelp =
+    "Scale r of the JZS Bayes factors' Cauchy prior: a number > 0, or medium (sqrt(2)/2, the "
+    "default), wide (1), ultrawide (sqrt(2))";
+/// --bf-prior-scale: a finite number > 0, or medium (sqrt(2)/2), wide (1), ultrawide (sqrt(2)), any
+/// case. Throws UsageError naming the option.
+double parse_bf_prior_scale(std::string_view text);
 
 /// none, bonferroni, holm, hochberg, hommel, BH (alias fdr), BY; any case. Throws UsageError.
 stats::PAdjustMethod parse_p_adjust_option(std::string_view text);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "feint/analysis/figure_data.hpp"
+#include "feint/report/exposure_render.hpp"
 #include "feint/analysis/findings.hpp"
 #include "feint/io/diagnostic.hpp"
 #include "feint/io/participants.hpp"
@@ -84,6 +85,9 @@ struct StudyResults {
   std::optional<report::ModelAnalysis> trend_model;  ///< metric ~ condition * iteration as a trend
   std::optional<report::LikertAnalysis> likert;          ///< against the reference
   std::optional<report::LikertAnalysis> likert_compare;  ///< A against B
+  /// Condition x exposure per strategy, one per metric (two conditions and the trials' strategies
+  /// needed; analysis::exposure_table); the findings' source "exposure".
+  std::vector<report::ExposureTable> exposure;
   FigureData figures;
   Diagnostics diagnostics;
   std::vector<Finding> findings;  ///< filled by the findings engine (empty until then)

@@ -44,4 +44,10 @@ struct ExposureInput {
 ExposureInput exposure_input(const io::ScoresTable& scores, const std::vector<TrialLabel>& labels,
                              const std::string& metric);
 
+/// The report's condition x exposure table of `metric` (models::exposure_slopes_by_condition on
+/// exposure_input, the conditions in `conditions` order); throws what the fit throws.
+report::ExposureTable exposure_table(const io::ScoresTable& scores, const std::vector<TrialLabel>& labels,
+                                     const std::string& metric, const std::vector<std::string>& conditions,
+                                     double conf_level);
+
 }  // namespace feint::analysis

@@ -54,6 +54,8 @@ struct LikertSettings {
   stats::AlphaMissing alpha_missing = stats::AlphaMissing::pairwise;
   bool apa = false;    ///< fill TidyRow::apa (CSV/JSON column "apa", APA lines under the table)
   bool paper = false;  ///< the paper's analysis: its four items, reference 3.5 (see docs/likert.md)
+  /// Scale r of the JZS Bayes factor's Cauchy prior (sqrt(2)/2 = BayesFactor's "medium").
+  double bf_prior_r = 0.7071067811865476;
 };
 
 /// Descriptive summary of one item or composite in one group.

@@ -50,6 +50,8 @@ struct Table1Options {
   /// margin; a non-significant test without either is "inconclusive". False (`feint table`, the
   /// paper's Table 1): "≈" for any non-significant test, with a note that it is not equivalence.
   bool equivalence_by_evidence = false;
+  /// Scale r of the JZS Bayes factor's Cauchy prior (sqrt(2)/2 = BayesFactor's "medium").
+  double bf_prior_r = 0.7071067811865476;
 };
 
 /// One cell of the paper-shaped table: a metric at an iteration (in one condition, or A vs B).

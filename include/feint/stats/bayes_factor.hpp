@@ -77,4 +77,8 @@ BayesFactor jzs_bf_interval_null(double t, double n_eff, double df, double margi
 /// version). Leaves it empty for other tests or when the test was not computed.
 void add_bayes_factor(TestResult& test, double r = kJzsMediumScale);
 
+/// The prior as a table note states it: "r = 0.707 (medium)", "r = 1 (wide)", "r = 1.414
+/// (ultrawide)" (BayesFactor's names, within 1e-12), otherwise "r = 0.5".
+std::string jzs_prior_text(double r);
+
 }  // namespace feint::stats

@@ -49,6 +49,14 @@ struct EtaSquared {
 EtaSquared f_to_eta2(double f, double df1, double df2, double conf_level = 0.95,
                      Alternative alternative = Alternative::greater);
 
+/// Generalized eta squared with effectsize's interval (eta_squared(model, generalized = TRUE) on an
+/// afex model, effectsize 0.8): the pseudo-F of ges, F* = (ges / df1) / ((1 - ges) / df2), with the
+/// effect's df1 and its error stratum's df2, both uncorrected for sphericity, and f_to_eta2's
+/// interval of F* (estimate = ges). docs/effect-sizes.md says why this is a convention, not an
+/// exact interval for ges. Throws InvalidData for ges outside [0, 1) or df <= 0.
+EtaSquared generalized_eta2(double ges, double df1, double df2, double conf_level = 0.95,
+                            Alternative alternative = Alternative::greater);
+
 /// Rank-biserial r interval (Fisher z). n2 = 0: one-sample/paired with n1 non-zero differences.
 EffectInterval rank_biserial_interval(double r, std::size_t n1, std::size_t n2, double conf_level = 0.95,
                                       Alternative alternative = Alternative::two_sided);
