@@ -188,41 +188,21 @@ bool is_loopback(const net::ip::address& a) {
 
 struct Server::Impl {
   Shared sh;
-  // One io_context per connection thread, each run by its thread alone (concurrency hint 1), a
-  // connection staying on the one it was accepted onto. A single io_context run by N threads
-  // wakes an idle thread (futex) for nearly every handler it queues: at a study's pace (a new
-  // connection per request) that was some 20 context switches per request, most of the server's
-  // CPU time on a virtual machine.
-  std::vector<std::unique_ptr<net::io_context>> iocs;
-  std::vector<net::executor_work_guard<net::io_context::executor_type>> guards;
-  std::size_t next_ioc = 0;
+  net::io_context ioc;
   tcp::acceptor acceptor;
   net::steady_timer backoff;
   bool warned_cap = false;   // the conditions are logged once per episode
   bool warned_fds = false;
   std::chrono::milliseconds delay{10};
   ~Impl() {
-    // Answers still to come (saves waiting for their sync) post to the io_contexts: wait first.
+    // Answers still to come (saves waiting for their sync) post to ioc: wait for them first.
     while (sh.pending.load() > 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  static std::vector<std::unique_ptr<net::io_context>> make_iocs(unsigned threads) {
-    std::vector<std::unique_ptr<net::io_context>> out;
-    for (unsigned i = 0; i < std::max(1u, threads); ++i)
-      out.push_back(std::make_unique<net::io_context>(1));
-    return out;
   }
   Impl(Study& s, ServerOptions o)
       : sh(s, std::move(o)),
-        iocs(make_iocs(sh.opt.threads)),
-        acceptor(net::make_strand(*iocs.front())),
+        ioc(static_cast<int>(std::max(1u, sh.opt.threads))),
+        acceptor(net::make_strand(ioc)),
         backoff(acceptor.get_executor()) {}
-
-  /// The io_context of the next accepted connection (round robin).
-  net::io_context& next_context() {
-    net::io_context& c = *iocs[next_ioc];
-    next_ioc = (next_ioc + 1) % iocs.size();
-    return c;
-  }
 
   void note(bool& warned, const std::string& event, const std::string& text) {
     if (warned) return;
@@ -252,7 +232,7 @@ struct Server::Impl {
       delay = std::chrono::milliseconds(50);
       return wait_then_accept();
     }
-    acceptor.async_accept(net::make_strand(next_context()), [this](beast::error_code ec, tcp::socket socket) {
+    acceptor.async_accept(net::make_strand(ioc), [this](beast::error_code ec, tcp::socket socket) {
       if (!ec) {
         ++sh.connections;
         std::make_shared<Session>(std::move(socket), sh)->run();
@@ -338,25 +318,19 @@ std::size_t Server::max_connections() const noexcept { return impl_->sh.max_conn
 ServerState& Server::state() noexcept { return impl_->sh.state; }
 
 void Server::run() {
-  auto& im = *impl_;
-  im.accept();
+  impl_->accept();
   std::optional<net::signal_set> signals;
-  if (im.sh.opt.stop_on_signals) {
-    signals.emplace(*im.iocs.front(), SIGINT, SIGTERM);
-    signals->async_wait([this](beast::error_code, int) { stop(); });
+  if (impl_->sh.opt.stop_on_signals) {
+    signals.emplace(impl_->ioc, SIGINT, SIGTERM);
+    signals->async_wait([this](beast::error_code, int) { impl_->ioc.stop(); });
   }
-  // The other contexts have nothing to do until a connection is accepted onto them.
-  im.guards.clear();
-  for (std::size_t i = 1; i < im.iocs.size(); ++i) im.guards.push_back(net::make_work_guard(*im.iocs[i]));
   std::vector<std::thread> pool;
-  for (std::size_t i = 1; i < im.iocs.size(); ++i)
-    pool.emplace_back([&im, i] { im.iocs[i]->run(); });
-  im.iocs.front()->run();
+  for (unsigned i = 1; i < std::max(1u, impl_->sh.opt.threads); ++i)
+    pool.emplace_back([this] { impl_->ioc.run(); });
+  impl_->ioc.run();
   for (auto& t : pool) t.join();
 }
 
-void Server::stop() {
-  for (auto& c : impl_->iocs) c->stop();
-}
+void Server::stop() { impl_->ioc.stop(); }
 
 }  // namespace feint::collect
