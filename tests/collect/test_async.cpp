@@ -183,16 +183,16 @@ TEST(CollectAsync, ParticipantsJoiningTogetherAreNumberedInOrderInOneBatch) {
   EXPECT_EQ(again.overview().size(), static_cast<std::size_t>(kN));
 }
 
-// Each connection thread runs its own io_context (connections are dealt out in turn): requests
-// on every one of them are answered, a save too, and stop() ends run() on all of them.
-TEST(CollectAsync, EveryConnectionThreadServesAndStopEndsThemAll) {
+// With four connection threads, a run of connections (GETs, then a save) is answered, and stop()
+// from another thread ends run() (every thread returns).
+TEST(CollectAsync, FourConnectionThreadsServeAndStopEndsThemAll) {
   const auto dir = fresh_dir("iocs");
   Study study(dir, fast_settings());
   Server server(study, Serving::opts(4));
   std::thread thread([&] { server.run(); });
   study.join("T");
   const std::string body = trace_body(valid_trace(study.start_round("T"), 0.8));
-  // Twelve connections, one after another: three on each of the four threads.
+  // Twelve connections, one after another.
   for (int i = 0; i < 11; ++i) {
     const auto r = request(server.port(), http::verb::get, i % 2 ? "/game.js" : "/");
     EXPECT_EQ(r.status, 200) << "request " << i << ": " << r.body;
