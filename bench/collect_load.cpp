@@ -20,7 +20,7 @@
 // Reports rounds/s, the time from sending a round (connection already open) to its
 // acknowledgement, which comes only after the rows are written and synced: the time to a durable
 // save (median, 99th percentile, max; with --pace also for the saves sent in the first 7 s, while
-// participants still join); the syncs and the appends they covered (group commit); the
+// participants still join, and by 5 s window); the syncs and the appends they covered (group commit); the
 // CPU time of the server and of the clients (per round); and the process's peak resident memory.
 //
 // The study folder is removed at the end, unless --keep. (Keep it when measuring again soon after:
@@ -98,6 +98,7 @@ struct Bench {
   std::mutex mu;
   std::vector<double> latencies;
   std::vector<double> joining;  // --pace: the saves sent while participants still join (first 7 s)
+  std::vector<std::vector<double>> windows;  // --pace: the saves by the 5 s window they were sent in
   Clock::time_point t0;
   std::map<double, std::pair<std::string, long>> bodies;  // round length -> trace, samples
   long samples = 0;
@@ -213,6 +214,11 @@ class Participant : public std::enable_shared_from_this<Participant> {
       std::lock_guard lock(b_.mu);
       b_.latencies.push_back(ms);
       if (b_.pace && sent_ - b_.t0 < std::chrono::seconds(7)) b_.joining.push_back(ms);
+      if (b_.pace) {
+        const auto w = static_cast<std::size_t>(std::chrono::duration<double>(sent_ - b_.t0).count() / 5);
+        if (b_.windows.size() <= w) b_.windows.resize(w + 1);
+        b_.windows[w].push_back(ms);
+      }
       b_.samples += round_samples_;
     }
     start();
@@ -334,6 +340,13 @@ int main(int argc, char** argv) {
     std::printf("  of which sent in the first 7 s (joins going on): %zu, median %.2f ms, p99 %.2f "
                 "ms, max %.2f ms\n",
                 jl.size(), jq(0.5), jq(0.99), jl.back());
+    for (std::size_t w = 0; w < b.windows.size(); ++w) {
+      auto& v = b.windows[w];
+      if (v.empty()) continue;
+      std::sort(v.begin(), v.end());
+      std::printf("  sent %zu-%zu s: %zu saves, median %.2f ms, p99 %.2f ms\n", 5 * w, 5 * w + 5,
+                  v.size(), v[v.size() / 2], v[std::min(v.size() - 1, v.size() * 99 / 100)]);
+    }
   }
   std::printf("syncs %llu for %llu appends (%.1f appends per sync), %.1f ms per group written and "
               "synced, writer busy %.0f%% of the time\n",
