@@ -19,7 +19,8 @@
 //
 // Reports rounds/s, the time from sending a round (connection already open) to its
 // acknowledgement, which comes only after the rows are written and synced: the time to a durable
-// save (median, 99th percentile, max); the syncs and the appends they covered (group commit); the
+// save (median, 99th percentile, max; with --pace also for the saves sent in the first 7 s, while
+// participants still join, and by 5 s window); the syncs and the appends they covered (group commit); the
 // CPU time of the server and of the clients (per round); and the process's peak resident memory.
 //
 // The study folder is removed at the end, unless --keep. (Keep it when measuring again soon after:
@@ -96,6 +97,9 @@ struct Bench {
   Clock::time_point end;  // --pace: no new round after this
   std::mutex mu;
   std::vector<double> latencies;
+  std::vector<double> joining;  // --pace: the saves sent while participants still join (first 7 s)
+  std::vector<std::vector<double>> windows;  // --pace: the saves by the 5 s window they were sent in
+  Clock::time_point t0;
   std::map<double, std::pair<std::string, long>> bodies;  // round length -> trace, samples
   long samples = 0;
   std::atomic<int> failures{0};
@@ -209,6 +213,12 @@ class Participant : public std::enable_shared_from_this<Participant> {
     {
       std::lock_guard lock(b_.mu);
       b_.latencies.push_back(ms);
+      if (b_.pace && sent_ - b_.t0 < std::chrono::seconds(7)) b_.joining.push_back(ms);
+      if (b_.pace) {
+        const auto w = static_cast<std::size_t>(std::chrono::duration<double>(sent_ - b_.t0).count() / 5);
+        if (b_.windows.size() <= w) b_.windows.resize(w + 1);
+        b_.windows[w].push_back(ms);
+      }
       b_.samples += round_samples_;
     }
     start();
@@ -275,6 +285,7 @@ int main(int argc, char** argv) {
   b.pace = pace;
   const double cpu0 = cpu_seconds(RUSAGE_SELF);
   const auto t0 = Clock::now();
+  b.t0 = t0;
   b.end = t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
   std::vector<std::shared_ptr<Participant>> all;
   for (int i = 0; i < people; ++i) {
@@ -311,6 +322,8 @@ int main(int argc, char** argv) {
     return lat.empty() ? 0.0
                        : lat[std::min(lat.size() - 1, static_cast<std::size_t>(p * lat.size()))];
   };
+  auto& jl = b.joining;
+  std::sort(jl.begin(), jl.end());
   rusage ru{};
   getrusage(RUSAGE_SELF, &ru);
   const auto cs = study.commit_stats();
@@ -322,6 +335,19 @@ int main(int argc, char** argv) {
   std::printf("rounds/s %.0f\n", rounds / secs);
   std::printf("time to durable save: median %.2f ms, p99 %.2f ms, max %.2f ms\n", q(0.5), q(0.99),
               lat.empty() ? 0.0 : lat.back());
+  if (pace && !jl.empty()) {
+    auto jq = [&](double p) { return jl[std::min(jl.size() - 1, static_cast<std::size_t>(p * jl.size()))]; };
+    std::printf("  of which sent in the first 7 s (joins going on): %zu, median %.2f ms, p99 %.2f "
+                "ms, max %.2f ms\n",
+                jl.size(), jq(0.5), jq(0.99), jl.back());
+    for (std::size_t w = 0; w < b.windows.size(); ++w) {
+      auto& v = b.windows[w];
+      if (v.empty()) continue;
+      std::sort(v.begin(), v.end());
+      std::printf("  sent %zu-%zu s: %zu saves, median %.2f ms, p99 %.2f ms\n", 5 * w, 5 * w + 5,
+                  v.size(), v[v.size() / 2], v[std::min(v.size() - 1, v.size() * 99 / 100)]);
+    }
+  }
   std::printf("syncs %llu for %llu appends (%.1f appends per sync), %.1f ms per group written and "
               "synced, writer busy %.0f%% of the time\n",
               static_cast<unsigned long long>(cs.syncs),

@@ -183,5 +183,30 @@ TEST(CollectAsync, ParticipantsJoiningTogetherAreNumberedInOrderInOneBatch) {
   EXPECT_EQ(again.overview().size(), static_cast<std::size_t>(kN));
 }
 
+// With four connection threads, a run of connections (GETs, then a save) is answered, and stop()
+// from another thread ends run() (every thread returns).
+TEST(CollectAsync, FourConnectionThreadsServeAndStopEndsThemAll) {
+  const auto dir = fresh_dir("iocs");
+  Study study(dir, fast_settings());
+  Server server(study, Serving::opts(4));
+  std::thread thread([&] { server.run(); });
+  study.join("T");
+  const std::string body = trace_body(valid_trace(study.start_round("T"), 0.8));
+  // Twelve connections, one after another.
+  for (int i = 0; i < 11; ++i) {
+    const auto r = request(server.port(), http::verb::get, i % 2 ? "/game.js" : "/");
+    EXPECT_EQ(r.status, 200) << "request " << i << ": " << r.body;
+  }
+  const auto saved = request(server.port(), http::verb::post,
+                             "/api/round/submit?participant=T&kind=practice&iteration=1", body);
+  EXPECT_EQ(saved.status, 200) << saved.body;
+  EXPECT_NE(saved.body.find("\"practice_saved\":1"), std::string::npos) << saved.body;
+  auto stopped = std::async(std::launch::async, [&] {
+    server.stop();
+    thread.join();
+  });
+  EXPECT_EQ(stopped.wait_for(10s), std::future_status::ready) << "run() did not return after stop()";
+}
+
 }  // namespace
 }  // namespace feint::collect
