@@ -9,27 +9,15 @@
 #  stage 2: per condition and strategy, t.test(slopes) (one-sample, against 0); the difference
 #    adaptive - random = t.test(slopes_a, slopes_r) (Welch), with the JZS Bayes factor (r = sqrt(2)/2)
 #    of the pooled two-sample model (t = d sqrt(N), N = n1 n2 / (n1 + n2), nu = n1 + n2 - 2, d with
-#    the pooled sd), integrated exactly as tests/golden/bayes/make_bf_golden.R (log_bf_point copied
-#    from there); ttestBF's value is a cross-check column.
+#    the pooled sd), integrated exactly by log_bf_point() of tests/golden/bayes/make_bf_golden.R;
+#    ttestBF's value is a cross-check column.
 suppressMessages(library(BayesFactor))
 g17 <- function(x) ifelse(is.na(x), "NA", sprintf("%.17g", x))
 tol <- 1e-12
-log_bf_point <- function(t, N, nu, r) {  # from tests/golden/bayes/make_bf_golden.R
-  lnull <- -(nu + 1) / 2 * log1p(t^2 / nu)
-  lf <- function(x) {
-    g <- exp(x)
-    -0.5 * log1p(N * g) - (nu + 1) / 2 * log1p(t^2 / ((1 + N * g) * nu)) +
-      log(r) - 0.5 * log(2 * pi) - 1.5 * x - r^2 / (2 * g) + x - lnull
-  }
-  xs <- seq(-40, 40, by = 0.05); lv <- lf(xs); m <- max(lv); xm <- xs[which.max(lv)]
-  br <- c(-Inf, xm + seq(-40, 40, by = 2), Inf)
-  tot <- 0
-  for (k in seq_len(length(br) - 1)) {
-    tot <- tot + integrate(function(x) exp(lf(x) - m), br[k], br[k + 1], rel.tol = tol,
-                           abs.tol = 0, subdivisions = 1000L)$value
-  }
-  m + log(tot)
-}
+# log_bf_point() of tests/golden/bayes/make_bf_golden.R, taken from that script without running it.
+for (e in parse("../bayes/make_bf_golden.R"))
+  if (is.call(e) && identical(e[[1]], as.name("<-")) && identical(e[[2]], as.name("log_bf_point"))) eval(e)
+stopifnot(exists("log_bf_point"))
 
 d <- read.csv("lmm_exposure.csv")
 d <- d[order(d$participant, d$iteration), ]
