@@ -304,7 +304,8 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
       const std::vector<std::string> order = {r.model->models.front().group1, r.model->models.front().group2};
       try {
         for (const auto& m : load.metrics)
-          r.exposure.push_back(exposure_table(r.scores, r.figures.labels, m, order, t.test.conf_level));
+          r.exposure.push_back(
+              exposure_table(r.scores, r.figures.labels, m, order, t.test.conf_level, t.bf_prior_r));
       } catch (const std::exception& e) {
         r.exposure.clear();  // the findings say why, from their own fit
         note_left_out(d, "exposure", fmt::format("no condition x exposure table: {}", e.what()));

@@ -147,7 +147,8 @@ std::vector<Finding> study_findings(const StudyResults& r, const std::vector<rep
         const auto e = table ? table->result
                              : models::exposure_slopes_by_condition(in.participant, in.condition, in.strategy,
                                                                     in.exposure, in.y, conditions_order,
-                                                                    r.table1.options.test.conf_level);
+                                                                    r.table1.options.test.conf_level,
+                                                                    r.table1.options.bf_prior_r);
         fs = exposure_findings(e, rules, table ? "exposure" : source, m.column);
       } catch (const std::exception& e) {
         Finding f;
@@ -178,10 +179,10 @@ std::vector<Finding> study_findings(const StudyResults& r, const std::vector<rep
 
 report::ExposureTable exposure_table(const io::ScoresTable& scores, const std::vector<TrialLabel>& labels,
                                      const std::string& metric, const std::vector<std::string>& conditions,
-                                     double conf_level) {
+                                     double conf_level, double bf_prior_r) {
   const ExposureInput in = exposure_input(scores, labels, metric);
   return {metric, models::exposure_slopes_by_condition(in.participant, in.condition, in.strategy, in.exposure,
-                                                       in.y, conditions, conf_level)};
+                                                       in.y, conditions, conf_level, bf_prior_r)};
 }
 
 std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, const report::ModelAnalysis* trend,

@@ -5,6 +5,7 @@
 #include <map>
 #include <numeric>
 #include <stdexcept>
+#include <tuple>
 #include <utility>
 
 namespace feint::models {
@@ -44,13 +45,48 @@ std::vector<double> exposure_counts(std::span<const std::string> participant,
 #include <cmath>
 #include <set>
 
-#include <boost/math/distributions/students_t.hpp>
 #include <fmt/format.h>
 
-#include "feint/error.hpp"
-#include "feint/models/mixed_model.hpp"
+#include "feint/stats/bayes_factor.hpp"
+#include "feint/stats/effect_size.hpp"
+#include "feint/stats/ttest.hpp"
 
 namespace feint::models {
+
+namespace {
+
+/// The OLS slope of y on x (centred sums, so a constant added to y changes nothing); NaN with fewer
+/// than 2 points or fewer than 2 distinct x.
+double ols_slope(const std::vector<double>& x, const std::vector<double>& y) {
+  const std::size_t n = x.size();
+  if (n < 2) return std::nan("");
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < n; ++i) mx += x[i], my += y[i];
+  mx /= static_cast<double>(n);
+  my /= static_cast<double>(n);
+  double sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sxx += (x[i] - mx) * (x[i] - mx);
+    sxy += (x[i] - mx) * (y[i] - my);
+  }
+  bool distinct = false;
+  for (std::size_t i = 1; i < n && !distinct; ++i) distinct = x[i] != x[0];
+  return distinct && sxx > 0 ? sxy / sxx : std::nan("");
+}
+
+std::string left_out_text(std::size_t left_out) {
+  if (left_out == 0) return "";
+  return fmt::format("{} participant{} left out (fewer than 2 trials with a value at 2 distinct exposures)",
+                     left_out, left_out == 1 ? "" : "s");
+}
+
+constexpr const char* kSlopeMethod =
+    "exposure slope: mean of the participants' OLS slopes, one-sample t test (two-stage)";
+constexpr const char* kDifferenceMethod =
+    "difference of exposure slopes between conditions: Welch two-sample t test on the participants' "
+    "OLS slopes (two-stage)";
+
+}  // namespace
 
 ExposureByCondition exposure_slopes_by_condition(std::span<const std::string> participant,
                                                  std::span<const std::string> condition,
@@ -58,7 +94,7 @@ ExposureByCondition exposure_slopes_by_condition(std::span<const std::string> pa
                                                  std::span<const double> exposure,
                                                  std::span<const double> y,
                                                  std::vector<std::string> conditions,
-                                                 double conf_level) {
+                                                 double conf_level, double bf_prior_r) {
   const std::size_t n = participant.size();
   if (condition.size() != n || strategy.size() != n || exposure.size() != n || y.size() != n)
     throw std::invalid_argument("exposure_slopes_by_condition: columns of different lengths");
@@ -68,80 +104,95 @@ ExposureByCondition exposure_slopes_by_condition(std::span<const std::string> pa
   }
   const std::set<std::string> strategy_set(strategy.begin(), strategy.end());
   const std::vector<std::string> strategies(strategy_set.begin(), strategy_set.end());
-  ExposureByCondition out;
-  for (const auto& cond : conditions) {
-    LongData d;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (condition[i] != cond || !std::isfinite(y[i])) continue;
-      d.participant.push_back(participant[i]);
-      d.group.push_back(strategy[i]);
-      d.time.push_back(exposure[i]);
-      d.y.push_back(y[i]);
-    }
-    ModelSpec spec;
-    spec.group = "strategy";
-    spec.time = "exposure";
-    spec.time_scale = TimeScale::linear;
-    spec.group_levels = strategies;
-    std::optional<MixedModelFit> fit;
-    std::string why;
-    try {
-      fit = fit_mixed_model(d, spec, false);
-    } catch (const std::exception& e) {
-      why = e.what();
-    }
+  stats::TestOptions options;
+  options.conf_level = conf_level;
+
+  // Stage 1: each participant's trials of each strategy (condition, strategy, participant).
+  struct Trials {
+    std::vector<double> x, y;
+  };
+  std::map<std::tuple<std::string, std::string, std::string>, Trials> cells;
+  for (std::size_t i = 0; i < n; ++i) {
+    Trials& c = cells[{condition[i], strategy[i], participant[i]}];  // seen, even without a value
+    if (!std::isfinite(y[i]) || !std::isfinite(exposure[i])) continue;
+    c.x.push_back(exposure[i]);
+    c.y.push_back(y[i]);
+  }
+  // participant slopes per (condition, strategy), and how many participants had none.
+  std::vector<std::vector<double>> slopes(conditions.size() * strategies.size());
+  std::vector<std::size_t> left_out(slopes.size(), 0);
+  for (std::size_t c = 0; c < conditions.size(); ++c)
     for (std::size_t s = 0; s < strategies.size(); ++s) {
+      auto it = cells.lower_bound({conditions[c], strategies[s], std::string()});
+      for (; it != cells.end() && std::get<0>(it->first) == conditions[c] && std::get<1>(it->first) == strategies[s];
+           ++it) {
+        const double b = ols_slope(it->second.x, it->second.y);
+        if (std::isfinite(b))
+          slopes[c * strategies.size() + s].push_back(b);
+        else
+          ++left_out[c * strategies.size() + s];
+      }
+    }
+
+  // Stage 2: per condition, each strategy's mean slope.
+  ExposureByCondition out;
+  for (std::size_t c = 0; c < conditions.size(); ++c)
+    for (std::size_t s = 0; s < strategies.size(); ++s) {
+      const std::size_t k = c * strategies.size() + s;
+      const auto& b = slopes[k];
       ExposureSlope sl;
       sl.strategy = strategies[s];
-      sl.condition = cond;
-      if (fit) {
-        const Eigen::VectorXd L = fit->cell_row(s, 1.0) - fit->cell_row(s, 0.0);
-        Contrast c = contrast(*fit, L, conf_level);
-        sl.test = std::move(c.test);
-        sl.std_error = c.std_error;
-      } else {
+      sl.condition = conditions[c];
+      sl.participants = b.size();
+      sl.left_out = left_out[k];
+      const std::string lo = left_out_text(left_out[k]);
+      if (b.size() < 2) {
         sl.test = stats::TestResult::not_computable(
-            "lmm_contrast", "exposure slope (lmer)",
-            fmt::format("the model of condition '{}' cannot be fitted: {}", cond, why));
+            "one_sample_t", kSlopeMethod,
+            fmt::format("fewer than 2 participants with an exposure slope of strategy '{}' in condition '{}' "
+                        "(n = {}){}",
+                        strategies[s], conditions[c], b.size(), lo.empty() ? "" : "; " + lo));
+      } else {
+        sl.test = stats::t_test_one_sample(b, 0.0, options);
+        sl.test.method = kSlopeMethod;
+        if (sl.test.computed && sl.test.sd1)
+          sl.std_error = *sl.test.sd1 / std::sqrt(static_cast<double>(b.size()));
+        if (!lo.empty()) sl.test.note = sl.test.note.empty() ? lo : sl.test.note + "; " + lo;
       }
       out.slopes.push_back(std::move(sl));
     }
-  }
   if (conditions.size() < 2) return out;
+
+  // The difference between the first two conditions: Welch on the participants' slopes.
   for (std::size_t s = 0; s < strategies.size(); ++s) {
-    const ExposureSlope& a = out.slopes[s];
-    const ExposureSlope& b = out.slopes[strategies.size() + s];
+    const std::size_t ka = s, kb = strategies.size() + s;
     ExposureSlope dif;
     dif.strategy = strategies[s];
     dif.condition = conditions[0] + "-" + conditions[1];
-    const std::string method = "difference of exposure slopes between conditions (Welch–Satterthwaite)";
-    if (!a.test.computed || !b.test.computed || !a.test.estimate || !b.test.estimate || !a.test.df ||
-        !b.test.df) {
+    dif.participants = slopes[ka].size() + slopes[kb].size();
+    dif.left_out = left_out[ka] + left_out[kb];
+    if (slopes[ka].size() < 2 || slopes[kb].size() < 2) {
       dif.test = stats::TestResult::not_computable(
-          "slope_difference", method, !a.test.computed ? a.test.note : b.test.note);
+          "welch_t", kDifferenceMethod,
+          fmt::format("fewer than 2 participants with an exposure slope of strategy '{}' in condition '{}' "
+                      "(n = {})",
+                      strategies[s], slopes[ka].size() < 2 ? conditions[0] : conditions[1],
+                      std::min(slopes[ka].size(), slopes[kb].size())));
       out.differences.push_back(std::move(dif));
       continue;
     }
-    const double va = a.std_error * a.std_error, vb = b.std_error * b.std_error;
-    const double se = std::sqrt(va + vb);
-    const double df = (va + vb) * (va + vb) / (va * va / *a.test.df + vb * vb / *b.test.df);
-    const double est = *a.test.estimate - *b.test.estimate;
-    const double t = est / se;
-    const boost::math::students_t dist(df);
-    const double q = boost::math::quantile(boost::math::complement(dist, (1 - conf_level) / 2));
-    stats::TestResult& r = dif.test;
-    r.test = "slope_difference";
-    r.method = method;
-    r.conf_level = conf_level;
-    r.mu = 0.0;
-    r.estimate = est;
-    r.statistic = t;
-    r.statistic_name = "t";
-    r.df = df;
-    r.p_value = std::min(1.0, 2 * boost::math::cdf(boost::math::complement(dist, std::fabs(t))));
-    r.conf_low = est - q * se;
-    r.conf_high = est + q * se;
-    dif.std_error = se;
+    // As every Welch row of the report (report/table1.cpp): d with its interval, and the BF.
+    dif.test = stats::t_test_welch(slopes[ka], slopes[kb], options);
+    stats::add_effect_size_intervals(dif.test);
+    stats::add_bayes_factor(dif.test, bf_prior_r);
+    dif.test.method = kDifferenceMethod;
+    if (dif.test.computed && dif.test.sd1 && dif.test.sd2) {
+      const double va = *dif.test.sd1 * *dif.test.sd1 / static_cast<double>(slopes[ka].size());
+      const double vb = *dif.test.sd2 * *dif.test.sd2 / static_cast<double>(slopes[kb].size());
+      dif.std_error = std::sqrt(va + vb);
+    }
+    const std::string lo = left_out_text(dif.left_out);
+    if (!lo.empty()) dif.test.note = dif.test.note.empty() ? lo : dif.test.note + "; " + lo;
     out.differences.push_back(std::move(dif));
   }
   return out;

@@ -103,10 +103,12 @@ std::string render_exposure(const std::vector<ExposureTable>& tables, OutputForm
     }
   }
   out.notes.push_back(
-      "In each condition separately, the mixed model metric ~ strategy * exposure + (1 | participant) "
-      "(REML, as lme4::lmer); a strategy's slope is its change per earlier exposure of the participant "
-      "to it (lmerTest's contest1D, Satterthwaite df). The conditions are independent groups: the "
-      "difference of a strategy's slopes has SE = sqrt(SE1^2 + SE2^2) and Welch-Satterthwaite df. "
+      "Two-stage (slopes as outcomes): each participant's OLS slope of the metric on exposure (the "
+      "number of the participant's earlier trials of the strategy) over their trials of the strategy, "
+      "from participants with at least 2 trials at 2 distinct exposures; a condition's slope is the mean "
+      "of its participants' slopes (one-sample t, df = n - 1), the difference between conditions a "
+      "Welch t test on the participants' slopes (with Cohen's d and the JZS Bayes factor in the "
+      "findings). "
       "p Holm: Holm-adjusted over the strategies of the metric, as the findings use it "
       "(docs/findings.md).");
   out.latex_label = "tab:feint-exposure";

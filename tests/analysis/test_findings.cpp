@@ -215,20 +215,32 @@ TEST(Findings, ExposureFindingsPerStrategyAndOneConditionOnly) {
   e.slopes = {slope("ambiguous", "adaptive", 0.01), slope("switching", "adaptive", 0.0),
               slope("ambiguous", "random", -0.05), slope("switching", "random", 0.0)};
   models::ExposureSlope d1 = slope("ambiguous", "adaptive-random", 0.06), d2 = slope("switching", "adaptive-random", 0.0);
+  // Welch t tests on the participants' slopes, with their Bayes factors.
+  d1.test.test = d2.test.test = "welch_t";
   d1.test.p_value = 0.001;
   d1.test.df = 100;
   d1.test.statistic = 3.4;
+  d1.test.log_bf10 = std::log(20.0);
   d2.test.df = 100;
   d2.test.statistic = 0;
   d2.test.p_value = 1.0;
+  d2.test.log_bf10 = std::log(1.0 / 5.0);
   e.differences = {d1, d2};
   const auto fs = exposure_findings(e);
   ASSERT_EQ(fs.size(), 2u);
-  EXPECT_EQ(fs[0].strength, Strength::evidence_for_difference);  // Holm: 0.002 < .05
+  // Holm: 0.002 < .05 and BF10 = 20 >= 10, the rule of every Welch test
+  EXPECT_EQ(fs[0].strength, Strength::evidence_for_difference);
+  EXPECT_EQ(fs[0].grade, Grade::strong);
   EXPECT_NE(fs[0].sentence.find("Exposure slope of strategy 'ambiguous' (adaptive: 0.010 per exposure"), std::string::npos) << fs[0].sentence;
-  EXPECT_NE(fs[0].sentence.find("Holm-adjusted p = .002"), std::string::npos) << fs[0].sentence;
-  // no Bayes factor and no TOST: a large p is "no evidence either way", never "no difference"
-  EXPECT_EQ(fs[1].strength, Strength::no_evidence_either_way);
+  EXPECT_NE(fs[0].sentence.find("adjusted p = .002"), std::string::npos) << fs[0].sentence;
+  EXPECT_NE(fs[0].sentence.find("Holm-corrected over 2 strategies"), std::string::npos) << fs[0].sentence;
+  EXPECT_TRUE(fs[0].warnings.empty());  // the miscalibration warning is gone (docs/findings.md)
+  // BF01 = 5: moderate evidence for no difference, as for any Welch test
+  EXPECT_EQ(fs[1].strength, Strength::evidence_for_no_difference);
+  EXPECT_EQ(fs[1].grade, Grade::moderate);
+  // without a Bayes factor a large p stays "no evidence either way"
+  e.differences[1].test.log_bf10.reset();
+  EXPECT_EQ(exposure_findings(e)[1].strength, Strength::no_evidence_either_way);
   e.differences.clear();
   const auto one = exposure_findings(e);
   ASSERT_EQ(one.size(), 1u);

@@ -1,10 +1,8 @@
-// Condition x exposure per strategy against lmer + lmerTest::contest1D per condition
-// (tests/golden/models/exposure_by_condition_golden.R).
+// Condition x exposure per strategy by the two-stage method: lm() per participant x strategy, then
+// t.test() (tests/golden/models/exposure_by_condition_golden.R), and its rules and invariants.
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -14,49 +12,151 @@
 
 namespace {
 using feint::test::read_csv;
-}  // namespace
 
-TEST(ExposureByCondition, SlopesAndTheirDifferenceMatchLmer) {
-  const auto data = read_csv(FEINT_SOURCE_DIR "/tests/golden/models/lmm_exposure.csv");
-  ASSERT_GT(data.size(), 200u);
+struct Data {
   std::vector<std::string> participant, condition, strategy;
-  std::vector<double> iteration, y;
+  std::vector<double> exposure, y;
+};
+
+Data golden_data() {
+  const auto data = read_csv(FEINT_SOURCE_DIR "/tests/golden/models/lmm_exposure.csv");
+  Data d;
+  std::vector<double> iteration;
   for (std::size_t i = 1; i < data.size(); ++i) {  // iteration,participant,condition,error,strategy
     iteration.push_back(std::stod(data[i][0]));
-    participant.push_back(data[i][1]);
-    condition.push_back(data[i][2]);
-    y.push_back(std::stod(data[i][3]));
-    strategy.push_back(data[i][4]);
+    d.participant.push_back(data[i][1]);
+    d.condition.push_back(data[i][2]);
+    d.y.push_back(std::stod(data[i][3]));
+    d.strategy.push_back(data[i][4]);
   }
-  const auto exposure = feint::models::exposure_counts(participant, iteration, strategy);
-  const auto res = feint::models::exposure_slopes_by_condition(participant, condition, strategy, exposure, y);
+  d.exposure = feint::models::exposure_counts(d.participant, iteration, d.strategy);
+  return d;
+}
+
+feint::models::ExposureByCondition fit(const Data& d, std::vector<std::string> conditions = {}) {
+  return feint::models::exposure_slopes_by_condition(d.participant, d.condition, d.strategy, d.exposure, d.y,
+                                                     std::move(conditions));
+}
+
+bool near(double a, double b, double tol) { return std::fabs(a - b) <= tol * std::max(1.0, std::fabs(b)); }
+
+}  // namespace
+
+TEST(ExposureByCondition, SlopesAndTheirDifferenceMatchLmAndTTest) {
+  const Data d = golden_data();
+  ASSERT_GT(d.y.size(), 200u);
+  const auto res = fit(d);
   ASSERT_EQ(res.slopes.size(), 6u);
   ASSERT_EQ(res.differences.size(), 3u);
   const auto golden = read_csv(FEINT_SOURCE_DIR "/tests/golden/models/exposure_by_condition_golden.csv");
   ASSERT_EQ(golden.size(), 10u);
+  // kind,strategy,condition,n,left_out,estimate,se,df,t,p,lower,upper,log_bf10,ttestbf_log_bf
   for (std::size_t i = 1; i < golden.size(); ++i) {
     const auto& g = golden[i];
     const bool slope = g[0] == "slope";
     const auto& r = slope ? res.slopes[i - 1] : res.differences[i - 7];
+    SCOPED_TRACE(g[1] + " " + g[2]);
     ASSERT_EQ(r.strategy, g[1]);
+    ASSERT_EQ(r.condition, g[2]);
     ASSERT_TRUE(r.test.computed) << r.test.note;
-    const auto near = [](double a, double b) { return std::fabs(a - b) <= 1e-6 * std::max(1e-3, std::fabs(b)); };
-    EXPECT_PRED2(near, *r.test.estimate, std::stod(g[3])) << g[1] << " " << g[2];
-    EXPECT_PRED2(near, r.std_error, std::stod(g[4]));
-    EXPECT_PRED2(near, *r.test.df, std::stod(g[5]));
-    EXPECT_PRED2(near, *r.test.p_value, std::stod(g[7]));
-    EXPECT_PRED2(near, *r.test.conf_low, std::stod(g[8]));
-    EXPECT_PRED2(near, *r.test.conf_high, std::stod(g[9]));
+    EXPECT_EQ(r.participants, std::stoul(g[3]));
+    EXPECT_EQ(r.left_out, std::stoul(g[4]));
+    EXPECT_EQ(r.test.test, slope ? "one_sample_t" : "welch_t");
+    EXPECT_NEAR(*r.test.estimate, std::stod(g[5]), 1e-10);
+    EXPECT_NEAR(r.std_error, std::stod(g[6]), 1e-10);
+    EXPECT_PRED3(near, *r.test.df, std::stod(g[7]), 1e-10);
+    EXPECT_PRED3(near, *r.test.statistic, std::stod(g[8]), 1e-10);
+    EXPECT_NEAR(*r.test.p_value, std::stod(g[9]), 1e-10);
+    EXPECT_NEAR(*r.test.conf_low, std::stod(g[10]), 1e-10);
+    EXPECT_NEAR(*r.test.conf_high, std::stod(g[11]), 1e-10);
+    if (slope) {
+      EXPECT_FALSE(r.test.log_bf10.has_value());
+    } else {
+      // the exact integral; feint's JZS integration agrees to 1e-6 (docs/bayes-factors.md)
+      ASSERT_TRUE(r.test.log_bf10.has_value());
+      EXPECT_NEAR(*r.test.log_bf10, std::stod(g[12]), 1e-6);
+      EXPECT_TRUE(r.test.cohen_d.has_value() && r.test.cohen_d_low.has_value());
+    }
+    if (r.left_out > 0) {
+      EXPECT_NE(r.test.note.find("left out"), std::string::npos) << r.test.note;
+    }
+    EXPECT_EQ(r.test.method.find("lmer"), std::string::npos);
   }
-  EXPECT_EQ(res.differences[0].condition, "adaptive-random");
 }
 
-TEST(ExposureByCondition, OneConditionHasNoDifferenceAndABadConditionIsNotComputable) {
-  const std::vector<std::string> p{"a", "a", "b", "b"}, c{"x", "x", "x", "x"}, s{"s", "s", "s", "s"};
-  const std::vector<double> e{0, 1, 0, 1}, y{1, 1, 1, 1};  // no variance
-  const auto res = feint::models::exposure_slopes_by_condition(p, c, s, e, y);
+TEST(ExposureByCondition, AParticipantWithOneExposureIsLeftOut) {
+  // p1, p2 have two exposures; p3 has two trials both at exposure 0 (no slope), p4 one trial.
+  Data d;
+  auto add = [&](const std::string& p, double e, double y) {
+    d.participant.push_back(p), d.condition.push_back("c"), d.strategy.push_back("s");
+    d.exposure.push_back(e), d.y.push_back(y);
+  };
+  add("p1", 0, 1.0), add("p1", 1, 1.5), add("p1", 2, 2.5);  // slope 0.75
+  add("p2", 0, 2.0), add("p2", 1, 1.75);                     // slope -0.25
+  add("p3", 0, 9.0), add("p3", 0, -9.0);
+  add("p4", 3, 100.0);
+  add("p5", 0, 3.0), add("p5", 1, std::nan(""));             // one finite trial: left out
+  const auto res = fit(d);
   ASSERT_EQ(res.slopes.size(), 1u);
-  EXPECT_FALSE(res.slopes[0].test.computed);
-  EXPECT_NE(res.slopes[0].test.note.find("cannot be fitted"), std::string::npos);
+  const auto& s = res.slopes[0];
+  ASSERT_TRUE(s.test.computed) << s.test.note;
+  EXPECT_EQ(s.participants, 2u);
+  EXPECT_EQ(s.left_out, 3u);
+  EXPECT_NEAR(*s.test.estimate, 0.25, 1e-14);
+  EXPECT_NEAR(s.std_error, 0.5, 1e-14);  // sd of {0.75, -0.25} = sqrt(0.5), / sqrt(2)
+  EXPECT_EQ(*s.test.df, 1.0);
+  EXPECT_NE(s.test.note.find("3 participants left out"), std::string::npos) << s.test.note;
   EXPECT_TRUE(res.differences.empty());
+}
+
+TEST(ExposureByCondition, FewerThanTwoParticipantsIsNotComputableNeverAThrow) {
+  Data d;
+  auto add = [&](const std::string& p, const std::string& c, double e, double y) {
+    d.participant.push_back(p), d.condition.push_back(c), d.strategy.push_back("s");
+    d.exposure.push_back(e), d.y.push_back(y);
+  };
+  add("a1", "A", 0, 1), add("a1", "A", 1, 2);
+  add("a2", "A", 0, 1), add("a2", "A", 1, 4);
+  add("b1", "B", 0, 1), add("b1", "B", 1, 3);  // B: one participant with a slope
+  add("b2", "B", 0, 5);                        // and one left out
+  feint::models::ExposureByCondition res;
+  ASSERT_NO_THROW(res = fit(d, {"A", "B"}));
+  ASSERT_EQ(res.slopes.size(), 2u);
+  EXPECT_TRUE(res.slopes[0].test.computed);
+  EXPECT_FALSE(res.slopes[1].test.computed);
+  EXPECT_NE(res.slopes[1].test.note.find("fewer than 2 participants"), std::string::npos) << res.slopes[1].test.note;
+  EXPECT_NE(res.slopes[1].test.note.find("1 participant left out"), std::string::npos) << res.slopes[1].test.note;
+  ASSERT_EQ(res.differences.size(), 1u);
+  EXPECT_FALSE(res.differences[0].test.computed);
+  EXPECT_NE(res.differences[0].test.note.find("condition 'B'"), std::string::npos) << res.differences[0].test.note;
+  EXPECT_EQ(res.differences[0].condition, "A-B");
+}
+
+TEST(ExposureByCondition, ShiftingYChangesNothingAndScalingYScalesTheEstimates) {
+  const Data d = golden_data();
+  const auto base = fit(d);
+  Data shifted = d, scaled = d;
+  for (auto& v : shifted.y) v += 1000.0;
+  for (auto& v : scaled.y) v *= -3.0;
+  const auto sh = fit(shifted), sc = fit(scaled);
+  auto check = [](const auto& a, const auto& b, const auto& c) {
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const auto &t = a[i].test, &u = b[i].test, &v = c[i].test;
+      EXPECT_NEAR(*u.estimate, *t.estimate, 1e-9);
+      EXPECT_NEAR(*u.statistic, *t.statistic, 1e-7);
+      EXPECT_NEAR(*u.p_value, *t.p_value, 1e-8);
+      EXPECT_NEAR(*v.estimate, -3.0 * *t.estimate, 1e-12);
+      EXPECT_NEAR(c[i].std_error, 3.0 * a[i].std_error, 1e-12);
+      EXPECT_NEAR(*v.conf_low, -3.0 * *t.conf_high, 1e-12);
+      EXPECT_NEAR(*v.statistic, -*t.statistic, 1e-9);
+      EXPECT_NEAR(*v.df, *t.df, 1e-9);
+      EXPECT_NEAR(*v.p_value, *t.p_value, 1e-12);
+    }
+  };
+  check(base.slopes, sh.slopes, sc.slopes);
+  check(base.differences, sh.differences, sc.differences);
+  // the Bayes factor depends on |t| only
+  for (std::size_t i = 0; i < base.differences.size(); ++i)
+    EXPECT_NEAR(*sc.differences[i].test.log_bf10, *base.differences[i].test.log_bf10, 1e-8);
 }

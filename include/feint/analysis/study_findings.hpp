@@ -45,9 +45,10 @@ ExposureInput exposure_input(const io::ScoresTable& scores, const std::vector<Tr
                              const std::string& metric);
 
 /// The report's condition x exposure table of `metric` (models::exposure_slopes_by_condition on
-/// exposure_input, the conditions in `conditions` order); throws what the fit throws.
+/// exposure_input, the conditions in `conditions` order, JZS prior scale `bf_prior_r` for the
+/// difference tests' Bayes factors); throws what the fit throws.
 report::ExposureTable exposure_table(const io::ScoresTable& scores, const std::vector<TrialLabel>& labels,
                                      const std::string& metric, const std::vector<std::string>& conditions,
-                                     double conf_level);
+                                     double conf_level, double bf_prior_r = 0.7071067811865476);
 
 }  // namespace feint::analysis

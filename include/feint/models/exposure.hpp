@@ -19,6 +19,9 @@ std::vector<double> exposure_counts(std::span<const std::string> participant,
 
 }  // namespace feint::models
 
+#include <cstddef>
+
+#include "feint/stats/bayes_factor.hpp"
 #include "feint/stats/htest.hpp"
 
 namespace feint::models {
@@ -28,18 +31,26 @@ namespace feint::models {
 struct ExposureSlope {
   std::string strategy;
   std::string condition;  ///< a condition, or "A-B" for a difference
-  stats::TestResult test;  ///< test "lmm_contrast" (slope) or "slope_difference"
-  double std_error = 0;
+  stats::TestResult test;  ///< "one_sample_t" (slope) or "welch_t" (difference, with its Bayes factor)
+  double std_error = 0;    ///< SE of the estimate: sd / sqrt(n), or sqrt(sd1^2/n1 + sd2^2/n2)
+  std::size_t participants = 0;  ///< participants with a slope (both conditions for a difference)
+  std::size_t left_out = 0;      ///< participants with trials of the strategy but no slope
 };
 
-/// Condition x exposure per strategy (issue 15): in each condition separately, the mixed model
-/// y ~ strategy * exposure + (1 | participant) (REML; lmer) and each strategy's exposure slope by
-/// lmerTest::contest1D (Satterthwaite df). Conditions are between participants, so the fits are
-/// independent and the difference of a strategy's slopes (first condition minus second) has
-/// SE = sqrt(SE1^2 + SE2^2) and Welch–Satterthwaite df (SE1^2 + SE2^2)^2 / (SE1^4/df1 + SE2^4/df2).
-/// Golden: tests/golden/models/exposure_by_condition_golden.R. `conditions` gives the two
-/// conditions in order (empty: sorted). A condition whose model cannot be fitted gives slopes that
-/// are not computable, with the reason in the note (never a throw).
+/// Condition x exposure per strategy (issue 15), by the participant-level two-stage ("slopes as
+/// outcomes") method, valid whenever participants are independent, whatever the within-participant
+/// variance or correlation:
+///  stage 1: for each participant and strategy, the OLS slope of y on exposure over that
+///    participant's trials of that strategy with a finite y; a participant contributes to a strategy
+///    only with >= 2 such trials at >= 2 distinct exposures (the others are counted in `left_out`
+///    and named in the note);
+///  stage 2, per condition: the strategy's slope = the mean of the participants' slopes, one-sample
+///    t test against 0 with its t CI (df = n - 1); the difference (first condition minus second) =
+///    Welch two-sample t test on the participants' slopes (stats::t_test_welch: CI, Cohen's d with
+///    its CI) with the JZS Bayes factor (stats::add_bayes_factor, prior scale `bf_prior_r`).
+/// Fewer than 2 participants with a slope give results that are not computable, with the reason in
+/// the note (never a throw). Golden: tests/golden/models/exposure_by_condition_golden.R (lm() per
+/// participant x strategy, t.test()). `conditions` gives the two conditions in order (empty: sorted).
 struct ExposureByCondition {
   std::vector<ExposureSlope> slopes;       ///< condition-major, strategies sorted
   std::vector<ExposureSlope> differences;  ///< one per strategy (empty with fewer than 2 conditions)
@@ -50,6 +61,7 @@ ExposureByCondition exposure_slopes_by_condition(std::span<const std::string> pa
                                                  std::span<const double> exposure,
                                                  std::span<const double> y,
                                                  std::vector<std::string> conditions = {},
-                                                 double conf_level = 0.95);
+                                                 double conf_level = 0.95,
+                                                 double bf_prior_r = stats::kJzsMediumScale);
 
 }  // namespace feint::models

@@ -1,44 +1,58 @@
-# Golden exposure slopes split by condition (tests/models/test_exposure_by_condition.cpp).
-# Regenerate from tests/golden/models with R 4.2 (lme4, lmerTest):
+# Golden exposure slopes split by condition (tests/models/test_exposure_by_condition.cpp), by the
+# participant-level two-stage ("slopes as outcomes") method of models::exposure_slopes_by_condition.
+# Regenerate from tests/golden/models with R 4.2 (BayesFactor for the cross-check only):
 #   cd tests/golden/models && Rscript exposure_by_condition_golden.R
-# Data: lmm_exposure.csv (2 conditions x 3 strategies). In each condition separately:
-#   lmer(error ~ strategy * exposure + (1 | participant), REML) and each strategy's exposure slope by
-#   lmerTest::contest1D (Satterthwaite df). The difference of a strategy's slopes between the two
-#   conditions (independent participants, so independent fits): estimate a - r, SE = sqrt(SEa^2 +
-#   SEr^2), Welch-Satterthwaite df = (SEa^2 + SEr^2)^2 / (SEa^4/dfa + SEr^4/dfr), t, two-sided p, 95% CI.
-suppressMessages({library(lme4); library(lmerTest)})
-ctrl <- lmerControl(optimizer = "nloptwrap",
-                    optCtrl = list(xtol_abs = 1e-14, ftol_abs = 1e-15, xtol_rel = 1e-14,
-                                   ftol_rel = 1e-15, maxeval = 1e5),
-                    calc.derivs = FALSE)
-g17 <- function(x) sprintf("%.17g", x)
+# Data: lmm_exposure.csv (2 conditions x 3 strategies); exposure = number of the participant's
+# earlier trials of the same strategy.
+#  stage 1: coef(lm(error ~ exposure)) per participant x strategy over its trials; a participant
+#    counts only with >= 2 trials at >= 2 distinct exposures (else "left_out").
+#  stage 2: per condition and strategy, t.test(slopes) (one-sample, against 0); the difference
+#    adaptive - random = t.test(slopes_a, slopes_r) (Welch), with the JZS Bayes factor (r = sqrt(2)/2)
+#    of the pooled two-sample model (t = d sqrt(N), N = n1 n2 / (n1 + n2), nu = n1 + n2 - 2, d with
+#    the pooled sd), integrated exactly by log_bf_point() of tests/golden/bayes/make_bf_golden.R;
+#    ttestBF's value is a cross-check column.
+suppressMessages(library(BayesFactor))
+g17 <- function(x) ifelse(is.na(x), "NA", sprintf("%.17g", x))
+tol <- 1e-12
+# log_bf_point() of tests/golden/bayes/make_bf_golden.R, taken from that script without running it.
+for (e in parse("../bayes/make_bf_golden.R"))
+  if (is.call(e) && identical(e[[1]], as.name("<-")) && identical(e[[2]], as.name("log_bf_point"))) eval(e)
+stopifnot(exists("log_bf_point"))
+
 d <- read.csv("lmm_exposure.csv")
 d <- d[order(d$participant, d$iteration), ]
 d$exposure <- ave(seq_len(nrow(d)), d$participant, d$strategy, FUN = seq_along) - 1
-d$strategy <- factor(d$strategy)
-slopes <- list()
-for (cond in sort(unique(d$condition))) {
-  dc <- d[d$condition == cond, ]
-  m <- lmer(error ~ strategy * exposure + (1 | participant), dc, REML = TRUE, control = ctrl)
-  for (s in levels(d$strategy)) {
-    L <- setNames(rep(0, length(fixef(m))), names(fixef(m)))
-    L["exposure"] <- 1
-    if (s != levels(d$strategy)[1]) L[paste0("strategy", s, ":exposure")] <- 1
-    ct <- contest1D(m, L, confint = TRUE)
-    slopes[[length(slopes) + 1]] <- data.frame(kind = "slope", strategy = s, condition = cond,
-      estimate = ct$Estimate, se = ct[["Std. Error"]], df = ct$df, t = ct[["t value"]],
-      p = ct[["Pr(>|t|)"]], lower = ct$lower, upper = ct$upper)
+strategies <- sort(unique(d$strategy)); conditions <- sort(unique(d$condition))
+stage1 <- function(cond, s) {
+  dc <- d[d$condition == cond & d$strategy == s & is.finite(d$error), ]
+  b <- c(); left <- 0
+  for (p in sort(unique(d$participant[d$condition == cond & d$strategy == s]))) {
+    dp <- dc[dc$participant == p, ]
+    if (nrow(dp) >= 2 && length(unique(dp$exposure)) >= 2) b <- c(b, coef(lm(error ~ exposure, dp))[["exposure"]])
+    else left <- left + 1
   }
+  list(b = b, left = left)
 }
-sl <- do.call(rbind, slopes)
-diffs <- lapply(levels(d$strategy), function(s) {
-  a <- sl[sl$strategy == s & sl$condition == "adaptive", ]; r <- sl[sl$strategy == s & sl$condition == "random", ]
-  est <- a$estimate - r$estimate; se <- sqrt(a$se^2 + r$se^2)
-  df <- (a$se^2 + r$se^2)^2 / (a$se^4 / a$df + r$se^4 / r$df); t <- est / se
-  q <- qt(0.975, df)
-  data.frame(kind = "difference", strategy = s, condition = "adaptive-random", estimate = est, se = se,
-             df = df, t = t, p = 2 * pt(-abs(t), df), lower = est - q * se, upper = est + q * se)
-})
-out <- rbind(sl, do.call(rbind, diffs))
-for (k in 4:10) out[[k]] <- g17(out[[k]])
-write.csv(out, "exposure_by_condition_golden.csv", row.names = FALSE, quote = FALSE)
+row <- function(kind, s, cond, tt, n, left, lbf = NA, lbf_check = NA)
+  data.frame(kind = kind, strategy = s, condition = cond, n = n, left_out = left,
+             estimate = g17(if (kind == "slope") tt$estimate[[1]] else tt$estimate[[1]] - tt$estimate[[2]]),
+             se = g17(tt$stderr), df = g17(tt$parameter[[1]]), t = g17(tt$statistic[[1]]),
+             p = g17(tt$p.value), lower = g17(tt$conf.int[1]), upper = g17(tt$conf.int[2]),
+             log_bf10 = g17(lbf), ttestbf_log_bf = g17(lbf_check))
+st <- list(); rows <- list()
+for (cond in conditions) for (s in strategies) {
+  st[[paste(cond, s)]] <- r <- stage1(cond, s)
+  rows[[length(rows) + 1]] <- row("slope", s, cond, t.test(r$b), length(r$b), r$left)
+}
+for (s in strategies) {
+  a <- st[[paste(conditions[1], s)]]; r <- st[[paste(conditions[2], s)]]
+  tt <- t.test(a$b, r$b)
+  n1 <- length(a$b); n2 <- length(r$b)
+  sp <- sqrt(((n1 - 1) * var(a$b) + (n2 - 1) * var(r$b)) / (n1 + n2 - 2))
+  N <- n1 * n2 / (n1 + n2)
+  lbf <- log_bf_point((mean(a$b) - mean(r$b)) / sp * sqrt(N), N, n1 + n2 - 2, sqrt(2) / 2)
+  chk <- extractBF(ttestBF(a$b, r$b, rscale = sqrt(2) / 2), logbf = TRUE)$bf
+  rows[[length(rows) + 1]] <- row("difference", s, paste0(conditions[1], "-", conditions[2]), tt, n1 + n2,
+                                  a$left + r$left, lbf, chk)
+}
+write.csv(do.call(rbind, rows), "exposure_by_condition_golden.csv", row.names = FALSE, quote = FALSE)
