@@ -120,6 +120,11 @@ std::string client_address(const std::string& peer, std::string_view forwarded_f
 class Server {
  public:
   /// Binds and listens (throws IoError when it cannot). Does not serve until run().
+  /// It also sets two process-wide things a long-running server needs, which a program embedding
+  /// it should know about: SIGXFSZ is ignored (a file-size limit makes a write fail with EFBIG
+  /// instead of killing the process), and glibc's malloc keeps freed memory up to 256 MB instead of
+  /// returning it to the kernel after every round (mallopt M_TRIM_THRESHOLD, M_TOP_PAD,
+  /// M_MMAP_THRESHOLD; docs/collect.md).
   Server(Study& study, ServerOptions options);
   ~Server();
   unsigned short port() const noexcept;
