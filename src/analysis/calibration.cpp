@@ -67,7 +67,7 @@ CalibrationOutcome calibration_study(const sim::StudyOptions& options, const Ana
   const auto metrics = parse_metric_specs(settings.metrics);
   for (const auto& m : metrics) {
     const Finding* f = find(r.findings, "H1-iterations-" + m.column);
-    add("H1 per-iteration contrasts (Holm over iterations): " + m.column,
+    add("H1 per-iteration contrasts (maxT over iterations): " + m.column,
         f ? f->strength : Strength::not_computable);
   }
   for (const auto& m : metrics) {

@@ -51,6 +51,13 @@ std::string capitalised(std::string s) {
 
 std::string number(double v) { return fmt::format("{:.2f}", v); }
 
+std::string p_text(double p) {  // APA: no leading zero, "< .001" below
+  if (p < 0.001) return "p < .001";
+  std::string s = fmt::format("{:.3f}", p);
+  if (s.rfind("0.", 0) == 0) s.erase(0, 1);
+  return "p = " + s;
+}
+
 }  // namespace
 
 Strength classify(const stats::TestResult& d, const stats::TestResult* tost, const WordingRules& rules,
@@ -117,7 +124,8 @@ Finding difference_finding(std::string id, std::string hypothesis, std::string q
 }
 
 Finding family_finding(std::string id, std::string hypothesis, std::string question, std::string what,
-                       std::vector<stats::TestResult> tests, std::string source, const WordingRules& rules) {
+                       std::vector<stats::TestResult> tests, std::string source, const WordingRules& rules,
+                       std::string correction) {
   Finding f;
   f.id = std::move(id);
   f.hypothesis = std::move(hypothesis);
@@ -167,12 +175,20 @@ Finding family_finding(std::string id, std::string hypothesis, std::string quest
     for (std::size_t k = 0; k < idx.size(); ++k) s += (k ? ", " : "") + std::to_string(idx[k] + 1);
     return s;
   };
-  f.sentence = fmt::format("{} (Holm-corrected over {} tests): {}; evidence for a difference in {} ({}), "
+  if (correction.empty()) correction = fmt::format("Holm-corrected over {} tests", tests.size());
+  f.sentence = fmt::format("{} ({}): {}; evidence for a difference in {} ({}), "
                            "for no difference in {}, neither in {}",
-                           capitalised(what), tests.size(), f.evidence, diff.size(),
+                           capitalised(what), correction, f.evidence, diff.size(),
                            diff.empty() ? std::string("none") : "tests " + list(diff), none_diff.size(),
                            neither.size());
   if (!missing.empty()) f.sentence += fmt::format(", not computable in {} (tests {})", missing.size(), list(missing));
+  std::size_t smallest = tests.size();
+  for (std::size_t i = 0; i < tests.size(); ++i)
+    if (tests[i].computed && tests[i].p_adjusted &&
+        (smallest == tests.size() || *tests[i].p_adjusted < *tests[smallest].p_adjusted))
+      smallest = i;
+  if (smallest < tests.size())
+    f.sentence += fmt::format("; smallest adjusted {} (test {})", p_text(*tests[smallest].p_adjusted), smallest + 1);
   f.sentence += ".";
   if (!diff.empty()) f.statistics = report::apa_string(tests[diff.front()]);
   return f;

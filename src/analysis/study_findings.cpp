@@ -10,6 +10,7 @@
 
 #include "feint/models/exposure.hpp"
 #include "feint/stats/p_adjust.hpp"
+#include "feint/stats/permutation.hpp"
 
 namespace feint::analysis {
 
@@ -47,8 +48,81 @@ std::string p_text(double p) {
   return "p = " + s;
 }
 
+std::string thousands(std::uint64_t n) {  // 10000 -> "10,000"
+  std::string s = std::to_string(n);
+  for (int i = static_cast<int>(s.size()) - 3; i > 0; i -= 3) s.insert(static_cast<std::size_t>(i), ",");
+  return s;
+}
+
 bool is_t_test(const std::string& test) {
   return test == "one_sample_t" || test == "welch_t" || test == "student_t" || test == "paired_t";
+}
+
+/// The per-iteration contrasts' multiplicity correction (docs/findings.md, "Per-iteration
+/// contrasts: the maxT correction"): Westfall–Young step-down maxT over the iterations, each
+/// participant relabelled between the two conditions with all of their iterations. Fills the
+/// tests' p_adjusted and returns the words for the sentence; returns "" (Holm then) where the
+/// design does not allow relabelling whole participants, with the reason in `why_not`.
+std::string maxt_over_iterations(const StudyResults& r, const std::string& metric,
+                                 const std::vector<long long>& iterations, std::vector<stats::TestResult>& tests,
+                                 std::string& why_not) {
+  const auto& o = r.comparison->options;
+  if (!o.compare || o.paired) {
+    why_not = "paired tests";
+    return {};
+  }
+  const int k = r.scores.metric_index(metric);
+  if (k < 0 || tests.empty()) return {};
+  const std::string& a = o.compare->first;
+  const std::string& b = o.compare->second;
+  std::map<long long, std::size_t> column;
+  for (std::size_t j = 0; j < iterations.size(); ++j) column[iterations[j]] = j;
+  std::map<std::string, std::size_t> row;
+  std::vector<int> group;
+  std::vector<std::vector<double>> values;
+  for (const auto& rec : r.scores.records) {
+    if (rec.condition != a && rec.condition != b) continue;
+    const auto c = column.find(rec.iteration);
+    if (c == column.end()) continue;
+    const int g = rec.condition == a ? 1 : 0;
+    auto [it, added] = row.emplace(rec.participant, group.size());
+    if (added) {
+      group.push_back(g);
+      values.emplace_back(iterations.size(), std::nan(""));
+    } else if (group[it->second] != g) {
+      why_not = fmt::format("participant {} is in both conditions", rec.participant);
+      return {};
+    }
+    double& cell = values[it->second][c->second];
+    if (!std::isnan(cell)) {
+      why_not = fmt::format("participant {} has two rows for iteration {}", rec.participant, rec.iteration);
+      return {};
+    }
+    const auto& v = rec.values[static_cast<std::size_t>(k)];
+    cell = v ? *v : std::nan("");
+  }
+  std::vector<double> flat;
+  for (const auto& v : values) flat.insert(flat.end(), v.begin(), v.end());
+  stats::MaxTOptions mo;
+  mo.alternative = o.test.alternative;
+  mo.var_equal = o.var_equal;
+  mo.permutations = kIterationPermutations;
+  const stats::MaxTResult m = stats::maxt_step_down(flat, iterations.size(), group, mo);
+  // The relabelled statistic must be the table's own t: else the data differ from the tests'.
+  for (std::size_t j = 0; j < tests.size(); ++j) {
+    const auto& t = tests[j];
+    const bool both = t.computed && t.statistic && m.statistic[j];
+    if ((t.computed && t.statistic) != m.statistic[j].has_value() ||
+        (both && std::fabs(*t.statistic - *m.statistic[j]) > 1e-8 * std::max(1.0, std::fabs(*t.statistic)))) {
+      why_not = fmt::format("iteration {}'s t could not be reproduced from the participants' values", iterations[j]);
+      return {};
+    }
+  }
+  for (std::size_t j = 0; j < tests.size(); ++j) tests[j].p_adjusted = m.p_adjusted[j];
+  return m.exact ? fmt::format("Westfall\u2013Young maxT-adjusted over {} iterations, all {} labellings of "
+                               "the participants", iterations.size(), m.labellings)
+                 : fmt::format("Westfall\u2013Young maxT-adjusted over {} iterations, {} labellings of the "
+                               "participants drawn at random", iterations.size(), thousands(m.labellings));
 }
 
 }  // namespace
@@ -62,17 +136,25 @@ std::vector<Finding> study_findings(const StudyResults& r, const std::vector<rep
         fmt::format("Does {} differ between the conditions, iteration by iteration?", m.column);
     if (r.comparison) {
       std::vector<stats::TestResult> tests;
+      std::vector<long long> iterations;
       std::string g1, g2;
       for (const auto& row : r.comparison->rows) {
         if (row.metric != m.column || !is_t_test(row.result.test)) continue;
         tests.push_back(row.result);
+        iterations.push_back(row.iteration.value_or(0));
         g1 = row.group1;
         g2 = row.group2;
       }
       if (!tests.empty()) {
-        out.push_back(family_finding("H1-iterations-" + m.column, "H1", question,
-                                     fmt::format("per-iteration contrasts of {}, {} vs {}", m.column, g1, g2),
-                                     std::move(tests), "comparison", rules));
+        std::string why_not;
+        const std::string correction = maxt_over_iterations(r, m.column, iterations, tests, why_not);
+        Finding f = family_finding("H1-iterations-" + m.column, "H1", question,
+                                   fmt::format("per-iteration contrasts of {}, {} vs {}", m.column, g1, g2),
+                                   std::move(tests), "comparison", rules, correction);
+        if (correction.empty() && !why_not.empty())
+          f.warnings.push_back(fmt::format("The per-iteration contrasts of {} are Holm-corrected, not "
+                                           "maxT-adjusted: {}.", m.column, why_not));
+        out.push_back(std::move(f));
       }
     } else if (conditions.size() < 2) {
       out.push_back(one_condition_only("H1-iterations-" + m.column, "H1", question,

@@ -59,7 +59,7 @@ TEST(Calibration, SimulatedStudiesGiveEveryHeadlineAndTheSameAnswerOnAnyThreadCo
     // Every headline of both metrics is there and computed: the per-iteration contrasts, the
     // mixed models, the exposure slopes, and the questionnaire's four items.
     for (const std::string m : {"error", "confusion"}) {
-      for (const std::string f : {"H1 per-iteration contrasts (Holm over iterations): ",
+      for (const std::string f : {"H1 per-iteration contrasts (maxT over iterations): ",
                                   "H1 mixed models (Holm over 3 tests): ",
                                   "H1 exposure slopes by condition (Holm over strategies): "}) {
         EXPECT_NE(one[i].strengths[family(one[i], f + m)], Strength::not_computable) << f << m;

@@ -21,7 +21,7 @@ TEST(AnalyzeFindings, PrintedWrittenAndFirstInTheReport) {
                            " -o " + shell_quote(out.string()));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out.rfind("Findings\n* [H1] ", 0), 0u) << r.out;
-  EXPECT_NE(r.out.find("Per-iteration contrasts of error, adaptive vs random (Holm-corrected over 20 tests)"),
+  EXPECT_NE(r.out.find("Per-iteration contrasts of error, adaptive vs random (Westfall\u2013Young maxT-adjusted over 20 iterations"),
             std::string::npos) << r.out;
   // H1 from the mixed models and condition x exposure per strategy, before H2 (docs/findings.md).
   const auto model = r.out.find("* [H1] Evidence for a difference: Main effect of condition on error in the mixed model");

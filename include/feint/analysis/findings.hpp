@@ -73,9 +73,11 @@ Finding difference_finding(std::string id, std::string hypothesis, std::string q
 /// classified, and the sentence counts the iterations with evidence for a difference, for no
 /// difference, and neither. The family's headline strength is "evidence for a difference" when at
 /// least one test earns it after the correction.
+/// `correction` names an adjustment the caller made (the tests' p_adjusted), for the sentence, e.g.
+/// "Westfall–Young maxT permutation-adjusted over 20 iterations"; empty: "Holm-corrected over N tests".
 Finding family_finding(std::string id, std::string hypothesis, std::string question,
                        std::string what, std::vector<stats::TestResult> tests, std::string source,
-                       const WordingRules& rules = {});
+                       const WordingRules& rules = {}, std::string correction = {});
 
 /// H1, condition x exposure per strategy: one finding per strategy on the difference of the two
 /// conditions' exposure slopes (a Welch t test on the participants' slopes, Holm-corrected over the

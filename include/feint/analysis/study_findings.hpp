@@ -1,6 +1,7 @@
 // feint/analysis/study_findings.hpp - the findings of a whole study, from its StudyResults.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "feint/analysis/findings.hpp"
@@ -9,9 +10,16 @@
 
 namespace feint::analysis {
 
-/// H1: per metric, the Holm-corrected family of per-iteration contrasts between the conditions (the
-/// comparison table), or "only one condition" when there is none to compare; a reference-outside-
-/// the-data warning per metric (check_reference over every participant and iteration).
+/// Relabellings of the participants for the per-iteration contrasts' maxT adjustment (seeded, so
+/// the findings are the same on every run; Monte Carlo SE of an adjusted p of .05: 0.002).
+inline constexpr std::uint64_t kIterationPermutations = 9999;
+
+/// H1: per metric, the family of per-iteration contrasts between the conditions (the comparison
+/// table), adjusted by Westfall–Young step-down maxT over the iterations (participants relabelled
+/// between the conditions, stats::maxt_step_down; Holm, with a warning that says why, where whole
+/// participants cannot be relabelled: paired tests, a participant in both conditions), or "only
+/// one condition" when there is none to compare; a reference-outside-the-data warning per metric
+/// (check_reference over every participant and iteration).
 /// H2: per Likert item and composite, the t test against the reference and between the conditions.
 /// H1 from the mixed models: mixed_model_findings. H1 condition x exposure per strategy: the trial
 /// labels (figures.labels) joined to the scores, exposure_findings per metric.
