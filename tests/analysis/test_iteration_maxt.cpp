@@ -67,8 +67,9 @@ TEST(IterationMaxT, FourAndFourParticipantsGiveTheExactFractionOfSeventyLabellin
                                    "participants"))
       << f.sentence;
   EXPECT_TRUE(contains(f.sentence, "smallest adjusted p = .029 (test 1)")) << f.sentence;
-  // Welch's p of iteration 1 is far smaller (t = 10.6): Holm would have said p < .001.
+  // Welch's p of iteration 1 is far smaller (t = 9.44, p = 8.3e-5): Holm would have said p < .001.
   ASSERT_TRUE(r.comparison->rows[0].result.p_value);
+  EXPECT_NEAR(*r.comparison->rows[0].result.statistic, 9.444099, 1e-6);  // R: t.test(a, b)
   EXPECT_LT(*r.comparison->rows[0].result.p_value * 2, 0.001);
   EXPECT_EQ(f.strength, Strength::evidence_for_difference) << f.sentence;
   EXPECT_TRUE(f.warnings.empty());
@@ -81,6 +82,7 @@ TEST(IterationMaxT, ThreeAndThreeParticipantsCannotReachFivePercentWhateverTheT)
   const Finding f = iterations_finding(analysis::study_findings(r, {{"error", 0.5}}));
   EXPECT_TRUE(contains(f.sentence, "all 20 labellings")) << f.sentence;
   EXPECT_TRUE(contains(f.sentence, "smallest adjusted p = .100 (test 1)")) << f.sentence;
+  EXPECT_NEAR(*r.comparison->rows[0].result.statistic, 10.79803, 1e-5);
   EXPECT_LT(*r.comparison->rows[0].result.p_value, 0.001);
   EXPECT_EQ(f.strength, Strength::no_evidence_either_way) << f.sentence;
 }
