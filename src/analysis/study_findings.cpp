@@ -288,6 +288,7 @@ std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, co
       std::string id, question, what, source, formula, apa;
       stats::TestResult test;
       bool is_f = false;
+      bool singular = false;  // the model's fit is on the boundary (lme4: isSingular)
     };
     std::vector<Member> family;
     if (const report::MetricModel* m = find_model(model, metric)) {
@@ -297,13 +298,13 @@ std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, co
         family.push_back({"H1-model-interaction-" + metric,
                           fmt::format("Does the course of {} over the iterations differ between the conditions?", metric),
                           fmt::format("Condition \u00d7 iteration interaction of {}", metric), "model", m->formula + " (iteration as a factor)",
-                          report::anova_apa(*t), f_as_test(*t), true});
+                          report::anova_apa(*t), f_as_test(*t), true, m->fit.singular});
       }
       if (const auto* t = find_term(m->fit, spec.group)) {
         family.push_back({"H1-model-condition-" + metric,
                           fmt::format("Does {} differ between the conditions, over all iterations?", metric),
                           fmt::format("Main effect of condition on {}", metric), "model", m->formula + " (iteration as a factor)",
-                          report::anova_apa(*t), f_as_test(*t), true});
+                          report::anova_apa(*t), f_as_test(*t), true, m->fit.singular});
       }
     }
     if (const report::MetricModel* m = find_model(trend, metric)) {
@@ -319,7 +320,8 @@ std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, co
                           fmt::format("Does {} change over the iterations at a different rate in the two conditions?", metric),
                           fmt::format("Difference of the linear slopes of {} over the iterations, {} minus {} ({})",
                                       metric, fit.group_levels[k], fit.group_levels[0], name),
-                          "model-trend", m->formula + " (iteration as a linear trend)", "", c.test, false});
+                          "model-trend", m->formula + " (iteration as a linear trend)", "", c.test, false,
+                          fit.singular});
       }
     }
     std::vector<std::optional<double>> p;
@@ -335,6 +337,12 @@ std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, co
       f.source = mb.source;
       f.strength = classify(mb.test, nullptr, rules, &f.grade);
       f.evidence = evidence_text(f.strength, f.grade);
+      if (mb.singular)
+        f.warnings.push_back(fmt::format(
+            "The mixed model {} is a singular fit: a variance between participants is estimated at "
+            "(or near) zero (lme4: isSingular), so its tests rest on the trials' residual variance "
+            "alone, as lmerTest's do; the model table says which component.",
+            mb.formula));
       if (f.strength == Strength::not_computable) {
         f.sentence = fmt::format("{} in the mixed model {}: not computable ({}).", mb.what, mb.formula,
                                  mb.test.note.empty() ? std::string("no test result") : mb.test.note);

@@ -325,3 +325,23 @@ TEST(StudyFindings, OneConditionOnlyGivesNoModelFindingButSaysSo) {
   EXPECT_TRUE(contains(f->sentence, "Only one condition ('adaptive')")) << f->sentence;
   EXPECT_TRUE(analysis::mixed_model_findings(nullptr, nullptr).empty());
 }
+
+// A boundary fit is said in the findings of its model, and only there. On the demo the confusion
+// model is one (R, lme4, on `feint analyze data/demo`'s scores.csv: participant SD 0, isSingular
+// TRUE, condition F(1, 1160) = 1.8789, p = .1707), the error model is not (isSingular FALSE).
+TEST(StudyFindings, ASingularModelFitIsSaidInItsFindings) {
+  const auto& r = demo();
+  ASSERT_TRUE(r.model && r.trend_model);
+  EXPECT_TRUE(metric_model(*r.model, "confusion").fit.singular);
+  EXPECT_FALSE(metric_model(*r.model, "error").fit.singular);
+  for (const char* part : {"interaction", "condition", "trend"}) {
+    const Finding* c = by_id(r.findings, std::string("H1-model-") + part + "-confusion");
+    const Finding* e = by_id(r.findings, std::string("H1-model-") + part + "-error");
+    ASSERT_TRUE(c && e) << part;
+    ASSERT_EQ(c->warnings.size(), 1u) << part;
+    EXPECT_TRUE(contains(c->warnings[0], "is a singular fit: a variance between participants is estimated at (or "
+                                         "near) zero"))
+        << c->warnings[0];
+    EXPECT_TRUE(e->warnings.empty()) << part;
+  }
+}
