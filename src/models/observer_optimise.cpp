@@ -218,6 +218,9 @@ StandardErrors standard_errors(const Objective& f, const Box& box, const Theta& 
   return out;
 }
 
+/// Grid steps of SE/4 that a rough profile is scanned beyond an end (up to 100 SE, or the bound).
+constexpr int kHullScanSteps = 400;
+
 /// Profile-likelihood interval of parameter j around the maximum (th, lmax). Each end solves
 /// r(v) = +-z for the signed root deviance r(v) = sign(v - th_j) sqrt(2 (lmax - l_p(v))), which is
 /// close to linear in v: secant steps from the Wald end, kept inside a bracket once one is known
@@ -310,6 +313,21 @@ Interval profile_interval(const Objective& f, const Box& box, const Theta& th, d
         }
       }
       if (!reentry) break;
+    }
+    // A rough profile (it came back below the cut-off beyond an end): the probes reach only 2 SE
+    // further, so scan on to the bound on a grid of SE/4, re-maximised at each point, and search on
+    // from every point found below the cut-off: the hull then covers every region the grid meets.
+    if (out.hull && !at_bound) {
+      double v = end;
+      for (int k = 0; k < kHullScanSteps && v != bound; ++k) {
+        v = std::clamp(v + side * se / 4, box.lo[j], box.hi[j]);
+        const double sv = s_of(v);
+        if (sv < z) {
+          end = search(v, sv);
+          if (at_bound) break;
+          v = end;
+        }
+      }
     }
   }
   return out;

@@ -1,6 +1,7 @@
 // End-to-end tests of `feint simulate trajectories` and `feint observer fit` (docs/observer.md).
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <string>
 
 #include "cli_helpers.hpp"
@@ -84,6 +85,29 @@ TEST(ObserverFitCli, FitsASimulatedStudyAndNamesTheBadTrials) {
   EXPECT_NE(r.out.find("\"participants\": ["), std::string::npos);
   EXPECT_NE(r.out.find("\"beta\": {\"estimate\": "), std::string::npos);
   EXPECT_NE(r.out.find("\"learning\": []"), std::string::npos);
+}
+
+// docs/observer.md's example: P03's tau profile is rough. A brute-force profile (tau on a 0.001 s
+// grid, beta re-maximised at each) is below the cut-off on [0.357, 0.419], [0.495, 0.508] and
+// [0.526, 0.660], the first beyond a barrier of deviance 5.4: the CI is the hull of all three,
+// which the scan beyond the ends finds (the probes alone, 2 SE out, stopped at 0.494).
+TEST(ObserverFitCli, ARoughProfilesCiCoversEveryRegionBelowTheCutOff) {
+  TempDir dir;
+  const auto study = dir / "study";
+  auto r = run_feint("simulate study -o " + shell_quote(study.string()) + " -p 3 -n 20 --seed 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_feint("observer fit " + shell_quote((study / "logs").string()) + " -f json --no-learning");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto p03 = r.out.find("\"unit\": \"P03\"");
+  ASSERT_NE(p03, std::string::npos) << r.out;
+  const auto tau = r.out.find("\"tau\": {", p03);
+  const auto low = r.out.find("\"conf.low\": ", tau);
+  const auto high = r.out.find("\"conf.high\": ", tau);
+  ASSERT_TRUE(tau != std::string::npos && low != std::string::npos && high != std::string::npos);
+  EXPECT_NEAR(std::strtod(r.out.c_str() + low + 12, nullptr), 0.357, 0.002) << r.out.substr(tau, 200);
+  EXPECT_NEAR(std::strtod(r.out.c_str() + high + 13, nullptr), 0.660, 0.002) << r.out.substr(tau, 200);
+  r = run_feint("observer fit " + shell_quote((study / "logs").string()) + " --no-learning");
+  EXPECT_NE(r.out.find("P03: the profile likelihood of tau is not unimodal"), std::string::npos) << r.out;
 }
 
 TEST(ObserverFitCli, BadOptionsAreUsageErrors) {
