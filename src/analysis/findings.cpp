@@ -51,13 +51,6 @@ std::string capitalised(std::string s) {
 
 std::string number(double v) { return fmt::format("{:.2f}", v); }
 
-std::string p_text(double p) {  // APA: no leading zero, "< .001" below
-  if (p < 0.001) return "p < .001";
-  std::string s = fmt::format("{:.3f}", p);
-  if (s.rfind("0.", 0) == 0) s.erase(0, 1);
-  return "p = " + s;
-}
-
 }  // namespace
 
 Strength classify(const stats::TestResult& d, const stats::TestResult* tost, const WordingRules& rules,
@@ -188,7 +181,7 @@ Finding family_finding(std::string id, std::string hypothesis, std::string quest
         (smallest == tests.size() || *tests[i].p_adjusted < *tests[smallest].p_adjusted))
       smallest = i;
   if (smallest < tests.size())
-    f.sentence += fmt::format("; smallest adjusted {} (test {})", p_text(*tests[smallest].p_adjusted), smallest + 1);
+    f.sentence += fmt::format("; smallest adjusted {} (test {})", report::apa_p(*tests[smallest].p_adjusted), smallest + 1);
   f.sentence += ".";
   if (!diff.empty()) f.statistics = report::apa_string(tests[diff.front()]);
   return f;
