@@ -34,9 +34,11 @@ TEST(ScoreProgress, IsDrawnOnATerminalAndNeverOtherwise) {
   write_text(dir / "first.csv",
              "participant,condition,iteration,target,t,pad\n" + trial_rows(1) + trial_rows(2));
   write_text(dir / "rest.csv", trial_rows(3) + trial_rows(4));
-  // The input arrives in two parts 1.3 s apart, so scoring outlasts the first second.
+  // The input arrives in two parts 2.5 s apart, so scoring outlasts the first second even when
+  // feint itself takes a second to start (a sanitizer build on a busy machine: with 1.3 s, the
+  // second part came 0.7 s after the progress line's clock started and nothing was drawn).
   const std::string feed = "{ cat " + shell_quote((dir / "first.csv").string()) +
-                           "; sleep 1.3; cat " + shell_quote((dir / "rest.csv").string()) + "; }";
+                           "; sleep 2.5; cat " + shell_quote((dir / "rest.csv").string()) + "; }";
   const std::string pipeline = feed + " | " + shell_quote(FEINT_EXE) +
                                " score - --pad-speed 1 -o " +
                                shell_quote((dir / "scores.csv").string());
