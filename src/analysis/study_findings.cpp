@@ -67,7 +67,8 @@ std::string maxt_over_iterations(const StudyResults& r, const std::string& metri
                                  const std::vector<long long>& iterations, std::vector<stats::TestResult>& tests,
                                  std::string& why_not) {
   const auto& o = r.comparison->options;
-  if (!o.compare || o.paired) {
+  if (!o.compare) return {};
+  if (o.paired) {
     why_not = "paired tests";
     return {};
   }
@@ -77,9 +78,10 @@ std::string maxt_over_iterations(const StudyResults& r, const std::string& metri
   const std::string& b = o.compare->second;
   std::map<long long, std::size_t> column;
   for (std::size_t j = 0; j < iterations.size(); ++j) column[iterations[j]] = j;
+  const std::size_t columns = iterations.size();
   std::map<std::string, std::size_t> row;
   std::vector<int> group;
-  std::vector<std::vector<double>> values;
+  std::vector<double> values;  // participant-major, as maxt_step_down takes them
   for (const auto& rec : r.scores.records) {
     if (rec.condition != a && rec.condition != b) continue;
     const auto c = column.find(rec.iteration);
@@ -88,12 +90,12 @@ std::string maxt_over_iterations(const StudyResults& r, const std::string& metri
     auto [it, added] = row.emplace(rec.participant, group.size());
     if (added) {
       group.push_back(g);
-      values.emplace_back(iterations.size(), std::nan(""));
+      values.resize(values.size() + columns, std::nan(""));
     } else if (group[it->second] != g) {
       why_not = fmt::format("participant {} is in both conditions", rec.participant);
       return {};
     }
-    double& cell = values[it->second][c->second];
+    double& cell = values[it->second * columns + c->second];
     if (!std::isnan(cell)) {
       why_not = fmt::format("participant {} has two rows for iteration {}", rec.participant, rec.iteration);
       return {};
@@ -101,13 +103,11 @@ std::string maxt_over_iterations(const StudyResults& r, const std::string& metri
     const auto& v = rec.values[static_cast<std::size_t>(k)];
     cell = v ? *v : std::nan("");
   }
-  std::vector<double> flat;
-  for (const auto& v : values) flat.insert(flat.end(), v.begin(), v.end());
   stats::MaxTOptions mo;
   mo.alternative = o.test.alternative;
   mo.var_equal = o.var_equal;
   mo.permutations = kIterationPermutations;
-  const stats::MaxTResult m = stats::maxt_step_down(flat, iterations.size(), group, mo);
+  const stats::MaxTResult m = stats::maxt_step_down(values, columns, group, mo);
   // The relabelled statistic must be the table's own t: else the data differ from the tests'.
   for (std::size_t j = 0; j < tests.size(); ++j) {
     const auto& t = tests[j];
