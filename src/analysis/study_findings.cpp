@@ -218,9 +218,10 @@ std::vector<Finding> study_findings(const StudyResults& r, const std::vector<rep
       std::string source = r.figures.traces.empty() ? "fig-strategies" : "fig-traces";
       for (const auto& e : r.figures.exposure)
         if (e.metric == m.column) source = "fig-exposure-" + m.column;
-      const ExposureInput in = exposure_input(r.scores, r.figures.labels, m.column);
+      ExposureInput in;
       std::vector<Finding> fs;
       try {
+        in = exposure_input(r.scores, r.figures.labels, m.column);
         // The report's exposure table when the analysis made one (the findings link to it), else
         // fitted here from the labels.
         const report::ExposureTable* table = nullptr;

@@ -8,6 +8,10 @@
 #include <tuple>
 #include <utility>
 
+#include <fmt/format.h>
+
+#include "feint/error.hpp"
+
 namespace feint::models {
 
 std::vector<double> exposure_counts(std::span<const std::string> participant,
@@ -28,8 +32,11 @@ std::vector<double> exposure_counts(std::span<const std::string> participant,
     const std::size_t i = order[k];
     if (k > 0 && participant[order[k - 1]] == participant[i] &&
         iteration[order[k - 1]] == iteration[i])
-      throw std::invalid_argument("exposure_counts: participant " + participant[i] +
-                                  " has two trials at one iteration");
+      throw InvalidData(fmt::format(
+          "participant {} has two trials at iteration {} (a participant in more than one condition?): "
+          "the exposure to a strategy counts a participant's earlier trials, so it needs one trial per "
+          "participant and iteration, as in a between-participants design",
+          participant[i], iteration[i]));
     double& count = seen[{participant[i], strategy[i]}];
     out[i] = count;
     count += 1;

@@ -66,3 +66,25 @@ TEST(AnalyzeFindings, PrintedWrittenAndFirstInTheReport) {
     EXPECT_GT(approx + inconclusive, 0) << stem;
   }
 }
+
+// data/example is a within-participants design (each participant in both conditions): the study
+// is analysed, the per-iteration contrasts fall back to Holm and the exposure findings say why they
+// cannot be computed, instead of an internal error.
+TEST(AnalyzeFindings, AWithinParticipantsStudyIsAnalysedAndTheFindingsSayWhatItCannotAnswer) {
+  TempDir dir;
+  fs::create_directories(dir.path() / "study" / "logs");
+  for (const char* f : {"p01.csv", "p02.csv", "p03.csv"})
+    fs::copy_file(fs::path(FEINT_SOURCE_DIR) / "data" / "example" / f, dir.path() / "study" / "logs" / f);
+  const auto r = run_feint("analyze " + shell_quote((dir.path() / "study").string()) +
+                           " --compare adaptive,random -o " + shell_quote((dir.path() / "out").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("The per-iteration contrasts of error are Holm-corrected, not maxT-adjusted: participant "
+                       "P01 is in both conditions."),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("Exposure slopes of error by condition: not computable (participant P01 has two trials at "
+                       "iteration 1 (a participant in more than one condition?)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(read_text(dir.path() / "out" / "findings.json").find("\"id\": \"H1-exposure-error\""), std::string::npos);
+}

@@ -202,4 +202,20 @@ TEST(Exposure, CountsEarlierTrialsOfTheSameStrategyPerParticipant) {
   EXPECT_EQ(e, (std::vector<double>{1, 1, 0, 0, 2, 0}));
 }
 
+TEST(Exposure, TwoTrialsOfAParticipantAtOneIterationAreADataErrorThatSaysWhy) {
+  // A participant in two conditions (a within-participants design): iteration 1 twice.
+  const std::vector<std::string> p = {"A", "A", "A"};
+  const std::vector<double> it = {1, 2, 1};
+  const std::vector<std::string> s = {"x", "y", "x"};
+  try {
+    (void)feint::models::exposure_counts(p, it, s);
+    FAIL() << "no error";
+  } catch (const feint::InvalidData& e) {
+    EXPECT_NE(std::string(e.what()).find("participant A has two trials at iteration 1 (a participant in more than "
+                                         "one condition?)"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
