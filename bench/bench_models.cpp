@@ -10,6 +10,7 @@
 
 #include "feint/models/mixed_anova.hpp"
 #include "feint/models/mixed_model.hpp"
+#include "feint/models/model_relabelling.hpp"
 #include "feint/models/power_sim.hpp"
 
 namespace {
@@ -66,6 +67,24 @@ void BM_MixedModelPaperDesign(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(fit_mixed_model(d, spec, true));
 }
 BENCHMARK(BM_MixedModelPaperDesign)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// The findings' relabelling p-values of the model tests: both random-intercept models refitted
+// under each of `range(0)` relabellings of the paper's design (plus the observed labelling);
+// items per second = refits of both models.
+void BM_ModelRelabellingPaperDesign(benchmark::State& state) {
+  LongData d;
+  for (const auto& o : paper_observations()) {
+    d.participant.push_back(o.participant);
+    d.group.push_back(o.condition);
+    d.time.push_back(static_cast<double>(o.iteration));
+    d.y.push_back(*o.value);
+  }
+  RelabellingOptions options;
+  options.permutations = static_cast<std::uint64_t>(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(relabel_condition_tests(d, {"adaptive", "random"}, options));
+  state.SetItemsProcessed(state.iterations() * (state.range(0) + 1));
+}
+BENCHMARK(BM_ModelRelabellingPaperDesign)->Arg(999)->Arg(9999)->Unit(benchmark::kMillisecond);
 
 void BM_SimulationPower(benchmark::State& state) {
   SimulationOptions o;

@@ -8,7 +8,9 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include "feint/error.hpp"
 #include "feint/models/exposure.hpp"
+#include "feint/models/model_relabelling.hpp"
 #include "feint/stats/p_adjust.hpp"
 #include "feint/stats/permutation.hpp"
 
@@ -125,6 +127,22 @@ std::string maxt_over_iterations(const StudyResults& r, const std::string& metri
                                "participants drawn at random", iterations.size(), thousands(m.labellings));
 }
 
+/// The mixed models' data of `metric` as build_model_analysis takes it: every trial with a value.
+models::LongData model_data(const io::ScoresTable& scores, const std::string& metric) {
+  models::LongData d;
+  const int k = scores.metric_index(metric);
+  if (k < 0) return d;
+  for (const auto& r : scores.records) {
+    const auto& v = r.values[static_cast<std::size_t>(k)];
+    if (!v) continue;
+    d.participant.push_back(r.participant);
+    d.group.push_back(r.condition);
+    d.time.push_back(static_cast<double>(r.iteration));
+    d.y.push_back(*v);
+  }
+  return d;
+}
+
 }  // namespace
 
 std::vector<Finding> study_findings(const StudyResults& r, const std::vector<report::MetricSpec>& metrics,
@@ -204,7 +222,7 @@ std::vector<Finding> study_findings(const StudyResults& r, const std::vector<rep
   };
   // H1 from the mixed models (condition x iteration, the linear trend).
   for (auto& f : mixed_model_findings(r.model ? &*r.model : nullptr,
-                                      r.trend_model ? &*r.trend_model : nullptr, rules))
+                                      r.trend_model ? &*r.trend_model : nullptr, rules, &r.scores))
     out.push_back(std::move(f));
   // H1, condition x exposure per strategy: needs each trial's strategy (the labels).
   if (!r.figures.labels.empty()) {
@@ -269,7 +287,7 @@ report::ExposureTable exposure_table(const io::ScoresTable& scores, const std::v
 }
 
 std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, const report::ModelAnalysis* trend,
-                                          const WordingRules& rules) {
+                                          const WordingRules& rules, const io::ScoresTable* scores) {
   std::vector<Finding> out;
   std::vector<std::string> metrics;
   if (model)
@@ -290,6 +308,7 @@ std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, co
       stats::TestResult test;
       bool is_f = false;
       bool singular = false;  // the model's fit is on the boundary (lme4: isSingular)
+      int kind = 0;           // 0 interaction F, 1 condition F, 2 slope difference
     };
     std::vector<Member> family;
     if (const report::MetricModel* m = find_model(model, metric)) {
@@ -299,13 +318,13 @@ std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, co
         family.push_back({"H1-model-interaction-" + metric,
                           fmt::format("Does the course of {} over the iterations differ between the conditions?", metric),
                           fmt::format("Condition \u00d7 iteration interaction of {}", metric), "model", m->formula + " (iteration as a factor)",
-                          report::anova_apa(*t), f_as_test(*t), true, m->fit.singular});
+                          report::anova_apa(*t), f_as_test(*t), true, m->fit.singular, 0});
       }
       if (const auto* t = find_term(m->fit, spec.group)) {
         family.push_back({"H1-model-condition-" + metric,
                           fmt::format("Does {} differ between the conditions, over all iterations?", metric),
                           fmt::format("Main effect of condition on {}", metric), "model", m->formula + " (iteration as a factor)",
-                          report::anova_apa(*t), f_as_test(*t), true, m->fit.singular});
+                          report::anova_apa(*t), f_as_test(*t), true, m->fit.singular, 1});
       }
     }
     if (const report::MetricModel* m = find_model(trend, metric)) {
@@ -322,11 +341,55 @@ std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, co
                           fmt::format("Difference of the linear slopes of {} over the iterations, {} minus {} ({})",
                                       metric, fit.group_levels[k], fit.group_levels[0], name),
                           "model-trend", m->formula + " (iteration as a linear trend)", "", c.test, false,
-                          fit.singular});
+                          fit.singular, 2});
+      }
+    }
+    // Relabelling p-values (docs/findings.md, "Mixed models: relabelling p-values"): whole
+    // participants relabelled between the two conditions, both models refitted each time.
+    std::string why_not;
+    std::vector<std::optional<double>> relabelled(family.size());
+    std::string relabel_words;
+    const report::MetricModel* fm = find_model(model, metric);
+    const report::MetricModel* tm = find_model(trend, metric);
+    const models::MixedModelFit* any_fit = fm ? &fm->fit : tm ? &tm->fit : nullptr;
+    if (!scores) {
+      why_not = "the trials were not given to relabel";
+    } else if (any_fit && any_fit->group_levels.size() != 2) {
+      why_not = fmt::format("{} conditions (relabelling needs two)", any_fit->group_levels.size());
+    } else if (any_fit && !family.empty()) {
+      try {
+        models::RelabellingOptions ro;
+        ro.permutations = kModelPermutations;
+        const models::RelabelledConditionTests rt =
+            models::relabel_condition_tests(model_data(*scores, metric), any_fit->group_levels, ro);
+        // The relabelled statistics must be the models' own (else the data differ from the fits').
+        for (std::size_t i = 0; i < family.size() && why_not.empty(); ++i) {
+          const Member& mb = family[i];
+          const std::optional<double>& s =
+              mb.kind == 0 ? rt.interaction_f : mb.kind == 1 ? rt.condition_f : rt.slope_difference_t;
+          const std::optional<double>& pr =
+              mb.kind == 0 ? rt.p_interaction : mb.kind == 1 ? rt.p_condition : rt.p_slope_difference;
+          if (!mb.test.computed || !mb.test.statistic) continue;
+          if (!s || std::fabs(*s - *mb.test.statistic) > 1e-6 * std::max(1.0, std::fabs(*mb.test.statistic)))
+            why_not = fmt::format("the {} could not be reproduced from the trials", mb.kind == 2 ? "slope difference's t" : "F");
+          else
+            relabelled[i] = pr;
+        }
+        if (why_not.empty())
+          relabel_words = rt.exact ? fmt::format("all {} labellings of the participants", thousands(rt.labellings))
+                                   : fmt::format("{} labellings of the participants drawn at random",
+                                                 thousands(rt.labellings));
+      } catch (const InvalidData& e) {
+        why_not = e.what();
+      } catch (const UsageError& e) {
+        why_not = e.what();
       }
     }
     std::vector<std::optional<double>> p;
-    for (const auto& f : family) p.push_back(f.test.computed ? f.test.p_value : std::nullopt);
+    for (std::size_t i = 0; i < family.size(); ++i) {
+      const auto& f = family[i];
+      p.push_back(!f.test.computed ? std::nullopt : why_not.empty() ? relabelled[i] : f.test.p_value);
+    }
     const auto adj = stats::p_adjust(p, stats::PAdjustMethod::holm);
     for (std::size_t i = 0; i < family.size(); ++i) {
       Member& mb = family[i];
@@ -342,16 +405,30 @@ std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, co
         f.warnings.push_back(fmt::format(
             "The mixed model {} is a singular fit: a variance between participants is estimated at "
             "(or near) zero (lme4: isSingular), so its tests rest on the trials' residual variance "
-            "alone, as lmerTest's do; the model table says which component.",
-            mb.formula));
+            "alone, as lmerTest's do; the model table says which component.{}",
+            mb.formula,
+            why_not.empty() ? " The relabelling p-value does not rest on that estimate: each relabelling is "
+                              "refitted, boundary and all."
+                            : ""));
       if (f.strength == Strength::not_computable) {
         f.sentence = fmt::format("{} in the mixed model {}: not computable ({}).", mb.what, mb.formula,
                                  mb.test.note.empty() ? std::string("no test result") : mb.test.note);
         out.push_back(std::move(f));
         continue;
       }
-      const std::string holm = fmt::format("Holm-adjusted over the {} model tests of {}: {}", family.size(),
-                                           metric, p_text(*mb.test.p_adjusted));
+      if (!why_not.empty())
+        f.warnings.push_back(fmt::format(
+            "The model tests of {} are Holm-adjusted on the models' own p-values, not on relabelling "
+            "p-values ({}): where a participant's trials are correlated in time, the model's F can be "
+            "too liberal (docs/findings.md).",
+            metric, why_not));
+      const std::string holm =
+          why_not.empty()
+              ? fmt::format("relabelling p over {}: {}; Holm-adjusted over the {} model tests of {}: {}",
+                            relabel_words, p_text(*relabelled[i]).substr(4), family.size(), metric,
+                            p_text(*mb.test.p_adjusted))
+              : fmt::format("Holm-adjusted over the {} model tests of {}: {}", family.size(), metric,
+                            p_text(*mb.test.p_adjusted));
       const std::string no_bf = f.strength == Strength::evidence_for_difference
                                     ? "no Bayes factor is available for this test"
                                     : "no Bayes factor is available for this test, so a non-significant "

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 
@@ -119,6 +120,47 @@ double choose_capped(std::size_t n, std::size_t k, double cap) {
 
 }  // namespace
 
+Labellings for_each_labelling(std::size_t participants, std::span<const std::size_t> members,
+                              std::uint64_t permutations, std::uint64_t seed,
+                              const std::function<void(std::span<const std::size_t>)>& visit) {
+  const std::size_t P = participants, k = members.size();
+  if (permutations == 0) throw UsageError("for_each_labelling: permutations must be >= 1");
+  if (k == 0 || k >= P) throw UsageError("for_each_labelling: both groups need at least one participant");
+  Labellings out;
+  const double all = choose_capped(P, k, static_cast<double>(permutations) + 1);
+  if (all <= static_cast<double>(permutations) + 1) {
+    // Every labelling with k participants in group 1, in lexicographic order.
+    out.exact = true;
+    std::vector<std::size_t> g(k);
+    std::iota(g.begin(), g.end(), std::size_t{0});
+    for (;;) {
+      visit(g);
+      ++out.total;
+      std::size_t i = k;
+      while (i > 0 && g[i - 1] == P - k + (i - 1)) --i;
+      if (i == 0) break;
+      ++g[i - 1];
+      for (std::size_t r = i; r < k; ++r) g[r] = g[r - 1] + 1;
+    }
+    return out;
+  }
+  visit(members);  // the observed labelling counts once
+  out.total = 1;
+  std::vector<std::size_t> labels(P);
+  std::iota(labels.begin(), labels.end(), std::size_t{0});
+  Rng rng(seed);
+  for (std::uint64_t b = 0; b < permutations; ++b) {
+    // Fisher–Yates: the first k of a uniform permutation are a uniform k-subset.
+    for (std::size_t i = 0; i < k; ++i) {
+      const std::size_t j = i + rng.bounded(static_cast<std::uint32_t>(P - i));
+      std::swap(labels[i], labels[j]);
+    }
+    visit(std::span<const std::size_t>(labels.data(), k));
+    ++out.total;
+  }
+  return out;
+}
+
 MaxTResult maxt_step_down(std::span<const double> values, std::size_t columns, std::span<const int> group,
                           const MaxTOptions& options) {
   if (columns == 0) throw UsageError("maxt_step_down: no tests (0 columns)");
@@ -172,38 +214,9 @@ MaxTResult maxt_step_down(std::span<const double> values, std::size_t columns, s
     }
   };
 
-  const double all = choose_capped(P, k, static_cast<double>(options.permutations) + 1);
-  std::uint64_t total = 0;
-  if (all <= static_cast<double>(options.permutations) + 1) {
-    // Every labelling with k participants in group 1, in lexicographic order.
-    out.exact = true;
-    std::vector<std::size_t> g(k);
-    std::iota(g.begin(), g.end(), std::size_t{0});
-    for (;;) {
-      count(g);
-      ++total;
-      std::size_t i = k;
-      while (i > 0 && g[i - 1] == P - k + (i - 1)) --i;
-      if (i == 0) break;
-      ++g[i - 1];
-      for (std::size_t r = i; r < k; ++r) g[r] = g[r - 1] + 1;
-    }
-  } else {
-    count(members);  // the observed labelling counts once
-    total = 1;
-    std::vector<std::size_t> labels(P);
-    std::iota(labels.begin(), labels.end(), std::size_t{0});
-    Rng rng(options.seed);
-    for (std::uint64_t b = 0; b < options.permutations; ++b) {
-      // Fisher–Yates: the first k of a uniform permutation are a uniform k-subset.
-      for (std::size_t i = 0; i < k; ++i) {
-        const std::size_t j = i + rng.bounded(static_cast<std::uint32_t>(P - i));
-        std::swap(labels[i], labels[j]);
-      }
-      count(std::span<const std::size_t>(labels.data(), k));
-      ++total;
-    }
-  }
+  const Labellings l = for_each_labelling(P, members, options.permutations, options.seed, count);
+  out.exact = l.exact;
+  const std::uint64_t total = l.total;
   out.labellings = total;
   const double n = static_cast<double>(total);
   double running = 0;

@@ -16,6 +16,7 @@
 #include "feint/analysis/analyze.hpp"
 #include "feint/analysis/study_findings.hpp"
 #include "feint/models/exposure.hpp"
+#include "feint/models/model_relabelling.hpp"
 #include "feint/report/model_render.hpp"
 #include "feint/report/writers.hpp"
 #include "feint/stats/p_adjust.hpp"
@@ -60,7 +61,7 @@ const models::AnovaTerm& term(const report::MetricModel& m, const std::string& n
 std::string p_text(double p) {
   if (p < 0.001) return "p < .001";
   std::string s = fmt::format("{:.3f}", p);
-  return "p = " + s.substr(1);
+  return "p = " + (s.rfind("0.", 0) == 0 ? s.substr(1) : s);
 }
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
@@ -98,9 +99,27 @@ TEST(StudyFindings, DemoMixedModelFindingsCarryTheModelTablesNumbers) {
     const auto c = models::contrast(fit, L, 0.95);
     // Invariant: the trend model's 1-df interaction F is the square of the slope difference's t.
     EXPECT_NEAR(term(tm, "condition:iteration").f, *c.test.statistic * *c.test.statistic, 1e-8 * inter.f + 1e-10);
-    // Holm over the metric's three model tests, by hand.
-    const std::vector<std::optional<double>> ps = {inter.p, cond.p, *c.test.p_value};
+    // The relabelling p-values of the three tests (the models' trials, both conditions), then Holm
+    // over them, by hand.
+    models::LongData d;
+    const int k = r.scores.metric_index(metric);
+    for (const auto& rec : r.scores.records)
+      if (const auto& v = rec.values[static_cast<std::size_t>(k)]) {
+        d.participant.push_back(rec.participant);
+        d.group.push_back(rec.condition);
+        d.time.push_back(static_cast<double>(rec.iteration));
+        d.y.push_back(*v);
+      }
+    models::RelabellingOptions ro;
+    ro.permutations = analysis::kModelPermutations;
+    const auto rt = models::relabel_condition_tests(d, fit.group_levels, ro);
+    EXPECT_EQ(rt.labellings, 10000u);
+    EXPECT_NEAR(*rt.interaction_f, inter.f, 1e-6 * inter.f);
+    EXPECT_NEAR(*rt.condition_f, cond.f, 1e-6 * cond.f);
+    EXPECT_NEAR(*rt.slope_difference_t, *c.test.statistic, 1e-6);
+    const std::vector<std::optional<double>> ps = {rt.p_interaction, rt.p_condition, rt.p_slope_difference};
     const auto adj = stats::p_adjust(ps, stats::PAdjustMethod::holm);
+    const std::string over = "relabelling p over 10,000 labellings of the participants drawn at random: ";
 
     const Finding* fi = by_id(r.findings, "H1-model-interaction-" + metric);
     const Finding* fc = by_id(r.findings, "H1-model-condition-" + metric);
@@ -116,6 +135,9 @@ TEST(StudyFindings, DemoMixedModelFindingsCarryTheModelTablesNumbers) {
     EXPECT_TRUE(contains(fi->sentence, "Holm-adjusted over the 3 model tests of " + metric + ": " + p_text(*adj[0])))
         << fi->sentence;
     EXPECT_TRUE(contains(fc->sentence, p_text(*adj[1]))) << fc->sentence;
+    EXPECT_TRUE(contains(fi->sentence, over + p_text(*rt.p_interaction).substr(4))) << fi->sentence;
+    EXPECT_TRUE(contains(fc->sentence, over + p_text(*rt.p_condition).substr(4))) << fc->sentence;
+    EXPECT_TRUE(contains(ft->sentence, over + p_text(*rt.p_slope_difference).substr(4))) << ft->sentence;
     expect_rule(*fi, *adj[0]);
     expect_rule(*fc, *adj[1]);
     EXPECT_EQ(fi->source, "model");
@@ -267,7 +289,7 @@ TEST(StudyFindings, SimulatedPlantedSlopeDifferenceIsFoundAndTheNullIsNeverEquiv
   const int studies = 20;
   for (int s = 0; s < studies; ++s) {
     const auto null = simulated(100 + static_cast<unsigned>(s), 0.0, 0.0, 8);
-    for (const auto& f : analysis::mixed_model_findings(&*null.model, &*null.trend_model)) {
+    for (const auto& f : analysis::mixed_model_findings(&*null.model, &*null.trend_model, {}, &null.scores)) {
       EXPECT_NE(f.strength, Strength::evidence_for_no_difference) << f.sentence;
       EXPECT_NE(f.strength, Strength::not_computable) << f.sentence;
       if (f.id == "H1-model-interaction-error" && f.strength == Strength::evidence_for_difference) ++false_difference;
@@ -326,6 +348,27 @@ TEST(StudyFindings, OneConditionOnlyGivesNoModelFindingButSaysSo) {
   EXPECT_TRUE(analysis::mixed_model_findings(nullptr, nullptr).empty());
 }
 
+// Without the trials (or with more than two conditions) the family falls back to the models' own
+// p-values, and every finding of it says so.
+TEST(StudyFindings, ModelTestsWithoutTrialsToRelabelSayTheyUseTheModelsOwnP) {
+  const auto& r = demo();
+  const auto fs = analysis::mixed_model_findings(&*r.model, &*r.trend_model);
+  ASSERT_EQ(fs.size(), 6u);
+  const auto& inter = term(metric_model(*r.model, "error"), "condition:iteration");
+  const auto& cond = term(metric_model(*r.model, "error"), "condition");
+  const Finding* fc = by_id(fs, "H1-model-condition-error");
+  ASSERT_TRUE(fc);
+  EXPECT_FALSE(contains(fc->sentence, "relabelling p")) << fc->sentence;
+  ASSERT_FALSE(fc->warnings.empty());
+  EXPECT_TRUE(contains(fc->warnings.back(), "Holm-adjusted on the models' own p-values, not on relabelling p-values "
+                                            "(the trials were not given to relabel)"))
+      << fc->warnings.back();
+  // Holm on the model's p: the condition's p (.005) is the smallest of the three, times 3.
+  EXPECT_LT(cond.p, inter.p);
+  EXPECT_TRUE(contains(fc->sentence, "Holm-adjusted over the 3 model tests of error: " + p_text(3 * cond.p)))
+      << fc->sentence;
+}
+
 // A boundary fit is said in the findings of its model, and only there. On the demo the confusion
 // model is one (R, lme4, on `feint analyze data/demo`'s scores.csv: participant SD 0, isSingular
 // TRUE, condition F(1, 1160) = 1.8789, p = .1707), the error model is not (isSingular FALSE).
@@ -342,6 +385,7 @@ TEST(StudyFindings, ASingularModelFitIsSaidInItsFindings) {
     EXPECT_TRUE(contains(c->warnings[0], "is a singular fit: a variance between participants is estimated at (or "
                                          "near) zero"))
         << c->warnings[0];
+    EXPECT_TRUE(contains(c->warnings[0], "The relabelling p-value does not rest on that estimate")) << c->warnings[0];
     EXPECT_TRUE(e->warnings.empty()) << part;
   }
 }

@@ -14,6 +14,10 @@ namespace feint::analysis {
 /// the findings are the same on every run; Monte Carlo SE of an adjusted p of .05: 0.002).
 inline constexpr std::uint64_t kIterationPermutations = 9999;
 
+/// Relabellings of the participants for the mixed models' condition tests (each refits both
+/// random-intercept models; models::relabel_condition_tests).
+inline constexpr std::uint64_t kModelPermutations = 9999;
+
 /// H1: per metric, the family of per-iteration contrasts between the conditions (the comparison
 /// table), adjusted by Westfall–Young step-down maxT over the iterations (participants relabelled
 /// between the conditions, stats::maxt_step_down; Holm, with a warning that says why, where whole
@@ -31,14 +35,18 @@ std::vector<Finding> study_findings(const StudyResults& results,
 /// H1 from the mixed models, per metric: the condition x iteration interaction and the condition
 /// main effect of `model` (type-III F, Satterthwaite or Kenward-Roger df) and the difference of the
 /// conditions' linear slopes over the iterations in `trend` (the fixed effect
-/// condition<B>:iteration, second level minus the first, with its interval). The three tests of a
-/// metric are one family, Holm-corrected. Neither has a Bayes factor: "evidence for a difference"
+/// condition<B>:iteration, second level minus the first, with its interval). Each test's p-value
+/// is its relabelling p-value (whole participants relabelled between the two conditions and both
+/// models refitted, models::relabel_condition_tests, kModelPermutations) when `scores` holds the
+/// models' trials and there are two conditions; otherwise the model's own, with a warning that
+/// says why. The three tests of a metric are one family, Holm-corrected. Neither has a Bayes factor: "evidence for a difference"
 /// needs the corrected p below alpha (and, for the slope, its interval excluding 0); otherwise "no
 /// evidence either way", never "evidence for no difference". Sources: "model" and "model-trend".
 /// Either model may be null (left out of the study).
 std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model,
                                           const report::ModelAnalysis* trend,
-                                          const WordingRules& rules = {});
+                                          const WordingRules& rules = {},
+                                          const io::ScoresTable* scores = nullptr);
 
 /// The input of models::exposure_slopes_by_condition for one metric: each scored trial with a value
 /// of the metric, joined by (participant, iteration) to its label (strategy), with its exposure

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <vector>
@@ -48,6 +49,23 @@ struct MaxTResult {
   std::uint64_t labellings = 0;  ///< relabellings counted, the observed one included
   bool exact = false;            ///< every labelling enumerated
 };
+
+/// How a relabelling test visited the labellings.
+struct Labellings {
+  std::uint64_t total = 0;  ///< labellings visited, the observed one included
+  bool exact = false;       ///< every labelling enumerated
+};
+
+/// Visits the labellings of `participants` participants with |members| of them in group 1, as the
+/// relabelling tests count them: every labelling (lexicographic, the observed one among them) when
+/// there are at most `permutations + 1`; otherwise the observed labelling (`members`) first, then
+/// `permutations` uniform draws (Fisher–Yates on feint::Rng from `seed`, the same on every
+/// machine). `visit` gets the group-1 participants' indices. A test's p-value is then
+/// #{labellings at least as extreme as the observed} / total, never 0 (Phipson & Smyth 2010).
+/// Throws UsageError when a group would be empty or permutations == 0.
+Labellings for_each_labelling(std::size_t participants, std::span<const std::size_t> members,
+                              std::uint64_t permutations, std::uint64_t seed,
+                              const std::function<void(std::span<const std::size_t>)>& visit);
 
 /// The maxT adjustment of `columns` two-sample t tests. `values` is participant-major
 /// (values[i * columns + j]: participant i, test j; NaN = missing, left out of that test only);

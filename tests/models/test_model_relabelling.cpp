@@ -1,0 +1,279 @@
+// Relabelling p-values of the random-intercept models' condition tests
+// (models::relabel_condition_tests): the observed statistics are the fits' own, the p-values equal
+// a brute-force refit of every labelling with fit_mixed_model, and on a null whose trials are
+// correlated in time (where the model's F is too liberal) they hold their level.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "feint/error.hpp"
+#include "feint/models/mixed_model.hpp"
+#include "feint/models/model_relabelling.hpp"
+#include "mixed_model_normal.hpp"
+
+namespace {
+
+using feint::models::LongData;
+using feint::models::ModelSpec;
+using feint::models::relabel_condition_tests;
+using feint::models::RelabellingOptions;
+using feint::models::TimeScale;
+using feint::test::Normal;
+
+struct Design {
+  int per_group = 6, iterations = 5;
+  double participant_sd = 0.3, noise_sd = 0.5;
+  double ar = 0.0;              // AR(1) correlation of a participant's successive trials
+  double planted_slope = 0.0;   // extra slope per iteration in condition "b"
+  double planted_shift = 0.0;   // extra level in condition "b"
+  double missing = 0.0;         // share of trials left out
+};
+
+LongData simulate(const Design& s, std::uint64_t seed) {
+  Normal rnorm{seed};
+  LongData d;
+  for (int g = 0; g < 2; ++g) {
+    for (int k = 0; k < s.per_group; ++k) {
+      const double u = s.participant_sd * rnorm();
+      double e = s.noise_sd * rnorm();
+      for (int j = 1; j <= s.iterations; ++j) {
+        if (j > 1) e = s.ar * e + std::sqrt(1 - s.ar * s.ar) * s.noise_sd * rnorm();
+        if (s.missing > 0 && rnorm.uniform() < s.missing) continue;
+        d.participant.push_back((g ? "B" : "A") + std::to_string(k));
+        d.group.push_back(g ? "b" : "a");
+        d.time.push_back(j);
+        d.y.push_back(2.0 + 0.1 * j + u + e + g * (s.planted_shift + s.planted_slope * j));
+      }
+    }
+  }
+  return d;
+}
+
+struct FitStatistics {
+  double interaction_f, condition_f, slope_t;
+  double p_interaction, p_condition, p_slope;
+};
+
+FitStatistics fitted(const LongData& d) {
+  ModelSpec spec;
+  spec.response = "y";
+  spec.time_scale = TimeScale::factor;
+  spec.group_levels = {"a", "b"};
+  const auto factor = feint::models::fit_mixed_model(d, spec, true);
+  FitStatistics s{};
+  for (const auto& t : factor.anova) {
+    if (t.term == "condition:iteration") {
+      s.interaction_f = t.f;
+      s.p_interaction = t.p;
+    }
+    if (t.term == "condition") {
+      s.condition_f = t.f;
+      s.p_condition = t.p;
+    }
+  }
+  spec.time_scale = TimeScale::linear;
+  const auto trend = feint::models::fit_mixed_model(d, spec, true);
+  const auto it = std::find(trend.coef_names.begin(), trend.coef_names.end(), "conditionb:iteration");
+  EXPECT_NE(it, trend.coef_names.end());
+  Eigen::VectorXd L = Eigen::VectorXd::Zero(trend.beta.size());
+  L(it - trend.coef_names.begin()) = 1;
+  const auto c = feint::models::contrast(trend, L);
+  s.slope_t = *c.test.statistic;
+  s.p_slope = *c.test.p_value;
+  return s;
+}
+
+void expect_same_statistics(const LongData& d, const char* what) {
+  SCOPED_TRACE(what);
+  const FitStatistics f = fitted(d);
+  RelabellingOptions o;
+  o.permutations = 1;  // the observed statistics only
+  const auto r = relabel_condition_tests(d, {"a", "b"}, o);
+  ASSERT_TRUE(r.interaction_f && r.condition_f && r.slope_difference_t);
+  EXPECT_NEAR(*r.interaction_f, f.interaction_f, 1e-6 * std::max(1.0, f.interaction_f));
+  EXPECT_NEAR(*r.condition_f, f.condition_f, 1e-6 * std::max(1.0, f.condition_f));
+  EXPECT_NEAR(*r.slope_difference_t, f.slope_t, 1e-6 * std::max(1.0, std::fabs(f.slope_t)));
+}
+
+TEST(ModelRelabelling, ObservedStatisticsAreTheFitsOwnFAndT) {
+  expect_same_statistics(simulate({}, 1), "balanced, complete");
+  expect_same_statistics(simulate({.per_group = 10, .iterations = 20, .ar = 0.6}, 2), "2 x 10 x 20, AR(1)");
+  expect_same_statistics(simulate({.per_group = 8, .iterations = 6, .missing = 0.15}, 3), "15% of trials missing");
+  expect_same_statistics(simulate({.per_group = 8, .iterations = 4, .participant_sd = 0.0}, 4),
+                         "no participant variance (a singular fit)");
+  expect_same_statistics(simulate({.per_group = 7, .iterations = 5, .planted_slope = 0.3}, 5), "planted slope");
+  auto unequal = simulate({.per_group = 9, .iterations = 4}, 6);
+  // Drop 3 participants of condition b: 9 against 6.
+  LongData d;
+  for (std::size_t r = 0; r < unequal.y.size(); ++r) {
+    if (unequal.participant[r] == "B0" || unequal.participant[r] == "B4" || unequal.participant[r] == "B7") continue;
+    d.participant.push_back(unequal.participant[r]);
+    d.group.push_back(unequal.group[r]);
+    d.time.push_back(unequal.time[r]);
+    d.y.push_back(unequal.y[r]);
+  }
+  expect_same_statistics(d, "9 against 6 participants");
+}
+
+// Every labelling of 3 + 3 participants (20), each refitted by fit_mixed_model: the p-values are
+// the shares of labellings whose statistic reaches the observed one.
+TEST(ModelRelabelling, PValuesEqualABruteForceRefitOfEveryLabelling) {
+  for (const std::uint64_t seed : {11u, 12u, 13u}) {
+    const LongData d = simulate({.per_group = 3, .iterations = 4, .missing = seed == 13 ? 0.1 : 0.0}, seed);
+    std::vector<std::string> people;
+    for (const auto& p : d.participant)
+      if (std::find(people.begin(), people.end(), p) == people.end()) people.push_back(p);
+    ASSERT_EQ(people.size(), 6u);
+    const FitStatistics obs = fitted(d);
+    int reach_int = 0, reach_cond = 0, reach_slope = 0, total = 0;
+    std::vector<int> pick = {0, 0, 0, 1, 1, 1};
+    do {
+      LongData e = d;
+      for (std::size_t r = 0; r < e.y.size(); ++r) {
+        const auto i = std::find(people.begin(), people.end(), e.participant[r]) - people.begin();
+        e.group[r] = pick[static_cast<std::size_t>(i)] ? "b" : "a";
+      }
+      const FitStatistics s = fitted(e);
+      reach_int += s.interaction_f >= obs.interaction_f * (1 - 1e-9);
+      reach_cond += s.condition_f >= obs.condition_f * (1 - 1e-9);
+      reach_slope += std::fabs(s.slope_t) >= std::fabs(obs.slope_t) * (1 - 1e-9);
+      ++total;
+    } while (std::next_permutation(pick.begin(), pick.end()));
+    ASSERT_EQ(total, 20);
+    const auto r = relabel_condition_tests(d, {"a", "b"});
+    SCOPED_TRACE(seed);
+    EXPECT_TRUE(r.exact);
+    EXPECT_EQ(r.labellings, 20u);
+    EXPECT_EQ(r.not_computable, 0u);
+    EXPECT_DOUBLE_EQ(*r.p_interaction, reach_int / 20.0);
+    EXPECT_DOUBLE_EQ(*r.p_condition, reach_cond / 20.0);
+    EXPECT_DOUBLE_EQ(*r.p_slope_difference, reach_slope / 20.0);
+    // Every labelling and its mirror image give the same F and |t|: p is a multiple of 2/20.
+    EXPECT_EQ(reach_cond % 2, 0);
+  }
+}
+
+TEST(ModelRelabelling, SampledRelabellingsAgreeWithEnumerationAndRepeatWithTheirSeed) {
+  const LongData d = simulate({.per_group = 6, .iterations = 5, .ar = 0.5}, 21);  // C(12, 6) = 924
+  const auto exact = relabel_condition_tests(d, {"a", "b"});
+  ASSERT_TRUE(exact.exact);
+  EXPECT_EQ(exact.labellings, 924u);
+  RelabellingOptions o;
+  o.permutations = 599;
+  const auto sampled = relabel_condition_tests(d, {"a", "b"}, o);
+  EXPECT_FALSE(sampled.exact);
+  EXPECT_EQ(sampled.labellings, 600u);
+  auto within = [](double p, double q) {
+    EXPECT_NEAR(p, q, 4 * std::sqrt(q * (1 - q) / 600) + 1.0 / 600);
+  };
+  within(*sampled.p_interaction, *exact.p_interaction);
+  within(*sampled.p_condition, *exact.p_condition);
+  within(*sampled.p_slope_difference, *exact.p_slope_difference);
+  const auto again = relabel_condition_tests(d, {"a", "b"}, o);
+  EXPECT_EQ(*again.p_interaction, *sampled.p_interaction);
+  EXPECT_EQ(*again.p_slope_difference, *sampled.p_slope_difference);
+  o.seed = 7;
+  const auto other = relabel_condition_tests(d, {"a", "b"}, o);
+  within(*other.p_condition, *exact.p_condition);
+}
+
+// A null whose trials are AR(1)-correlated within each participant (rho = 0.8) over 10 iterations:
+// the model's interaction F (compound symmetry) rejects far too often; the relabelling p-values
+// stay at the level. 300 studies of 2 x 8 participants: the bound for a test at 5% is 25 of 300
+// (binomial 99.5% quantile); the model F's rate is checked to exceed it (the point of the
+// exercise).
+TEST(ModelRelabelling, HoldsItsLevelOnANullWithCorrelatedTrialsWhereTheModelFDoesNot) {
+  int model_int = 0, relab_int = 0, relab_cond = 0, relab_slope = 0;
+  RelabellingOptions o;
+  o.permutations = 199;
+  const int studies = 300;
+  for (int s = 0; s < studies; ++s) {
+    const LongData d = simulate({.per_group = 8, .iterations = 10, .participant_sd = 0.2, .ar = 0.8}, 1000 + s);
+    o.seed = 500 + static_cast<std::uint64_t>(s);
+    const auto r = relabel_condition_tests(d, {"a", "b"}, o);
+    const FitStatistics f = fitted(d);
+    model_int += f.p_interaction < 0.05;
+    relab_int += *r.p_interaction < 0.05;
+    relab_cond += *r.p_condition < 0.05;
+    relab_slope += *r.p_slope_difference < 0.05;
+  }
+  EXPECT_GT(model_int, 25) << "the model F was expected to be liberal here";
+  std::printf("null, AR(1) 0.8: p < .05 in %d (model F), %d / %d / %d (relabelled) of %d\n", model_int, relab_int,
+              relab_cond, relab_slope, studies);
+  EXPECT_LE(relab_int, 25);
+  EXPECT_LE(relab_cond, 25);
+  EXPECT_LE(relab_slope, 25);
+  EXPECT_GE(relab_int + relab_cond + relab_slope, 3) << "a test that never rejects is not at its level";
+}
+
+TEST(ModelRelabelling, FindsAPlantedDifference) {
+  RelabellingOptions o;
+  o.permutations = 499;
+  int slope = 0, shift = 0;
+  for (int s = 0; s < 20; ++s) {
+    const auto a = relabel_condition_tests(simulate({.per_group = 10, .iterations = 8, .planted_slope = 0.25}, 300 + s),
+                                           {"a", "b"}, o);
+    slope += *a.p_slope_difference < 0.05 && *a.p_interaction < 0.05;
+    const auto b = relabel_condition_tests(
+        simulate({.per_group = 10, .iterations = 8, .participant_sd = 0.2, .planted_shift = 1.0}, 400 + s), {"a", "b"}, o);
+    shift += *b.p_condition < 0.05;
+  }
+  EXPECT_GE(slope, 18);
+  EXPECT_GE(shift, 18);
+}
+
+TEST(ModelRelabelling, RejectsWhatItCannotRelabel) {
+  LongData d = simulate({.per_group = 3, .iterations = 3}, 31);
+  EXPECT_THROW(relabel_condition_tests(d, {"a"}), feint::UsageError);
+  EXPECT_THROW(relabel_condition_tests(d, {"a", "b", "c"}), feint::UsageError);
+  RelabellingOptions zero;
+  zero.permutations = 0;
+  EXPECT_THROW(relabel_condition_tests(d, {"a", "b"}, zero), feint::UsageError);
+  EXPECT_THROW(relabel_condition_tests(d, {"a", "x"}), feint::InvalidData);  // 'b' is neither
+  LongData both = d;
+  both.group[0] = "b";  // A0's first trial in the other condition
+  try {
+    relabel_condition_tests(both, {"a", "b"});
+    FAIL() << "a participant in both conditions was relabelled";
+  } catch (const feint::InvalidData& e) {
+    EXPECT_NE(std::string(e.what()).find("participant A0 has trials in both conditions"), std::string::npos) << e.what();
+  }
+  LongData short_y = d;
+  short_y.y.pop_back();
+  EXPECT_THROW(relabel_condition_tests(short_y, {"a", "b"}), feint::UsageError);
+  LongData one_side;
+  for (std::size_t r = 0; r < d.y.size(); ++r)
+    if (d.group[r] == "a") {
+      one_side.participant.push_back(d.participant[r]);
+      one_side.group.push_back("a");
+      one_side.time.push_back(d.time[r]);
+      one_side.y.push_back(d.y[r]);
+    }
+  EXPECT_THROW(relabel_condition_tests(one_side, {"a", "b"}), feint::UsageError);
+}
+
+// A relabelling that empties a condition x iteration cell (only one participant has iteration 4)
+// cannot give the factor model's F: it counts as reaching the observed value.
+TEST(ModelRelabelling, ARelabellingThatEmptiesACellCountsAsReaching) {
+  LongData d = simulate({.per_group = 3, .iterations = 3}, 41);
+  // Iteration 4 for A0 and B0 only: a labelling with both in one condition empties a cell.
+  for (const char* p : {"A0", "B0"}) {
+    d.participant.push_back(p);
+    d.group.push_back(p[0] == 'A' ? "a" : "b");
+    d.time.push_back(4);
+    d.y.push_back(2.5);
+  }
+  const auto r = relabel_condition_tests(d, {"a", "b"});
+  ASSERT_TRUE(r.exact);
+  // Labellings with A0 and B0 on the same side: 2 * C(4, 1) = 8 of 20.
+  EXPECT_EQ(r.not_computable, 8u);
+  EXPECT_GE(*r.p_interaction, 8.0 / 20);
+  EXPECT_GE(*r.p_condition, 8.0 / 20);
+}
+
+}  // namespace
