@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "feint/error.hpp"
 #include "feint/models/mixed_model.hpp"
 #include "feint/models/model_relabelling.hpp"
+#include "golden_csv.hpp"
 #include "mixed_model_normal.hpp"
 
 namespace {
@@ -156,6 +158,38 @@ TEST(ModelRelabelling, PValuesEqualABruteForceRefitOfEveryLabelling) {
     // Every labelling and its mirror image give the same F and |t|: p is a multiple of 2/20.
     EXPECT_EQ(reach_cond % 2, 0);
   }
+}
+
+// The worked example of docs/findings.md: 3 + 3 participants x 4 iterations, every labelling
+// refitted by lme4/lmerTest in tests/golden/models/relabel_golden.R.
+TEST(ModelRelabelling, WorkedExampleEqualsLmerTestRefitOverEveryLabelling) {
+  const std::vector<double> y = {0.52, 0.61, 0.58, 0.70, 0.45, 0.49, 0.60, 0.66, 0.58, 0.63, 0.71, 0.69,
+                                 0.50, 0.47, 0.52, 0.49, 0.41, 0.48, 0.44, 0.50, 0.55, 0.51, 0.58, 0.54};
+  const std::vector<std::string> people = {"A1", "A2", "A3", "R1", "R2", "R3"};
+  LongData d;
+  for (std::size_t r = 0; r < y.size(); ++r) {
+    d.participant.push_back(people[r / 4]);
+    d.group.push_back(r < 12 ? "adaptive" : "random");
+    d.time.push_back(static_cast<double>(r % 4 + 1));
+    d.y.push_back(y[r]);
+  }
+  std::map<std::string, double> golden;
+  for (const auto& row : feint::test::read_csv(feint::test::kModelGoldenDir + "relabel_golden.csv"))
+    if (row.size() == 2 && row[0] != "quantity") golden[row[0]] = std::stod(row[1]);
+  ASSERT_EQ(golden.size(), 9u);
+  const auto r = relabel_condition_tests(d, {"adaptive", "random"});
+  EXPECT_TRUE(r.exact);
+  EXPECT_EQ(r.labellings, 20u);
+  EXPECT_NEAR(*r.interaction_f, golden["interaction_f"], 1e-6 * golden["interaction_f"]);
+  EXPECT_NEAR(*r.condition_f, golden["condition_f"], 1e-6 * golden["condition_f"]);
+  EXPECT_NEAR(*r.slope_difference_t, golden["slope_t"], 1e-6 * std::fabs(golden["slope_t"]));
+  EXPECT_DOUBLE_EQ(*r.p_interaction, golden["p_interaction"]);
+  EXPECT_DOUBLE_EQ(*r.p_condition, golden["p_condition"]);
+  EXPECT_DOUBLE_EQ(*r.p_slope_difference, golden["p_slope_difference"]);
+  // The point of the example: the model's t (20 residual df) says p = .0014, but 3 + 3
+  // participants allow no p below 2/20: a labelling and its mirror give the same |t|.
+  EXPECT_LT(golden["slope_p_model"], 0.002);
+  EXPECT_DOUBLE_EQ(*r.p_slope_difference, 0.1);
 }
 
 TEST(ModelRelabelling, SampledRelabellingsAgreeWithEnumerationAndRepeatWithTheirSeed) {
