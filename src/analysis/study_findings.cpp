@@ -424,8 +424,8 @@ std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, co
             metric, why_not));
       const std::string holm =
           why_not.empty()
-              ? fmt::format("relabelling p over {}: {}; Holm-adjusted over the {} model tests of {}: {}",
-                            relabel_words, p_text(*relabelled[i]).substr(4), family.size(), metric,
+              ? fmt::format("relabelling {} over {}; Holm-adjusted over the {} model tests of {}: {}",
+                            p_text(*relabelled[i]), relabel_words, family.size(), metric,
                             p_text(*mb.test.p_adjusted))
               : fmt::format("Holm-adjusted over the {} model tests of {}: {}", family.size(), metric,
                             p_text(*mb.test.p_adjusted));
