@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <boost/asio/executor_work_guard.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/signal_set.hpp>
 #include <boost/asio/steady_timer.hpp>
@@ -16,6 +17,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <memory>
 #include <optional>
 #include <random>
 #include <thread>
@@ -188,25 +190,48 @@ bool is_loopback(const net::ip::address& a) {
 
 struct Server::Impl {
   Shared sh;
-  net::io_context ioc;
+  // One io_context per connection thread, each run by its thread alone: a connection's reads,
+  // handlers and writes stay on one thread, with no hand-offs between threads through a shared
+  // scheduler (each one a futex wake: on a VM, an interrupt). iocs[0] also holds the acceptor.
+  std::vector<std::unique_ptr<net::io_context>> iocs;
+  std::vector<net::executor_work_guard<net::io_context::executor_type>> guards;
+  std::size_t next = 0;  // the io_context of the next connection (round robin)
   tcp::acceptor acceptor;
   net::steady_timer backoff;
-  bool warned_cap = false;   // the conditions are logged once per episode
+  // The conditions are logged once per episode: an episode ends when connections are accepted
+  // normally again (below 90 % of the cap) a minute or more after it was logged, so that draining
+  // a queue of waiting connections around the cap does not log it again.
+  bool warned_cap = false;
   bool warned_fds = false;
+  std::chrono::steady_clock::time_point noted_cap{}, noted_fds{};
   std::chrono::milliseconds delay{10};
   ~Impl() {
-    // Answers still to come (saves waiting for their sync) post to ioc: wait for them first.
+    // Answers still to come (saves waiting for their sync) post to iocs: wait for them first.
     while (sh.pending.load() > 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   Impl(Study& s, ServerOptions o)
       : sh(s, std::move(o)),
-        ioc(static_cast<int>(std::max(1u, sh.opt.threads))),
-        acceptor(net::make_strand(ioc)),
-        backoff(acceptor.get_executor()) {}
+        iocs(make_iocs(std::max(1u, sh.opt.threads))),
+        acceptor(*iocs[0]),
+        backoff(*iocs[0]) {
+    for (auto& c : iocs) guards.push_back(net::make_work_guard(*c));
+  }
 
-  void note(bool& warned, const std::string& event, const std::string& text) {
+  static std::vector<std::unique_ptr<net::io_context>> make_iocs(unsigned n) {
+    std::vector<std::unique_ptr<net::io_context>> v;
+    for (unsigned i = 0; i < n; ++i) v.push_back(std::make_unique<net::io_context>(1));
+    return v;
+  }
+
+  void stop_all() {
+    for (auto& c : iocs) c->stop();
+  }
+
+  void note(bool& warned, std::chrono::steady_clock::time_point& when, const std::string& event,
+            const std::string& text) {
     if (warned) return;
     warned = true;
+    when = std::chrono::steady_clock::now();
     std::fprintf(stderr, "feint collect: %s\n", text.c_str());
     try {
       sh.study.record_event("", event, text);
@@ -225,19 +250,22 @@ struct Server::Impl {
     if (sh.connections.load() >= sh.max_connections) {
       // At the cap: leave new connections in the listen queue (no descriptor is spent on them)
       // and look again shortly; the open connections are served meanwhile.
-      note(warned_cap, "connections_capped",
+      note(warned_cap, noted_cap, "connections_capped",
            fmt::format("{} simultaneous connections (the cap): new connections wait until one "
                        "closes; idle ones close after {} s",
                        sh.max_connections, sh.opt.idle_timeout.count()));
       delay = std::chrono::milliseconds(50);
       return wait_then_accept();
     }
-    acceptor.async_accept(net::make_strand(ioc), [this](beast::error_code ec, tcp::socket socket) {
+    net::io_context& home = *iocs[next++ % iocs.size()];
+    acceptor.async_accept(home, [this](beast::error_code ec, tcp::socket socket) {
       if (!ec) {
         ++sh.connections;
         std::make_shared<Session>(std::move(socket), sh)->run();
-        if (sh.connections.load() < sh.max_connections * 9 / 10) warned_cap = false;
-        warned_fds = false;
+        const auto now = std::chrono::steady_clock::now();
+        if (sh.connections.load() < sh.max_connections * 9 / 10 && now - noted_cap >= std::chrono::minutes(1))
+          warned_cap = false;
+        if (now - noted_fds >= std::chrono::minutes(1)) warned_fds = false;
         delay = std::chrono::milliseconds(10);
         if (acceptor.is_open()) accept();
         return;
@@ -247,7 +275,7 @@ struct Server::Impl {
           ec == net::error::no_buffer_space) {
         // Out of descriptors (more than the cap allowed for, or the whole system): back off
         // instead of retrying at once (which would spin on the same error), up to 1 s.
-        note(warned_fds, "descriptors_exhausted",
+        note(warned_fds, noted_fds, "descriptors_exhausted",
              fmt::format("cannot accept a connection: {}; retrying with back-off", ec.message()));
         delay = std::min(std::chrono::milliseconds(1000), delay * 2);
       }
@@ -321,16 +349,16 @@ void Server::run() {
   impl_->accept();
   std::optional<net::signal_set> signals;
   if (impl_->sh.opt.stop_on_signals) {
-    signals.emplace(impl_->ioc, SIGINT, SIGTERM);
-    signals->async_wait([this](beast::error_code, int) { impl_->ioc.stop(); });
+    signals.emplace(*impl_->iocs[0], SIGINT, SIGTERM);
+    signals->async_wait([this](beast::error_code, int) { impl_->stop_all(); });
   }
   std::vector<std::thread> pool;
-  for (unsigned i = 1; i < std::max(1u, impl_->sh.opt.threads); ++i)
-    pool.emplace_back([this] { impl_->ioc.run(); });
-  impl_->ioc.run();
+  for (std::size_t i = 1; i < impl_->iocs.size(); ++i)
+    pool.emplace_back([this, i] { impl_->iocs[i]->run(); });
+  impl_->iocs[0]->run();
   for (auto& t : pool) t.join();
 }
 
-void Server::stop() { impl_->ioc.stop(); }
+void Server::stop() { impl_->stop_all(); }
 
 }  // namespace feint::collect
