@@ -40,6 +40,17 @@ std::vector<Observation> paper_observations() {
   return obs;
 }
 
+LongData paper_long_data() {
+  LongData d;
+  for (const auto& o : paper_observations()) {
+    d.participant.push_back(o.participant);
+    d.group.push_back(o.condition);
+    d.time.push_back(static_cast<double>(o.iteration));
+    d.y.push_back(*o.value);
+  }
+  return d;
+}
+
 void BM_MixedAnovaPaperDesign(benchmark::State& state) {
   const auto obs = paper_observations();
   for (auto _ : state) {
@@ -52,13 +63,7 @@ BENCHMARK(BM_MixedAnovaPaperDesign)->Unit(benchmark::kMicrosecond);
 // fit_mixed_model alone (no CSV, no rendering): iteration as a factor (random intercept), or a
 // linear trend with a random slope (the slowest: Nelder-Mead over three parameters).
 void BM_MixedModelPaperDesign(benchmark::State& state) {
-  LongData d;
-  for (const auto& o : paper_observations()) {
-    d.participant.push_back(o.participant);
-    d.group.push_back(o.condition);
-    d.time.push_back(static_cast<double>(o.iteration));
-    d.y.push_back(*o.value);
-  }
+  const LongData d = paper_long_data();
   ModelSpec spec;
   if (state.range(0) == 1) {
     spec.time_scale = TimeScale::linear;
@@ -72,13 +77,7 @@ BENCHMARK(BM_MixedModelPaperDesign)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecon
 // under each of `range(0)` relabellings of the paper's design (plus the observed labelling);
 // items per second = refits of both models.
 void BM_ModelRelabellingPaperDesign(benchmark::State& state) {
-  LongData d;
-  for (const auto& o : paper_observations()) {
-    d.participant.push_back(o.participant);
-    d.group.push_back(o.condition);
-    d.time.push_back(static_cast<double>(o.iteration));
-    d.y.push_back(*o.value);
-  }
+  const LongData d = paper_long_data();
   RelabellingOptions options;
   options.permutations = static_cast<std::uint64_t>(state.range(0));
   for (auto _ : state) benchmark::DoNotOptimize(relabel_condition_tests(d, {"adaptive", "random"}, options));

@@ -48,6 +48,18 @@ void label_free(const Data& d, double t2, double& logdet_v, double& yvy) {
   for (std::size_t i = 0; i < d.people.size(); ++i) yvy -= weight(d.people[i].n, t2) * d.sy2_by_person[i];
 }
 
+/// The end of -2 REML (sigma profiled out) for residual df `df`, residual sum of squares `q` and
+/// the log-determinants; sets sigma^2 = q / df in `out`. Infinite when the data leave no residual.
+template <class Fit>
+double reml_tail(double df, double q, double logdets, Fit* out) {
+  if (!(q > 0) || !(df > 0)) return kInf;
+  if (out) {
+    out->sigma2 = q / df;
+    out->ok = true;
+  }
+  return logdets + df * std::log(q);
+}
+
 /// theta-free sums of one condition under a labelling, for the factor model.
 struct FactorGroup {
   Eigen::VectorXd count, sum;  // over the condition's participants
@@ -121,13 +133,7 @@ class FactorModel {
         out->minv[k] = llt.solve(Eigen::MatrixXd::Identity(m, m));
       }
     }
-    const double df = d_.N - 2.0 * static_cast<double>(d_.levels);
-    if (!(q > 0) || !(df > 0)) return kInf;
-    if (out) {
-      out->sigma2 = q / df;
-      out->ok = true;
-    }
-    return logdet_v + logdet_m + df * std::log(q);
+    return reml_tail(d_.N - 2.0 * static_cast<double>(d_.levels), q, logdet_v + logdet_m, out);
   }
 
  private:
@@ -178,13 +184,7 @@ class TrendModel {
         out->minv[k] = inv;
       }
     }
-    const double df = d_.N - 4.0;
-    if (!(q > 0) || !(df > 0)) return kInf;
-    if (out) {
-      out->sigma2 = q / df;
-      out->ok = true;
-    }
-    return logdet_v + logdet_m + df * std::log(q);
+    return reml_tail(d_.N - 4.0, q, logdet_v + logdet_m, out);
   }
 
  private:
