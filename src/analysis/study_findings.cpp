@@ -127,22 +127,6 @@ std::string maxt_over_iterations(const StudyResults& r, const std::string& metri
                                "participants drawn at random", iterations.size(), thousands(m.labellings));
 }
 
-/// The mixed models' data of `metric` as build_model_analysis takes it: every trial with a value.
-models::LongData model_data(const io::ScoresTable& scores, const std::string& metric) {
-  models::LongData d;
-  const int k = scores.metric_index(metric);
-  if (k < 0) return d;
-  for (const auto& r : scores.records) {
-    const auto& v = r.values[static_cast<std::size_t>(k)];
-    if (!v) continue;
-    d.participant.push_back(r.participant);
-    d.group.push_back(r.condition);
-    d.time.push_back(static_cast<double>(r.iteration));
-    d.y.push_back(*v);
-  }
-  return d;
-}
-
 }  // namespace
 
 std::vector<Finding> study_findings(const StudyResults& r, const std::vector<report::MetricSpec>& metrics,
@@ -222,7 +206,7 @@ std::vector<Finding> study_findings(const StudyResults& r, const std::vector<rep
   };
   // H1 from the mixed models (condition x iteration, the linear trend).
   for (auto& f : mixed_model_findings(r.model ? &*r.model : nullptr,
-                                      r.trend_model ? &*r.trend_model : nullptr, rules, &r.scores))
+                                      r.trend_model ? &*r.trend_model : nullptr, rules))
     out.push_back(std::move(f));
   // H1, condition x exposure per strategy: needs each trial's strategy (the labels).
   if (!r.figures.labels.empty()) {
@@ -287,7 +271,7 @@ report::ExposureTable exposure_table(const io::ScoresTable& scores, const std::v
 }
 
 std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, const report::ModelAnalysis* trend,
-                                          const WordingRules& rules, const io::ScoresTable* scores) {
+                                          const WordingRules& rules) {
   std::vector<Finding> out;
   std::vector<std::string> metrics;
   if (model)
@@ -308,7 +292,7 @@ std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, co
       stats::TestResult test;
       bool is_f = false;
       bool singular = false;  // the model's fit is on the boundary (lme4: isSingular)
-      int kind = 0;           // 0 interaction F, 1 condition F, 2 slope difference
+      enum class Kind { interaction, condition, slope } kind = Kind::interaction;
     };
     std::vector<Member> family;
     if (const report::MetricModel* m = find_model(model, metric)) {
@@ -318,13 +302,13 @@ std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, co
         family.push_back({"H1-model-interaction-" + metric,
                           fmt::format("Does the course of {} over the iterations differ between the conditions?", metric),
                           fmt::format("Condition \u00d7 iteration interaction of {}", metric), "model", m->formula + " (iteration as a factor)",
-                          report::anova_apa(*t), f_as_test(*t), true, m->fit.singular, 0});
+                          report::anova_apa(*t), f_as_test(*t), true, m->fit.singular, Member::Kind::interaction});
       }
       if (const auto* t = find_term(m->fit, spec.group)) {
         family.push_back({"H1-model-condition-" + metric,
                           fmt::format("Does {} differ between the conditions, over all iterations?", metric),
                           fmt::format("Main effect of condition on {}", metric), "model", m->formula + " (iteration as a factor)",
-                          report::anova_apa(*t), f_as_test(*t), true, m->fit.singular, 1});
+                          report::anova_apa(*t), f_as_test(*t), true, m->fit.singular, Member::Kind::condition});
       }
     }
     if (const report::MetricModel* m = find_model(trend, metric)) {
@@ -341,7 +325,7 @@ std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, co
                           fmt::format("Difference of the linear slopes of {} over the iterations, {} minus {} ({})",
                                       metric, fit.group_levels[k], fit.group_levels[0], name),
                           "model-trend", m->formula + " (iteration as a linear trend)", "", c.test, false,
-                          fit.singular, 2});
+                          fit.singular, Member::Kind::slope});
       }
     }
     // Relabelling p-values (docs/findings.md, "Mixed models: relabelling p-values"): whole
@@ -351,27 +335,30 @@ std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, co
     std::string relabel_words;
     const report::MetricModel* fm = find_model(model, metric);
     const report::MetricModel* tm = find_model(trend, metric);
-    const models::MixedModelFit* any_fit = fm ? &fm->fit : tm ? &tm->fit : nullptr;
-    if (!scores) {
+    const report::MetricModel* any = fm ? fm : tm;
+    if (!any || any->data.y.empty()) {
       why_not = "the trials were not given to relabel";
-    } else if (any_fit && any_fit->group_levels.size() != 2) {
-      why_not = fmt::format("{} conditions (relabelling needs two)", any_fit->group_levels.size());
-    } else if (any_fit && !family.empty()) {
+    } else if (any->fit.group_levels.size() != 2) {
+      why_not = fmt::format("{} conditions (relabelling needs two)", any->fit.group_levels.size());
+    } else if (!family.empty()) {
       try {
         models::RelabellingOptions ro;
         ro.permutations = kModelPermutations;
         const models::RelabelledConditionTests rt =
-            models::relabel_condition_tests(model_data(*scores, metric), any_fit->group_levels, ro);
+            models::relabel_condition_tests(any->data, any->fit.group_levels, ro);
         // The relabelled statistics must be the models' own (else the data differ from the fits').
         for (std::size_t i = 0; i < family.size() && why_not.empty(); ++i) {
           const Member& mb = family[i];
-          const std::optional<double>& s =
-              mb.kind == 0 ? rt.interaction_f : mb.kind == 1 ? rt.condition_f : rt.slope_difference_t;
-          const std::optional<double>& pr =
-              mb.kind == 0 ? rt.p_interaction : mb.kind == 1 ? rt.p_condition : rt.p_slope_difference;
+          using K = Member::Kind;
+          const std::optional<double>& s = mb.kind == K::interaction ? rt.interaction_f
+                                           : mb.kind == K::condition ? rt.condition_f
+                                                                     : rt.slope_difference_t;
+          const std::optional<double>& pr = mb.kind == K::interaction ? rt.p_interaction
+                                            : mb.kind == K::condition ? rt.p_condition
+                                                                      : rt.p_slope_difference;
           if (!mb.test.computed || !mb.test.statistic) continue;
           if (!s || std::fabs(*s - *mb.test.statistic) > 1e-6 * std::max(1.0, std::fabs(*mb.test.statistic)))
-            why_not = fmt::format("the {} could not be reproduced from the trials", mb.kind == 2 ? "slope difference's t" : "F");
+            why_not = fmt::format("the {} could not be reproduced from the trials", mb.kind == K::slope ? "slope difference's t" : "F");
           else
             relabelled[i] = pr;
         }
@@ -379,9 +366,7 @@ std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, co
           relabel_words = rt.exact ? fmt::format("all {} labellings of the participants", thousands(rt.labellings))
                                    : fmt::format("{} labellings of the participants drawn at random",
                                                  thousands(rt.labellings));
-      } catch (const InvalidData& e) {
-        why_not = e.what();
-      } catch (const UsageError& e) {
+      } catch (const Error& e) {  // InvalidData or UsageError: the data cannot be relabelled
         why_not = e.what();
       }
     }

@@ -261,6 +261,7 @@ ModelAnalysis build_model_analysis(const io::ScoresTable& scores, const ModelOpt
         c.apa = apa_string(c.contrast.test);
       }
     }
+    mm.data = std::move(d);
     a.models.push_back(std::move(mm));
   }
   return a;

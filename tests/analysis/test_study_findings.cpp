@@ -289,7 +289,7 @@ TEST(StudyFindings, SimulatedPlantedSlopeDifferenceIsFoundAndTheNullIsNeverEquiv
   const int studies = 20;
   for (int s = 0; s < studies; ++s) {
     const auto null = simulated(100 + static_cast<unsigned>(s), 0.0, 0.0, 8);
-    for (const auto& f : analysis::mixed_model_findings(&*null.model, &*null.trend_model, {}, &null.scores)) {
+    for (const auto& f : analysis::mixed_model_findings(&*null.model, &*null.trend_model)) {
       EXPECT_NE(f.strength, Strength::evidence_for_no_difference) << f.sentence;
       EXPECT_NE(f.strength, Strength::not_computable) << f.sentence;
       if (f.id == "H1-model-interaction-error" && f.strength == Strength::evidence_for_difference) ++false_difference;
@@ -352,7 +352,10 @@ TEST(StudyFindings, OneConditionOnlyGivesNoModelFindingButSaysSo) {
 // p-values, and every finding of it says so.
 TEST(StudyFindings, ModelTestsWithoutTrialsToRelabelSayTheyUseTheModelsOwnP) {
   const auto& r = demo();
-  const auto fs = analysis::mixed_model_findings(&*r.model, &*r.trend_model);
+  auto model = *r.model, trend = *r.trend_model;
+  for (auto* a : {&model, &trend})
+    for (auto& m : a->models) m.data = {};
+  const auto fs = analysis::mixed_model_findings(&model, &trend);
   ASSERT_EQ(fs.size(), 6u);
   const auto& inter = term(metric_model(*r.model, "error"), "condition:iteration");
   const auto& cond = term(metric_model(*r.model, "error"), "condition");

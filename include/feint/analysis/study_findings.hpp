@@ -37,16 +37,15 @@ std::vector<Finding> study_findings(const StudyResults& results,
 /// conditions' linear slopes over the iterations in `trend` (the fixed effect
 /// condition<B>:iteration, second level minus the first, with its interval). Each test's p-value
 /// is its relabelling p-value (whole participants relabelled between the two conditions and both
-/// models refitted, models::relabel_condition_tests, kModelPermutations) when `scores` holds the
-/// models' trials and there are two conditions; otherwise the model's own, with a warning that
-/// says why. The three tests of a metric are one family, Holm-corrected. Neither has a Bayes factor: "evidence for a difference"
+/// models refitted on the trials they were fitted to, MetricModel::data;
+/// models::relabel_condition_tests, kModelPermutations) when there are two conditions; otherwise
+/// (or without the trials) the model's own, with a warning that says why. The three tests of a metric are one family, Holm-corrected. Neither has a Bayes factor: "evidence for a difference"
 /// needs the corrected p below alpha (and, for the slope, its interval excluding 0); otherwise "no
 /// evidence either way", never "evidence for no difference". Sources: "model" and "model-trend".
 /// Either model may be null (left out of the study).
 std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model,
                                           const report::ModelAnalysis* trend,
-                                          const WordingRules& rules = {},
-                                          const io::ScoresTable* scores = nullptr);
+                                          const WordingRules& rules = {});
 
 /// The input of models::exposure_slopes_by_condition for one metric: each scored trial with a value
 /// of the metric, joined by (participant, iteration) to its label (strategy), with its exposure

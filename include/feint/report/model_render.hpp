@@ -60,6 +60,8 @@ struct ModelContrast {
 struct MetricModel {
   std::string metric;
   models::MixedModelFit fit;
+  /// The trials the model was fitted to (the findings relabel them: models::relabel_condition_tests).
+  models::LongData data;
   std::string formula;  ///< lme4 syntax, e.g. "error ~ condition * iteration + (1 | participant)"
   /// Participant x iteration trials without a value (empty, or no row), over the participants
   /// with at least one value and the iterations of the file.
