@@ -8,7 +8,7 @@
 #include <string>
 
 #include "feint/io/scores.hpp"
-#include "feint/report/anova_render.hpp"
+#include "feint/tables/anova.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 4) {
@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   for (int r = 0; r < reps; ++r) {
     // From the long table each time, as aov_ez does from its data frame.
     const auto report =
-        feint::report::build_anova_report(scores, feint::models::SphericityCorrection::GG);
+        feint::tables::build_anova_report(scores, feint::models::SphericityCorrection::GG);
     sink += report.analyses[0].effects.back().f;
   }
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -1,4 +1,4 @@
-// Benchmarks of the repeated-measures models (issue 10): the mixed ANOVA and the linear mixed model
+// Benchmarks of the repeated-measures models: the mixed ANOVA and the linear mixed model
 // (REML fit, Satterthwaite df, type-III table) of the paper's design (2 conditions x 20 iterations,
 // 30 participants each) and simulation power (studies per second).
 //   cmake -S . -B build -DFEINT_BUILD_BENCH=ON && cmake --build build --target bench_models

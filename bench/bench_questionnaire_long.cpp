@@ -1,5 +1,5 @@
 // bench_questionnaire_long: memory and time of loading a long-layout questionnaire, to show that
-// loading is linear in the rows (issue #8: a 271 KB file used to take 3.66 GB). Own main (a
+// loading is linear in the rows (a 271 KB file used to take 3.66 GB). Own main (a
 // driver): for each size it writes a long file of ROWS rows (ROWS / 10 respondents x 10 items),
 // loads it, and prints wall time and the growth of the peak resident set size.
 //

@@ -1,5 +1,5 @@
 // bench_selection: wall time of `simulate_selection` for 10 million runs of 20 iterations (the
-// speed target of issue #5: under 10 s on the project machine, all cores). Own main (a driver, not
+// speed target of Under 10 s on the project machine, all cores). Own main (a driver, not
 // a Google Benchmark fixture), because the figure wanted is one end-to-end wall time per algorithm.
 //
 //   bench_selection [RUNS=10000000] [THREADS=0 (all cores)] [ITERATIONS=20]

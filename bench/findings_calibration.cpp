@@ -1,5 +1,5 @@
 // findings_calibration: the findings of `feint analyze` checked against a known truth over studies
-// made by `feint simulate study`'s simulator (issue 15, item 6; docs/findings.md "Calibration
+// made by `feint simulate study`'s simulator (docs/findings.md "Calibration
 // against truth"). Own main (a driver, not a Google Benchmark):
 //
 //   findings_calibration [NULL_STUDIES=200] [PLANTED_STUDIES=100] [PARTICIPANTS=30]

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""How close a (simulated) study comes to the seed paper's Table 1 (issue #17; docs/paper-scale.md).
+"""How close a (simulated) study comes to the seed paper's Table 1 (docs/paper-scale.md).
 
 Usage: paper_scale.py FEINT SCORES.csv [--markdown OUT.md] [--json OUT.json]
 

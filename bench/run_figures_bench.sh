@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# How long `feint analyze data/demo` takes with and without the figures and report.html (issue #9).
+# How long `feint analyze data/demo` takes with and without the figures and report.html.
 #
 #   bench/run_figures_bench.sh [BUILD_DIR] [RUNS]
 #

@@ -118,32 +118,33 @@ void note_left_out(Diagnostics& d, const std::string& stage, const std::string& 
   d.warnings.push_back(fmt::format("{}: {}", stage, reason));
 }
 
-}  // namespace
-
-StudyResults analyze(const Study& study, const std::string& tool_version) {
-  StudyResults r;
-  r.study = study.name;
-  r.tool_version = tool_version;
-  r.settings_toml = settings_toml(study.settings);
-  Diagnostics& d = r.diagnostics;
-
-  // 1. Score every trial (into the scratch folder: the scores file with its sidecar is the
-  // study's record of how each number was made, and Table 1 reads its provenance from there).
-  const detail::ScratchFolder scratch("feint-analyze");  // the scores file, removed however this ends
-  metrics::ScoreSettings s = study.scoring;
-  s.tool_version = tool_version;
-  s.on_warning = [&d](const std::string& w) { d.warnings.push_back(w); };
-  const fs::path scores_path = scratch.path() / "scores.csv";
-  d.scoring = metrics::score_to_file(study.log_inputs, s, scores_path.string());
-  const std::string prefix = (scratch.path() / "").string();
-  r.scores_csv = read_all(scores_path);
-  if (!d.scoring.sidecar_path.empty()) {
-    r.scores_sidecar = without_prefix(read_all(d.scoring.sidecar_path), prefix);
-  }
+// The scores file of a run, in the scratch folder, and what the later stages need of scoring.
+struct Scored {
+  fs::path path;        ///< scratch/scores.csv
+  std::string prefix;   ///< the scratch folder with a trailing '/', removed from every message
+  metrics::ScoreSettings settings;
   std::set<std::string> rejected_participants;
+};
+
+// Stage 1. Score every trial into the scratch folder: the scores file with its sidecar is the
+// study's record of how each number was made, and Table 1 reads its provenance from there.
+Scored score_trials(const Study& study, const std::string& tool_version,
+                    const fs::path& scratch, StudyResults& r) {
+  Diagnostics& d = r.diagnostics;
+  Scored sc;
+  sc.settings = study.scoring;
+  sc.settings.tool_version = tool_version;
+  sc.settings.on_warning = [&d](const std::string& w) { d.warnings.push_back(w); };
+  sc.path = scratch / "scores.csv";
+  d.scoring = metrics::score_to_file(study.log_inputs, sc.settings, sc.path.string());
+  sc.prefix = (scratch / "").string();
+  r.scores_csv = read_all(sc.path);
+  if (!d.scoring.sidecar_path.empty()) {
+    r.scores_sidecar = without_prefix(read_all(d.scoring.sidecar_path), sc.prefix);
+  }
   if (!d.scoring.rejects_path.empty()) {
     r.rejects_csv = read_all(d.scoring.rejects_path);
-    rejected_participants = count_rejections(d.scoring.rejects_path, d);
+    sc.rejected_participants = count_rejections(d.scoring.rejects_path, d);
   }
   d.scoring.output_path = "scores.csv";
   if (!d.scoring.sidecar_path.empty()) {
@@ -154,10 +155,14 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   }
   // The reader's and the time-unit check's notes, structured (code, file, line, column): one
   // entry each (their messages are also in d.warnings, through on_warning).
-  for (const auto& n : d.scoring.diagnostics) d.exclusions.push_back(scoring_note(n, prefix, study.folder));
+  for (const auto& n : d.scoring.diagnostics) {
+    d.exclusions.push_back(scoring_note(n, sc.prefix, study.folder));
+  }
+  return sc;
+}
 
-  // 2. Table 1: one-sample per condition, and A against B when asked.
-  report::Table1Options t;
+tables::Table1Options table1_options(const Study& study) {
+  tables::Table1Options t;
   t.metrics = study.metrics;
   t.alpha = study.tests.alpha;
   t.test = study.tests.test;
@@ -165,44 +170,62 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   t.equivalence = study.settings.equivalence;
   t.apa = study.tests.apa;
   t.bf_prior_r = study.tests.bf_prior_r;
+  t.equivalence_by_evidence = true;  // the report's "≈" needs BF01 >= 3 or TOST (docs/findings.md)
+  return t;
+}
+
+std::vector<std::string> metric_columns(const tables::Table1Options& t) {
+  std::vector<std::string> columns;
+  for (const auto& m : t.metrics) columns.push_back(m.column);
+  return columns;
+}
+
+// Stage 2. The scores as a table; who is in it, per condition, and who lost every trial.
+void load_scored(const Scored& sc, const std::vector<std::string>& metrics, StudyResults& r) {
+  Diagnostics& d = r.diagnostics;
   io::ScoresOptions load;
-  // A study of two conditions never pools a table without its condition column (issue 18).
-  load.expected_conditions = s.reading.expected_conditions;
-  load.metrics.clear();
-  for (const auto& m : t.metrics) load.metrics.push_back(m.column);
-  r.scores = io::load_scores(scores_path.string(), load);
-  {
-    std::map<std::string, std::set<std::string>> per;
-    std::set<std::string> all;
-    for (const auto& rec : r.scores.records) {
-      per[rec.condition].insert(rec.participant);
-      all.insert(rec.participant);
-    }
-    d.participants = all.size();
-    // A participant whose every trial was rejected is not in the scores at all: say so.
-    Exclusion gone{"scoring", "participant", 0, "every trial rejected (not in the analysis)", {}, ""};
-    for (const auto& p : rejected_participants) {
-      if (all.count(p) != 0) continue;
-      ++gone.count;
-      if (gone.examples.size() < 5) gone.examples.push_back(p);
-    }
-    if (gone.count > 0) d.exclusions.push_back(std::move(gone));
-    for (const auto& c : r.scores.conditions()) d.participants_per_condition.emplace_back(c, per[c].size());
+  // A study of two conditions never pools a table without its condition column.
+  load.expected_conditions = sc.settings.reading.expected_conditions;
+  load.metrics = metrics;
+  r.scores = io::load_scores(sc.path.string(), load);
+  std::map<std::string, std::set<std::string>> per;
+  std::set<std::string> all;
+  for (const auto& rec : r.scores.records) {
+    per[rec.condition].insert(rec.participant);
+    all.insert(rec.participant);
   }
-  t.equivalence_by_evidence = true;  // the report's "≈" needs BF01 >= 3 or TOST (issue 15)
-  r.table1 = report::build_table1(r.scores, t);
+  d.participants = all.size();
+  // A participant whose every trial was rejected is not in the scores at all: say so.
+  Exclusion gone{"scoring", "participant", 0, "every trial rejected (not in the analysis)", {}, ""};
+  for (const auto& p : sc.rejected_participants) {
+    if (all.count(p) != 0) continue;
+    ++gone.count;
+    if (gone.examples.size() < 5) gone.examples.push_back(p);
+  }
+  if (gone.count > 0) d.exclusions.push_back(std::move(gone));
+  for (const auto& c : r.scores.conditions()) d.participants_per_condition.emplace_back(c, per[c].size());
+}
+
+// Stage 3. Table 1: one-sample per condition, and A against B when asked.
+void build_tables(const Study& study, const tables::Table1Options& t, StudyResults& r) {
+  r.table1 = tables::build_table1(r.scores, t);
   if (study.compare) {
-    report::Table1Options c = t;
+    tables::Table1Options c = t;
     c.compare = study.compare;
     c.var_equal = study.settings.var_equal;
     c.paired = study.settings.paired;
-    r.comparison = report::build_table1(r.scores, c);
+    r.comparison = tables::build_table1(r.scores, c);
   }
+}
 
-  // 3. The mixed ANOVA (GG, as afex) and the mixed models (as lme4/lmerTest): left out, with the
-  // reason, when the design does not allow them (one iteration, one condition, a constant metric).
+// Stage 4. The mixed ANOVA (GG, as afex) and the mixed models (as lme4/lmerTest): left out, with
+// the reason, when the design does not allow them (one iteration, one condition, a constant
+// metric).
+void fit_models(const Study& study, const std::vector<std::string>& metrics,
+                const std::string& prefix, StudyResults& r) {
+  Diagnostics& d = r.diagnostics;
   try {
-    r.anova = report::build_anova_report(r.scores, models::SphericityCorrection::GG);
+    r.anova = tables::build_anova_report(r.scores, models::SphericityCorrection::GG);
   } catch (const InvalidData& e) {
     note_left_out(d, "anova", fmt::format("no mixed ANOVA: {}", without_prefix(e.what(), prefix)));
   }
@@ -211,91 +234,103 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   if (r.scores.conditions().size() < 2 || r.scores.iterations().size() < 2) {
     note_left_out(d, "model",
                   "no mixed model: it needs at least two conditions and two iterations");
-  } else if (study.tests.test.alternative != stats::Alternative::two_sided) {
+    return;
+  }
+  if (study.tests.test.alternative != stats::Alternative::two_sided) {
     note_left_out(d, "model", "no mixed model: its contrasts are two-sided (alternative = two.sided)");
-  } else {
-    report::ModelOptions o;
-    o.metrics = load.metrics;
-    o.compare = study.compare;
-    o.alpha = study.tests.alpha;
-    o.conf_level = study.tests.test.conf_level;
-    o.p_adjust = study.tests.p_adjust;
-    o.apa = study.tests.apa;
-    try {
-      r.model = report::build_model_analysis(r.scores, o);
-      o.trend = true;
-      r.trend_model = report::build_model_analysis(r.scores, o);
-    } catch (const InvalidData& e) {
-      note_left_out(d, "model", fmt::format("no mixed model: {}", without_prefix(e.what(), prefix)));
-    }
+    return;
   }
-
-  // 4. The questionnaire, when the study has one.
-  if (study.answers) {
-    const io::Questionnaire& q = *study.answers;
-    d.questionnaire_rows = q.rows_read;
-    d.respondents = q.participants.size();
-    std::map<std::string, Exclusion> excluded;
-    for (const auto& x : q.excluded) {
-      Exclusion& e = excluded[x.reason];
-      e.stage = "questionnaire";
-      e.what = "respondent";
-      e.reason = x.reason;
-      ++e.count;
-      if (e.examples.size() < 5) e.examples.push_back(x.id);
-    }
-    for (auto& [_, e] : excluded) d.exclusions.push_back(std::move(e));
-    // Who answered the questionnaire but has no scored trial, and the reverse (issue 18). Only a
-    // warning: the two analyses are independent, and an anonymous questionnaire (its own ids)
-    // is a design, not an error; the report and standard error list the ids.
-    std::vector<std::string> log_ids;
-    for (const auto& rec : r.scores.records) log_ids.push_back(rec.participant);
-    io::ParticipantComparison pc = io::compare_participants(log_ids, q.participants);
-    if (!pc.matches()) {
-      const std::string why =
-          pc.in_both == 0
-              ? fmt::format("no participant id in common between the logs and the questionnaire "
-                            "(as when the questionnaire is anonymous, or the ids are written "
-                            "differently): {}",
-                            pc.message())
-              : pc.message();
-      if (!pc.only_in_logs.empty()) {
-        d.exclusions.push_back({"participants", "participant", pc.only_in_logs.size(),
-                                "in the logs but not in the questionnaire",
-                                first_ten(pc.only_in_logs), ""});
-      }
-      if (!pc.only_in_questionnaire.empty()) {
-        d.exclusions.push_back({"participants", "participant", pc.only_in_questionnaire.size(),
-                                "in the questionnaire but not in the logs",
-                                first_ten(pc.only_in_questionnaire), ""});
-      }
-      d.warnings.push_back(fmt::format("participants: {}", why));
-    }
-    d.participants_compared = std::move(pc);
-    r.likert = report::analyze_likert(q, study.likert);
-    if (study.compare) {
-      report::LikertSettings lc = study.likert;
-      lc.compare = study.compare;
-      r.likert_compare = report::analyze_likert(q, lc);
-    }
-  }
-
-  // 5. Figure data: the strategies shown (from the scores) and the mean pad traces (the logs,
-  // streamed once more).
+  tables::ModelOptions o;
+  o.metrics = metrics;
+  o.compare = study.compare;
+  o.alpha = study.tests.alpha;
+  o.conf_level = study.tests.test.conf_level;
+  o.p_adjust = study.tests.p_adjust;
+  o.apa = study.tests.apa;
   try {
-    r.figures.labels = read_trial_labels(scores_path.string());
+    r.model = tables::build_model_analysis(r.scores, o);
+    o.trend = true;
+    r.trend_model = tables::build_model_analysis(r.scores, o);
   } catch (const InvalidData& e) {
-    r.figures.labels_note = without_prefix(e.what(), prefix);
+    note_left_out(d, "model", fmt::format("no mixed model: {}", without_prefix(e.what(), prefix)));
+  }
+}
+
+// Who answered the questionnaire but has no scored trial, and the reverse. Only a warning: the
+// two analyses are independent, and an anonymous questionnaire (its own ids) is a design, not an
+// error; the report and standard error list the ids.
+void compare_respondents(const io::Questionnaire& q, StudyResults& r) {
+  Diagnostics& d = r.diagnostics;
+  std::vector<std::string> log_ids;
+  for (const auto& rec : r.scores.records) log_ids.push_back(rec.participant);
+  io::ParticipantComparison pc = io::compare_participants(log_ids, q.participants);
+  if (!pc.matches()) {
+    const std::string why =
+        pc.in_both == 0
+            ? fmt::format("no participant id in common between the logs and the questionnaire "
+                          "(as when the questionnaire is anonymous, or the ids are written "
+                          "differently): {}",
+                          pc.message())
+            : pc.message();
+    if (!pc.only_in_logs.empty()) {
+      d.exclusions.push_back({"participants", "participant", pc.only_in_logs.size(),
+                              "in the logs but not in the questionnaire",
+                              first_ten(pc.only_in_logs), ""});
+    }
+    if (!pc.only_in_questionnaire.empty()) {
+      d.exclusions.push_back({"participants", "participant", pc.only_in_questionnaire.size(),
+                              "in the questionnaire but not in the logs",
+                              first_ten(pc.only_in_questionnaire), ""});
+    }
+    d.warnings.push_back(fmt::format("participants: {}", why));
+  }
+  d.participants_compared = std::move(pc);
+}
+
+// Stage 5. The questionnaire, when the study has one.
+void analyze_questionnaire(const Study& study, StudyResults& r) {
+  if (!study.answers) return;
+  Diagnostics& d = r.diagnostics;
+  const io::Questionnaire& q = *study.answers;
+  d.questionnaire_rows = q.rows_read;
+  d.respondents = q.participants.size();
+  std::map<std::string, Exclusion> excluded;
+  for (const auto& x : q.excluded) {
+    Exclusion& e = excluded[x.reason];
+    e.stage = "questionnaire";
+    e.what = "respondent";
+    e.reason = x.reason;
+    ++e.count;
+    if (e.examples.size() < 5) e.examples.push_back(x.id);
+  }
+  for (auto& [_, e] : excluded) d.exclusions.push_back(std::move(e));
+  compare_respondents(q, r);
+  r.likert = tables::analyze_likert(q, study.likert);
+  if (study.compare) {
+    tables::LikertSettings lc = study.likert;
+    lc.compare = study.compare;
+    r.likert_compare = tables::analyze_likert(q, lc);
+  }
+}
+
+// Stage 6. Figure data: the strategies shown (from the scores), the mean pad traces (the logs,
+// streamed once more), condition x exposure per strategy (the wear-off of a strategy, H1) with
+// its table, and the mixed model's fitted trend.
+void collect_figure_data(const Study& study, const Scored& sc, const tables::Table1Options& t,
+                         const std::vector<std::string>& metrics, StudyResults& r) {
+  try {
+    r.figures.labels = read_trial_labels(sc.path.string());
+  } catch (const InvalidData& e) {
+    r.figures.labels_note = without_prefix(e.what(), sc.prefix);
   }
   if (!r.figures.labels.empty()) {
     // Read as the scorer read them (other labs' options: decimal mark, headerless files, ...).
-    io::TraceOptions topt = s.reading;
-    topt.column_map = s.column_map;
-    topt.delimiter = s.delimiter;
-    topt.unsorted = s.unsorted;
+    io::TraceOptions topt = sc.settings.reading;
+    topt.column_map = sc.settings.column_map;
+    topt.delimiter = sc.settings.delimiter;
+    topt.unsorted = sc.settings.unsorted;
     r.figures.traces = mean_traces(study.logs, topt, r.figures.labels, t.test.conf_level);
-    // Condition x exposure per strategy: the wear-off of a strategy (issue 15, H1).
-    for (const auto& m : load.metrics) {
+    for (const auto& m : metrics) {
       r.figures.exposure.push_back(
           metrics::exposure_trend(r.scores, r.figures.labels, m, t.test.conf_level));
     }
@@ -303,18 +338,19 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
     if (r.model && !r.model->models.empty() && !r.model->models.front().group1.empty()) {
       const std::vector<std::string> order = {r.model->models.front().group1, r.model->models.front().group2};
       try {
-        for (const auto& m : load.metrics)
+        for (const auto& m : metrics)
           r.exposure.push_back(
               exposure_table(r.scores, r.figures.labels, m, order, t.test.conf_level, t.bf_prior_r));
       } catch (const std::exception& e) {
         r.exposure.clear();  // the findings say why, from their own fit
-        note_left_out(d, "exposure", fmt::format("no condition x exposure table: {}", e.what()));
+        note_left_out(r.diagnostics, "exposure",
+                      fmt::format("no condition x exposure table: {}", e.what()));
       }
     }
   }
   // The mixed model's fitted trend (the linear-trend model: the line the trend F-test is about).
   if (r.trend_model) {
-    const report::ModelOptions& o = r.trend_model->options;
+    const tables::ModelOptions& o = r.trend_model->options;
     for (const auto& mm : r.trend_model->models) {
       r.figures.model_trends.push_back(
           {mm.metric,
@@ -323,8 +359,26 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
            models::fitted_trend(mm.fit, t.test.conf_level)});
     }
   }
+}
+
+}  // namespace
+
+StudyResults analyze(const Study& study, const std::string& tool_version) {
+  StudyResults r;
+  r.study = study.name;
+  r.tool_version = tool_version;
+  r.settings_toml = settings_toml(study.settings);
+  const detail::ScratchFolder scratch("feint-analyze");  // the scores file, removed however this ends
+  const Scored scored = score_trials(study, tool_version, scratch.path(), r);
+  const tables::Table1Options t = table1_options(study);
+  const std::vector<std::string> metrics = metric_columns(t);
+  load_scored(scored, metrics, r);
+  build_tables(study, t, r);
+  fit_models(study, metrics, scored.prefix, r);
+  analyze_questionnaire(study, r);
+  collect_figure_data(study, scored, t, metrics, r);
   r.scores.path = "scores.csv";
-  // 6. The findings (docs/findings.md): what the study shows, and how strongly.
+  // Stage 7. The findings (docs/findings.md): what the study shows, and how strongly.
   r.findings = study_findings(r, t.metrics);
   return r;
 }

@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "feint/report/writers.hpp"
+#include "feint/tables/writers.hpp"
 #include "feint/stats/p_adjust.hpp"
 
 namespace feint::analysis {
@@ -96,7 +96,7 @@ Finding difference_finding(std::string id, std::string hypothesis, std::string q
                              d.note.empty() ? std::string("no test result") : d.note);
     return f;
   }
-  f.statistics = report::apa_string(d);
+  f.statistics = tables::apa_string(d);
   std::string means;
   if (d.test == "one_sample_t" && d.mean1 && d.mu)
     means = fmt::format("M = {} against R = {}", number(*d.mean1), number(*d.mu));
@@ -181,9 +181,9 @@ Finding family_finding(std::string id, std::string hypothesis, std::string quest
         (smallest == tests.size() || *tests[i].p_adjusted < *tests[smallest].p_adjusted))
       smallest = i;
   if (smallest < tests.size())
-    f.sentence += fmt::format("; smallest adjusted {} (test {})", report::apa_p(*tests[smallest].p_adjusted), smallest + 1);
+    f.sentence += fmt::format("; smallest adjusted {} (test {})", tables::apa_p(*tests[smallest].p_adjusted), smallest + 1);
   f.sentence += ".";
-  if (!diff.empty()) f.statistics = report::apa_string(tests[diff.front()]);
+  if (!diff.empty()) f.statistics = tables::apa_string(tests[diff.front()]);
   return f;
 }
 
@@ -230,7 +230,7 @@ std::vector<Finding> exposure_findings(const models::ExposureByCondition& e, con
     } else {
       // A Welch t test with its Bayes factor: classify() above applied the same rules as to every
       // other Welch test, and apa_string() writes the same statistics (adjusted p, d, BF).
-      f.statistics = report::apa_string(d);
+      f.statistics = tables::apa_string(d);
       f.sentence = fmt::format(
           "Exposure slope{} of strategy '{}' ({}; {}): {} between the conditions (difference {:.3f}, "
           "{:g}% CI [{:.3f}, {:.3f}]; {}; Holm-corrected over {} strategies).",

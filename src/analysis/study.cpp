@@ -54,10 +54,10 @@ Study load_study(const std::string& folder, const AnalysisSettings& a, const std
   s.metrics = parse_metric_specs(a.metrics);
   if (!a.compare.empty()) {
     s.compare = parse_compare(a.compare);
-    // A log without a condition column is then refused, not pooled (issue 18).
+    // A log without a condition column is then refused, not pooled.
     s.scoring.reading.expected_conditions = {s.compare->first, s.compare->second};
   }
-  for (const auto& n : a.formats) s.formats.push_back(report::parse_output_format(n));
+  for (const auto& n : a.formats) s.formats.push_back(tables::parse_output_format(n));
   if (s.formats.empty()) {
     throw UsageError("--formats: name at least one of text, markdown, latex, csv, json");
   }

@@ -127,142 +127,344 @@ std::string maxt_over_iterations(const StudyResults& r, const std::string& metri
                                "participants drawn at random", iterations.size(), thousands(m.labellings));
 }
 
+// H1, per metric: the per-iteration contrasts between the two conditions as one family (maxT over
+// the iterations where the design allows it, else Holm); with one condition only, a finding that
+// says so.
+void add_iteration_findings(std::vector<Finding>& out, const StudyResults& r, const tables::MetricSpec& m,
+                            const std::vector<std::string>& conditions, const WordingRules& rules) {
+  const std::string question =
+      fmt::format("Does {} differ between the conditions, iteration by iteration?", m.column);
+  if (r.comparison) {
+    std::vector<stats::TestResult> tests;
+    std::vector<long long> iterations;
+    std::string g1, g2;
+    for (const auto& row : r.comparison->rows) {
+      if (row.metric != m.column || !is_t_test(row.result.test)) continue;
+      tests.push_back(row.result);
+      iterations.push_back(row.iteration.value_or(0));
+      g1 = row.group1;
+      g2 = row.group2;
+    }
+    if (!tests.empty()) {
+      std::string why_not;
+      const std::string correction = maxt_over_iterations(r, m.column, iterations, tests, why_not);
+      Finding f = family_finding("H1-iterations-" + m.column, "H1", question,
+                                 fmt::format("per-iteration contrasts of {}, {} vs {}", m.column, g1, g2),
+                                 std::move(tests), "comparison", rules, correction);
+      if (correction.empty() && !why_not.empty())
+        f.warnings.push_back(fmt::format("The per-iteration contrasts of {} are Holm-corrected, not "
+                                         "maxT-adjusted: {}.", m.column, why_not));
+      out.push_back(std::move(f));
+    }
+  } else if (conditions.size() < 2) {
+    out.push_back(one_condition_only("H1-iterations-" + m.column, "H1", question,
+                                     conditions.empty() ? std::string() : conditions.front(), "table1"));
+  }
+}
+
+// Reference plausibility over every participant and iteration: a finding only when the metric's
+// reference lies outside the data (the tests against it would then say little).
+void add_reference_finding(std::vector<Finding>& out, const StudyResults& r, const tables::MetricSpec& m) {
+  const int k = r.scores.metric_index(m.column);
+  if (k < 0) return;
+  std::map<long long, std::vector<double>> per_iteration;
+  for (const auto& rec : r.scores.records) {
+    const auto& v = rec.values[static_cast<std::size_t>(k)];
+    per_iteration[rec.iteration].push_back(v ? *v : std::nan(""));
+  }
+  std::vector<std::vector<double>> values;
+  for (auto& [it, v] : per_iteration) values.push_back(std::move(v));
+  const ReferenceCheck c = check_reference(m.column, m.reference, values);
+  if (!c.outside) return;
+  Finding f;
+  f.id = "reference-" + m.column;
+  f.hypothesis = "H1";
+  f.question = fmt::format("Is the reference {} = {:g} a plausible value of the metric?", m.column, m.reference);
+  f.sentence = c.warning;
+  f.evidence = "reference outside the data";
+  f.strength = Strength::not_computable;
+  f.source = "table1";
+  f.warnings.push_back(c.warning);
+  out.push_back(std::move(f));
+}
+
+// The exposure finding of a metric whose exposure slopes could not be fitted, with the reason.
+Finding exposure_not_computable(const std::string& metric, const std::string& source, const char* reason) {
+  Finding f;
+  f.id = "H1-exposure-" + metric;
+  f.hypothesis = "H1";
+  f.question = fmt::format("Does a strategy's effect on {} wear off with exposure differently under "
+                           "the two conditions?", metric);
+  f.strength = Strength::not_computable;
+  f.evidence = to_string(f.strength);
+  f.sentence = fmt::format("Exposure slopes of {} by condition: not computable ({}).", metric, reason);
+  f.source = source;
+  return f;
+}
+
+// H1, condition x exposure per strategy for one metric, each finding warned about the scored
+// trials left out for want of a strategy label.
+std::vector<Finding> metric_exposure_findings(const StudyResults& r, const tables::MetricSpec& m,
+                                              const std::vector<std::string>& conditions_order,
+                                              const WordingRules& rules) {
+  // The condition x exposure figure of this metric; else first against later exposures (the
+  // strategies figure when there are no traces).
+  std::string source = r.figures.traces.empty() ? "fig-strategies" : "fig-traces";
+  for (const auto& e : r.figures.exposure)
+    if (e.metric == m.column) source = "fig-exposure-" + m.column;
+  ExposureInput in;
+  std::vector<Finding> fs;
+  try {
+    in = exposure_input(r.scores, r.figures.labels, m.column);
+    // The report's exposure table when the analysis made one (the findings link to it), else
+    // fitted here from the labels.
+    const tables::ExposureTable* table = nullptr;
+    for (const auto& t : r.exposure)
+      if (t.metric == m.column) table = &t;
+    const auto e = table ? table->result
+                         : models::exposure_slopes_by_condition(in.participant, in.condition, in.strategy,
+                                                                in.exposure, in.y, conditions_order,
+                                                                r.table1.options.test.conf_level,
+                                                                r.table1.options.bf_prior_r);
+    fs = exposure_findings(e, rules, table ? "exposure" : source, m.column);
+  } catch (const std::exception& e) {
+    fs.push_back(exposure_not_computable(m.column, source, e.what()));
+  }
+  if (in.unlabelled > 0) {
+    const std::string w = fmt::format(
+        "{} scored trial{} of {} without a strategy in the logs' labels {} left out of the exposure analysis.",
+        in.unlabelled, in.unlabelled == 1 ? "" : "s", m.column, in.unlabelled == 1 ? "is" : "are");
+    for (auto& f : fs) f.warnings.push_back(w);
+  }
+  return fs;
+}
+
+// H1, condition x exposure per strategy: needs each trial's strategy (the labels).
+void add_exposure_findings(std::vector<Finding>& out, const StudyResults& r,
+                           const std::vector<tables::MetricSpec>& metrics, const WordingRules& rules) {
+  if (r.figures.labels.empty()) return;
+  std::vector<std::string> conditions_order;
+  if (r.model && !r.model->models.empty() && !r.model->models.front().group1.empty())
+    conditions_order = {r.model->models.front().group1, r.model->models.front().group2};
+  for (const auto& m : metrics) {
+    if (r.scores.metric_index(m.column) < 0) continue;
+    for (auto& f : metric_exposure_findings(r, m, conditions_order, rules)) out.push_back(std::move(f));
+  }
+}
+
+// H2: the questionnaire's t-tests, against the reference or (between) between the conditions.
+void add_likert_findings(std::vector<Finding>& out, const std::optional<tables::LikertAnalysis>& a,
+                         bool between, const WordingRules& rules) {
+  if (!a) return;
+  for (const auto& row : a->rows) {
+    if (!is_t_test(row.result.test)) continue;
+    const std::string what =
+        between ? fmt::format("{}: {} vs {}", row.metric, row.group1, row.group2)
+                : fmt::format("{}{} against the reference", row.metric,
+                              row.group1.empty() ? std::string() : " (" + row.group1 + ")");
+    out.push_back(difference_finding(
+        fmt::format("H2-{}-{}{}", between ? "compare" : "reference", row.metric,
+                    row.group1.empty() || between ? std::string() : "-" + row.group1),
+        "H2",
+        between ? fmt::format("Do the conditions differ on {}?", row.metric)
+                : fmt::format("Does {} differ from the reference?", row.metric),
+        what, row.result, nullptr, between ? "questionnaire-compare" : "questionnaire", rules));
+  }
+}
+
+// One test of a metric's mixed-model family: the two F tests of the factor model and the slope
+// difference(s) of the trend model.
+struct ModelTest {
+  std::string id, question, what, source, formula, apa;
+  stats::TestResult test;
+  bool is_f = false;
+  bool singular = false;  // the model's fit is on the boundary (lme4: isSingular)
+  enum class Kind { interaction, condition, slope } kind = Kind::interaction;
+};
+
+const tables::MetricModel* model_of(const tables::ModelAnalysis* a, const std::string& metric) {
+  if (!a) return nullptr;
+  for (const auto& m : a->models)
+    if (m.metric == metric) return &m;
+  return nullptr;
+}
+
+// The metrics of either model, the factor model's first (the findings' order).
+std::vector<std::string> modelled_metrics(const tables::ModelAnalysis* model, const tables::ModelAnalysis* trend) {
+  std::vector<std::string> metrics;
+  if (model)
+    for (const auto& m : model->models) metrics.push_back(m.metric);
+  if (trend)
+    for (const auto& m : trend->models)
+      if (std::find(metrics.begin(), metrics.end(), m.metric) == metrics.end()) metrics.push_back(m.metric);
+  return metrics;
+}
+
+// The factor model's tests: the condition x iteration interaction and condition's main effect.
+void add_factor_model_tests(std::vector<ModelTest>& family, const tables::MetricModel& m,
+                            const std::string& metric) {
+  const auto& spec = m.fit.spec;
+  const std::string inter = spec.group + ":" + spec.time;
+  if (const auto* t = find_term(m.fit, inter)) {
+    family.push_back({"H1-model-interaction-" + metric,
+                      fmt::format("Does the course of {} over the iterations differ between the conditions?", metric),
+                      fmt::format("Condition \u00d7 iteration interaction of {}", metric), "model", m.formula + " (iteration as a factor)",
+                      tables::anova_apa(*t), f_as_test(*t), true, m.fit.singular, ModelTest::Kind::interaction});
+  }
+  if (const auto* t = find_term(m.fit, spec.group)) {
+    family.push_back({"H1-model-condition-" + metric,
+                      fmt::format("Does {} differ between the conditions, over all iterations?", metric),
+                      fmt::format("Main effect of condition on {}", metric), "model", m.formula + " (iteration as a factor)",
+                      tables::anova_apa(*t), f_as_test(*t), true, m.fit.singular, ModelTest::Kind::condition});
+  }
+}
+
+// The trend model's tests: each condition's slope against the first condition's.
+void add_trend_model_tests(std::vector<ModelTest>& family, const tables::MetricModel& m,
+                           const std::string& metric, double conf_level) {
+  const auto& fit = m.fit;
+  for (std::size_t k = 1; k < fit.group_levels.size(); ++k) {
+    const std::string name = fit.spec.group + fit.group_levels[k] + ":" + fit.spec.time;
+    const auto it = std::find(fit.coef_names.begin(), fit.coef_names.end(), name);
+    if (it == fit.coef_names.end()) continue;
+    Eigen::VectorXd L = Eigen::VectorXd::Zero(fit.beta.size());
+    L(static_cast<Eigen::Index>(it - fit.coef_names.begin())) = 1;
+    const models::Contrast c = models::contrast(fit, L, conf_level);
+    family.push_back({"H1-model-trend-" + metric + (fit.group_levels.size() > 2 ? "-" + fit.group_levels[k] : ""),
+                      fmt::format("Does {} change over the iterations at a different rate in the two conditions?", metric),
+                      fmt::format("Difference of the linear slopes of {} over the iterations, {} minus {} ({})",
+                                  metric, fit.group_levels[k], fit.group_levels[0], name),
+                      "model-trend", m.formula + " (iteration as a linear trend)", "", c.test, false,
+                      fit.singular, ModelTest::Kind::slope});
+  }
+}
+
+// The relabelling p-values of a family, or why there are none (then the models' own p-values).
+struct Relabelling {
+  std::string why_not;                     // "" when p holds the relabelling p-values
+  std::vector<std::optional<double>> p;    // per test of the family
+  std::string words;                       // how many labellings, for the sentences
+};
+
+// Relabelling p-values (docs/findings.md, "Mixed models: relabelling p-values"): whole
+// participants relabelled between the two conditions, both models refitted each time.
+Relabelling relabel_family(const tables::MetricModel* any, const std::vector<ModelTest>& family) {
+  Relabelling rl;
+  rl.p.resize(family.size());
+  if (!any || any->data.y.empty()) {
+    rl.why_not = "the trials were not given to relabel";
+  } else if (any->fit.group_levels.size() != 2) {
+    rl.why_not = fmt::format("{} conditions (relabelling needs two)", any->fit.group_levels.size());
+  } else if (!family.empty()) {
+    try {
+      models::RelabellingOptions ro;
+      ro.permutations = kModelPermutations;
+      const models::RelabelledConditionTests rt =
+          models::relabel_condition_tests(any->data, any->fit.group_levels, ro);
+      // The relabelled statistics must be the models' own (else the data differ from the fits').
+      for (std::size_t i = 0; i < family.size() && rl.why_not.empty(); ++i) {
+        const ModelTest& mb = family[i];
+        using K = ModelTest::Kind;
+        const std::optional<double>& s = mb.kind == K::interaction ? rt.interaction_f
+                                         : mb.kind == K::condition ? rt.condition_f
+                                                                   : rt.slope_difference_t;
+        const std::optional<double>& pr = mb.kind == K::interaction ? rt.p_interaction
+                                          : mb.kind == K::condition ? rt.p_condition
+                                                                    : rt.p_slope_difference;
+        if (!mb.test.computed || !mb.test.statistic) continue;
+        if (!s || std::fabs(*s - *mb.test.statistic) > 1e-6 * std::max(1.0, std::fabs(*mb.test.statistic)))
+          rl.why_not = fmt::format("the {} could not be reproduced from the trials", mb.kind == K::slope ? "slope difference's t" : "F");
+        else
+          rl.p[i] = pr;
+      }
+      if (rl.why_not.empty())
+        rl.words = rt.exact ? fmt::format("all {} labellings of the participants", thousands(rt.labellings))
+                            : fmt::format("{} labellings of the participants drawn at random",
+                                          thousands(rt.labellings));
+    } catch (const Error& e) {  // InvalidData or UsageError: the data cannot be relabelled
+      rl.why_not = e.what();
+    }
+  }
+  return rl;
+}
+
+// The finding of test i of a metric's family, its p_adjusted already Holm-adjusted over the family.
+Finding model_test_finding(const ModelTest& mb, std::size_t i, std::size_t family_size, const std::string& metric,
+                           const Relabelling& rl, const WordingRules& rules) {
+  Finding f;
+  f.id = mb.id;
+  f.hypothesis = "H1";
+  f.question = mb.question;
+  f.source = mb.source;
+  f.strength = classify(mb.test, nullptr, rules, &f.grade);
+  f.evidence = evidence_text(f.strength, f.grade);
+  if (mb.singular)
+    f.warnings.push_back(fmt::format(
+        "The mixed model {} is a singular fit: a variance between participants is estimated at "
+        "(or near) zero (lme4: isSingular), so its tests rest on the trials' residual variance "
+        "alone, as lmerTest's do; the model table says which component.{}",
+        mb.formula,
+        rl.why_not.empty() ? " The relabelling p-value does not rest on that estimate: each relabelling is "
+                             "refitted, boundary and all."
+                           : ""));
+  if (f.strength == Strength::not_computable) {
+    f.sentence = fmt::format("{} in the mixed model {}: not computable ({}).", mb.what, mb.formula,
+                             mb.test.note.empty() ? std::string("no test result") : mb.test.note);
+    return f;
+  }
+  if (!rl.why_not.empty())
+    f.warnings.push_back(fmt::format(
+        "The model tests of {} are Holm-adjusted on the models' own p-values, not on relabelling "
+        "p-values ({}): where a participant's trials are correlated in time, the model's F can be "
+        "too liberal (docs/findings.md).",
+        metric, rl.why_not));
+  const std::string holm =
+      rl.why_not.empty()
+          ? fmt::format("relabelling {} over {}; Holm-adjusted over the {} model tests of {}: {}",
+                        p_text(*rl.p[i]), rl.words, family_size, metric, p_text(*mb.test.p_adjusted))
+          : fmt::format("Holm-adjusted over the {} model tests of {}: {}", family_size, metric,
+                        p_text(*mb.test.p_adjusted));
+  const std::string no_bf = f.strength == Strength::evidence_for_difference
+                                ? "no Bayes factor is available for this test"
+                                : "no Bayes factor is available for this test, so a non-significant "
+                                  "result is not evidence for no difference";
+  if (mb.is_f) {
+    f.statistics = mb.apa;
+    f.sentence = fmt::format("{} in the mixed model {}: {} ({}; {}; {}).", mb.what, mb.formula, f.evidence,
+                             mb.apa, holm, no_bf);
+  } else {
+    const auto& t = mb.test;
+    f.statistics = fmt::format("t({:.1f}) = {:.2f}, {}", *t.df, *t.statistic, p_text(*t.p_value));
+    f.sentence = fmt::format("{} in the mixed model {}: {} (b = {:.4f} per iteration, {:g}% CI [{:.4f}, "
+                             "{:.4f}], {}; {}; {}).",
+                             mb.what, mb.formula, f.evidence, *t.estimate, 100 * t.conf_level, *t.conf_low,
+                             *t.conf_high, f.statistics, holm, no_bf);
+  }
+  return f;
+}
+
 }  // namespace
 
-std::vector<Finding> study_findings(const StudyResults& r, const std::vector<report::MetricSpec>& metrics,
+std::vector<Finding> study_findings(const StudyResults& r, const std::vector<tables::MetricSpec>& metrics,
                                     const WordingRules& rules) {
   std::vector<Finding> out;
   const auto conditions = r.scores.conditions();
   for (const auto& m : metrics) {
-    const std::string question =
-        fmt::format("Does {} differ between the conditions, iteration by iteration?", m.column);
-    if (r.comparison) {
-      std::vector<stats::TestResult> tests;
-      std::vector<long long> iterations;
-      std::string g1, g2;
-      for (const auto& row : r.comparison->rows) {
-        if (row.metric != m.column || !is_t_test(row.result.test)) continue;
-        tests.push_back(row.result);
-        iterations.push_back(row.iteration.value_or(0));
-        g1 = row.group1;
-        g2 = row.group2;
-      }
-      if (!tests.empty()) {
-        std::string why_not;
-        const std::string correction = maxt_over_iterations(r, m.column, iterations, tests, why_not);
-        Finding f = family_finding("H1-iterations-" + m.column, "H1", question,
-                                   fmt::format("per-iteration contrasts of {}, {} vs {}", m.column, g1, g2),
-                                   std::move(tests), "comparison", rules, correction);
-        if (correction.empty() && !why_not.empty())
-          f.warnings.push_back(fmt::format("The per-iteration contrasts of {} are Holm-corrected, not "
-                                           "maxT-adjusted: {}.", m.column, why_not));
-        out.push_back(std::move(f));
-      }
-    } else if (conditions.size() < 2) {
-      out.push_back(one_condition_only("H1-iterations-" + m.column, "H1", question,
-                                       conditions.empty() ? std::string() : conditions.front(), "table1"));
-    }
-    // Reference plausibility over every participant and iteration.
-    const int k = r.scores.metric_index(m.column);
-    if (k < 0) continue;
-    std::map<long long, std::vector<double>> per_iteration;
-    for (const auto& rec : r.scores.records) {
-      const auto& v = rec.values[static_cast<std::size_t>(k)];
-      per_iteration[rec.iteration].push_back(v ? *v : std::nan(""));
-    }
-    std::vector<std::vector<double>> values;
-    for (auto& [it, v] : per_iteration) values.push_back(std::move(v));
-    const ReferenceCheck c = check_reference(m.column, m.reference, values);
-    if (c.outside) {
-      Finding f;
-      f.id = "reference-" + m.column;
-      f.hypothesis = "H1";
-      f.question = fmt::format("Is the reference {} = {:g} a plausible value of the metric?", m.column, m.reference);
-      f.sentence = c.warning;
-      f.evidence = "reference outside the data";
-      f.strength = Strength::not_computable;
-      f.source = "table1";
-      f.warnings.push_back(c.warning);
-      out.push_back(std::move(f));
-    }
+    add_iteration_findings(out, r, m, conditions, rules);
+    add_reference_finding(out, r, m);
   }
-  // H2: the questionnaire.
-  auto likert = [&](const std::optional<report::LikertAnalysis>& a, bool between) {
-    if (!a) return;
-    for (const auto& row : a->rows) {
-      if (!is_t_test(row.result.test)) continue;
-      const std::string what =
-          between ? fmt::format("{}: {} vs {}", row.metric, row.group1, row.group2)
-                  : fmt::format("{}{} against the reference", row.metric,
-                                row.group1.empty() ? std::string() : " (" + row.group1 + ")");
-      out.push_back(difference_finding(
-          fmt::format("H2-{}-{}{}", between ? "compare" : "reference", row.metric,
-                      row.group1.empty() || between ? std::string() : "-" + row.group1),
-          "H2",
-          between ? fmt::format("Do the conditions differ on {}?", row.metric)
-                  : fmt::format("Does {} differ from the reference?", row.metric),
-          what, row.result, nullptr, between ? "questionnaire-compare" : "questionnaire", rules));
-    }
-  };
   // H1 from the mixed models (condition x iteration, the linear trend).
   for (auto& f : mixed_model_findings(r.model ? &*r.model : nullptr,
                                       r.trend_model ? &*r.trend_model : nullptr, rules))
     out.push_back(std::move(f));
-  // H1, condition x exposure per strategy: needs each trial's strategy (the labels).
-  if (!r.figures.labels.empty()) {
-    std::vector<std::string> conditions_order;
-    if (r.model && !r.model->models.empty() && !r.model->models.front().group1.empty())
-      conditions_order = {r.model->models.front().group1, r.model->models.front().group2};
-    for (const auto& m : metrics) {
-      if (r.scores.metric_index(m.column) < 0) continue;
-      // The condition x exposure figure of this metric; else first against later exposures (the
-      // strategies figure when there are no traces).
-      std::string source = r.figures.traces.empty() ? "fig-strategies" : "fig-traces";
-      for (const auto& e : r.figures.exposure)
-        if (e.metric == m.column) source = "fig-exposure-" + m.column;
-      ExposureInput in;
-      std::vector<Finding> fs;
-      try {
-        in = exposure_input(r.scores, r.figures.labels, m.column);
-        // The report's exposure table when the analysis made one (the findings link to it), else
-        // fitted here from the labels.
-        const report::ExposureTable* table = nullptr;
-        for (const auto& t : r.exposure)
-          if (t.metric == m.column) table = &t;
-        const auto e = table ? table->result
-                             : models::exposure_slopes_by_condition(in.participant, in.condition, in.strategy,
-                                                                    in.exposure, in.y, conditions_order,
-                                                                    r.table1.options.test.conf_level,
-                                                                    r.table1.options.bf_prior_r);
-        fs = exposure_findings(e, rules, table ? "exposure" : source, m.column);
-      } catch (const std::exception& e) {
-        Finding f;
-        f.id = "H1-exposure-" + m.column;
-        f.hypothesis = "H1";
-        f.question = fmt::format("Does a strategy's effect on {} wear off with exposure differently under "
-                                 "the two conditions?", m.column);
-        f.strength = Strength::not_computable;
-        f.evidence = to_string(f.strength);
-        f.sentence = fmt::format("Exposure slopes of {} by condition: not computable ({}).", m.column, e.what());
-        f.source = source;
-        fs.push_back(std::move(f));
-      }
-      if (in.unlabelled > 0) {
-        const std::string w = fmt::format(
-            "{} scored trial{} of {} without a strategy in the logs' labels {} left out of the exposure analysis.",
-            in.unlabelled, in.unlabelled == 1 ? "" : "s", m.column, in.unlabelled == 1 ? "is" : "are");
-        for (auto& f : fs) f.warnings.push_back(w);
-      }
-      for (auto& f : fs) out.push_back(std::move(f));
-    }
-  }
+  add_exposure_findings(out, r, metrics, rules);
   // H2 after every H1 finding.
-  likert(r.likert, false);
-  likert(r.likert_compare, true);
+  add_likert_findings(out, r.likert, false, rules);
+  add_likert_findings(out, r.likert_compare, true, rules);
   return out;
 }
 
-report::ExposureTable exposure_table(const io::ScoresTable& scores, const std::vector<TrialLabel>& labels,
+tables::ExposureTable exposure_table(const io::ScoresTable& scores, const std::vector<TrialLabel>& labels,
                                      const std::string& metric, const std::vector<std::string>& conditions,
                                      double conf_level, double bf_prior_r) {
   const ExposureInput in = exposure_input(scores, labels, metric);
@@ -270,167 +472,26 @@ report::ExposureTable exposure_table(const io::ScoresTable& scores, const std::v
                                                        in.y, conditions, conf_level, bf_prior_r)};
 }
 
-std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model, const report::ModelAnalysis* trend,
+std::vector<Finding> mixed_model_findings(const tables::ModelAnalysis* model, const tables::ModelAnalysis* trend,
                                           const WordingRules& rules) {
   std::vector<Finding> out;
-  std::vector<std::string> metrics;
-  if (model)
-    for (const auto& m : model->models) metrics.push_back(m.metric);
-  if (trend)
-    for (const auto& m : trend->models)
-      if (std::find(metrics.begin(), metrics.end(), m.metric) == metrics.end()) metrics.push_back(m.metric);
-  auto find_model = [](const report::ModelAnalysis* a, const std::string& metric) -> const report::MetricModel* {
-    if (!a) return nullptr;
-    for (const auto& m : a->models)
-      if (m.metric == metric) return &m;
-    return nullptr;
-  };
-  for (const auto& metric : metrics) {
-    // The family: the two F tests of the factor model and the slope difference(s) of the trend model.
-    struct Member {
-      std::string id, question, what, source, formula, apa;
-      stats::TestResult test;
-      bool is_f = false;
-      bool singular = false;  // the model's fit is on the boundary (lme4: isSingular)
-      enum class Kind { interaction, condition, slope } kind = Kind::interaction;
-    };
-    std::vector<Member> family;
-    if (const report::MetricModel* m = find_model(model, metric)) {
-      const auto& spec = m->fit.spec;
-      const std::string inter = spec.group + ":" + spec.time;
-      if (const auto* t = find_term(m->fit, inter)) {
-        family.push_back({"H1-model-interaction-" + metric,
-                          fmt::format("Does the course of {} over the iterations differ between the conditions?", metric),
-                          fmt::format("Condition \u00d7 iteration interaction of {}", metric), "model", m->formula + " (iteration as a factor)",
-                          report::anova_apa(*t), f_as_test(*t), true, m->fit.singular, Member::Kind::interaction});
-      }
-      if (const auto* t = find_term(m->fit, spec.group)) {
-        family.push_back({"H1-model-condition-" + metric,
-                          fmt::format("Does {} differ between the conditions, over all iterations?", metric),
-                          fmt::format("Main effect of condition on {}", metric), "model", m->formula + " (iteration as a factor)",
-                          report::anova_apa(*t), f_as_test(*t), true, m->fit.singular, Member::Kind::condition});
-      }
-    }
-    if (const report::MetricModel* m = find_model(trend, metric)) {
-      const auto& fit = m->fit;
-      for (std::size_t k = 1; k < fit.group_levels.size(); ++k) {
-        const std::string name = fit.spec.group + fit.group_levels[k] + ":" + fit.spec.time;
-        const auto it = std::find(fit.coef_names.begin(), fit.coef_names.end(), name);
-        if (it == fit.coef_names.end()) continue;
-        Eigen::VectorXd L = Eigen::VectorXd::Zero(fit.beta.size());
-        L(static_cast<Eigen::Index>(it - fit.coef_names.begin())) = 1;
-        const models::Contrast c = models::contrast(fit, L, trend->options.conf_level);
-        family.push_back({"H1-model-trend-" + metric + (fit.group_levels.size() > 2 ? "-" + fit.group_levels[k] : ""),
-                          fmt::format("Does {} change over the iterations at a different rate in the two conditions?", metric),
-                          fmt::format("Difference of the linear slopes of {} over the iterations, {} minus {} ({})",
-                                      metric, fit.group_levels[k], fit.group_levels[0], name),
-                          "model-trend", m->formula + " (iteration as a linear trend)", "", c.test, false,
-                          fit.singular, Member::Kind::slope});
-      }
-    }
-    // Relabelling p-values (docs/findings.md, "Mixed models: relabelling p-values"): whole
-    // participants relabelled between the two conditions, both models refitted each time.
-    std::string why_not;
-    std::vector<std::optional<double>> relabelled(family.size());
-    std::string relabel_words;
-    const report::MetricModel* fm = find_model(model, metric);
-    const report::MetricModel* tm = find_model(trend, metric);
-    const report::MetricModel* any = fm ? fm : tm;
-    if (!any || any->data.y.empty()) {
-      why_not = "the trials were not given to relabel";
-    } else if (any->fit.group_levels.size() != 2) {
-      why_not = fmt::format("{} conditions (relabelling needs two)", any->fit.group_levels.size());
-    } else if (!family.empty()) {
-      try {
-        models::RelabellingOptions ro;
-        ro.permutations = kModelPermutations;
-        const models::RelabelledConditionTests rt =
-            models::relabel_condition_tests(any->data, any->fit.group_levels, ro);
-        // The relabelled statistics must be the models' own (else the data differ from the fits').
-        for (std::size_t i = 0; i < family.size() && why_not.empty(); ++i) {
-          const Member& mb = family[i];
-          using K = Member::Kind;
-          const std::optional<double>& s = mb.kind == K::interaction ? rt.interaction_f
-                                           : mb.kind == K::condition ? rt.condition_f
-                                                                     : rt.slope_difference_t;
-          const std::optional<double>& pr = mb.kind == K::interaction ? rt.p_interaction
-                                            : mb.kind == K::condition ? rt.p_condition
-                                                                      : rt.p_slope_difference;
-          if (!mb.test.computed || !mb.test.statistic) continue;
-          if (!s || std::fabs(*s - *mb.test.statistic) > 1e-6 * std::max(1.0, std::fabs(*mb.test.statistic)))
-            why_not = fmt::format("the {} could not be reproduced from the trials", mb.kind == K::slope ? "slope difference's t" : "F");
-          else
-            relabelled[i] = pr;
-        }
-        if (why_not.empty())
-          relabel_words = rt.exact ? fmt::format("all {} labellings of the participants", thousands(rt.labellings))
-                                   : fmt::format("{} labellings of the participants drawn at random",
-                                                 thousands(rt.labellings));
-      } catch (const Error& e) {  // InvalidData or UsageError: the data cannot be relabelled
-        why_not = e.what();
-      }
-    }
+  for (const auto& metric : modelled_metrics(model, trend)) {
+    const tables::MetricModel* fm = model_of(model, metric);
+    const tables::MetricModel* tm = model_of(trend, metric);
+    std::vector<ModelTest> family;
+    if (fm) add_factor_model_tests(family, *fm, metric);
+    if (tm) add_trend_model_tests(family, *tm, metric, trend->options.conf_level);
+    const Relabelling rl = relabel_family(fm ? fm : tm, family);
+    // Holm over the family, on the relabelling p-values when there are any.
     std::vector<std::optional<double>> p;
     for (std::size_t i = 0; i < family.size(); ++i) {
       const auto& f = family[i];
-      p.push_back(!f.test.computed ? std::nullopt : why_not.empty() ? relabelled[i] : f.test.p_value);
+      p.push_back(!f.test.computed ? std::nullopt : rl.why_not.empty() ? rl.p[i] : f.test.p_value);
     }
     const auto adj = stats::p_adjust(p, stats::PAdjustMethod::holm);
     for (std::size_t i = 0; i < family.size(); ++i) {
-      Member& mb = family[i];
-      mb.test.p_adjusted = adj[i];
-      Finding f;
-      f.id = mb.id;
-      f.hypothesis = "H1";
-      f.question = mb.question;
-      f.source = mb.source;
-      f.strength = classify(mb.test, nullptr, rules, &f.grade);
-      f.evidence = evidence_text(f.strength, f.grade);
-      if (mb.singular)
-        f.warnings.push_back(fmt::format(
-            "The mixed model {} is a singular fit: a variance between participants is estimated at "
-            "(or near) zero (lme4: isSingular), so its tests rest on the trials' residual variance "
-            "alone, as lmerTest's do; the model table says which component.{}",
-            mb.formula,
-            why_not.empty() ? " The relabelling p-value does not rest on that estimate: each relabelling is "
-                              "refitted, boundary and all."
-                            : ""));
-      if (f.strength == Strength::not_computable) {
-        f.sentence = fmt::format("{} in the mixed model {}: not computable ({}).", mb.what, mb.formula,
-                                 mb.test.note.empty() ? std::string("no test result") : mb.test.note);
-        out.push_back(std::move(f));
-        continue;
-      }
-      if (!why_not.empty())
-        f.warnings.push_back(fmt::format(
-            "The model tests of {} are Holm-adjusted on the models' own p-values, not on relabelling "
-            "p-values ({}): where a participant's trials are correlated in time, the model's F can be "
-            "too liberal (docs/findings.md).",
-            metric, why_not));
-      const std::string holm =
-          why_not.empty()
-              ? fmt::format("relabelling {} over {}; Holm-adjusted over the {} model tests of {}: {}",
-                            p_text(*relabelled[i]), relabel_words, family.size(), metric,
-                            p_text(*mb.test.p_adjusted))
-              : fmt::format("Holm-adjusted over the {} model tests of {}: {}", family.size(), metric,
-                            p_text(*mb.test.p_adjusted));
-      const std::string no_bf = f.strength == Strength::evidence_for_difference
-                                    ? "no Bayes factor is available for this test"
-                                    : "no Bayes factor is available for this test, so a non-significant "
-                                      "result is not evidence for no difference";
-      if (mb.is_f) {
-        f.statistics = mb.apa;
-        f.sentence = fmt::format("{} in the mixed model {}: {} ({}; {}; {}).", mb.what, mb.formula, f.evidence,
-                                 mb.apa, holm, no_bf);
-      } else {
-        const auto& t = mb.test;
-        f.statistics = fmt::format("t({:.1f}) = {:.2f}, {}", *t.df, *t.statistic, p_text(*t.p_value));
-        f.sentence = fmt::format("{} in the mixed model {}: {} (b = {:.4f} per iteration, {:g}% CI [{:.4f}, "
-                                 "{:.4f}], {}; {}; {}).",
-                                 mb.what, mb.formula, f.evidence, *t.estimate, 100 * t.conf_level, *t.conf_low,
-                                 *t.conf_high, f.statistics, holm, no_bf);
-      }
-      out.push_back(std::move(f));
+      family[i].test.p_adjusted = adj[i];
+      out.push_back(model_test_finding(family[i], i, family.size(), metric, rl, rules));
     }
   }
   return out;

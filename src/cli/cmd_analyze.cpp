@@ -7,14 +7,18 @@
 // command line wins over the file, so a script can change one setting without editing the study.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "feint/analysis/analyze.hpp"
-#include "feint/analysis/command_line.hpp"
 #include "feint/analysis/findings.hpp"
+#include "feint/commands/analyze_command.hpp"
 #include "feint/error.hpp"
 #include "feint/publish/study_report.hpp"
 #include "options.hpp"
@@ -32,6 +36,19 @@ struct AnalyzeArgs {
   analysis::AnalysisSettings s;
 };
 
+// This process's arguments as the kernel recorded them (Linux: /proc/self/cmdline; none without
+// /proc), for the report's Reproduce line: the caller captures them, the library quotes them.
+std::vector<std::string> process_arguments() {
+  std::ifstream in("/proc/self/cmdline", std::ios::binary);
+  const std::string raw{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  std::vector<std::string> args;
+  for (std::size_t start = 0, end = 0; start < raw.size(); start = end + 1) {
+    end = std::min(raw.find('\0', start), raw.size());
+    args.push_back(raw.substr(start, end - start));
+  }
+  return args;
+}
+
 void run(CLI::App& cmd, AnalyzeArgs& a) {
   if (!fs::is_directory(a.study)) {
     throw IoError(fmt::format("study folder '{}' does not exist or is not a folder", a.study));
@@ -43,12 +60,12 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
   const analysis::StudyResults results = analysis::analyze(study, FEINT_VERSION);
   for (const auto& w : results.diagnostics.warnings) fmt::print(stderr, "feint: warning: {}\n", w);
   const publish::WrittenStudy written =
-      publish::write_study(study, results, out, analysis::command_line());
+      publish::write_study(study, results, out, commands::quoted_command_line(process_arguments()));
   // What the study shows (docs/findings.md), also in OUT/findings.json and first in the report.
   if (!results.findings.empty()) fmt::print("{}", analysis::findings_text(results.findings));
   fmt::print(
       stderr, "{}",
-      analysis::run_summary(study, results, written.files.size(), written.folder, a.out.empty()));
+      commands::run_summary(study, results, written.files.size(), written.folder, a.out.empty()));
 }
 
 }  // namespace

@@ -3,13 +3,13 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "feint/analysis/table_commands.hpp"
+#include "feint/commands/table_commands.hpp"
 #include "options.hpp"
 
 namespace feint::cli {
 
 void add_anova_command(CLI::App& app) {
-  auto args = std::make_shared<ReportCommand<analysis::AnovaCommandOptions>>();
+  auto args = std::make_shared<ReportCommand<commands::AnovaCommandOptions>>();
   auto* cmd = app.add_subcommand(
       "anova",
       "Mixed ANOVA per metric: condition (between) x iteration (within), as afex::aov_ez - "
@@ -44,7 +44,7 @@ void add_anova_command(CLI::App& app) {
                   "(default: tukey for pairwise/simple, none for poly)");
   add_scores_column_options(*cmd, args->o.columns);
   add_report_options(*cmd, args->report, {.tests = false, .presentation = true});
-  cmd->callback([args] { run_report(*args, analysis::anova_report); });
+  cmd->callback([args] { run_report(*args, commands::anova_report); });
 }
 
 }  // namespace feint::cli

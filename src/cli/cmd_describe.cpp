@@ -3,7 +3,7 @@
 
 #include "commands.hpp"
 #include "feint/io/scores.hpp"
-#include "feint/report/describe.hpp"
+#include "feint/tables/describe.hpp"
 #include "options.hpp"
 
 namespace feint::cli {
@@ -39,8 +39,8 @@ void add_describe_command(CLI::App& app) {
     ro.conf_level = args->conf_level;
     const ResolvedReportOptions r = resolve_report_options(ro);
     const auto column = io::load_numeric_column(args->input, args->column, args->by);
-    const auto table = report::build_describe(column, r.test.conf_level);
-    write_report(r.output, report::render_describe(table, r.format));
+    const auto table = tables::build_describe(column, r.test.conf_level);
+    write_report(r.output, tables::render_describe(table, r.format));
   });
 }
 

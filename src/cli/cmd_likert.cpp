@@ -1,18 +1,18 @@
 // `feint likert FILE`: Likert questionnaire analyses (docs/likert.md). Thin: the options go to
-// analysis::likert_report, which checks them, analyses the file and renders; this file writes.
+// commands::likert_report, which checks them, analyses the file and renders; this file writes.
 #include <memory>
 
 #include "commands.hpp"
-#include "feint/analysis/table_commands.hpp"
+#include "feint/commands/table_commands.hpp"
 #include "options.hpp"
 
 namespace feint::cli {
 
 namespace {
 
-void run(const ReportCommand<analysis::LikertCommandOptions>& a) {
+void run(const ReportCommand<commands::LikertCommandOptions>& a) {
   const ResolvedReportOptions r = resolve_report_options(a.report);
-  const analysis::LikertReport out = analysis::likert_report(a.o, r);
+  const commands::LikertReport out = commands::likert_report(a.o, r);
   if (!a.o.summary.empty()) write_report(a.o.summary, out.summary_csv);
   write_report(r.output, out.text);
 }
@@ -20,7 +20,7 @@ void run(const ReportCommand<analysis::LikertCommandOptions>& a) {
 }  // namespace
 
 void add_likert_command(CLI::App& app) {
-  auto args = std::make_shared<ReportCommand<analysis::LikertCommandOptions>>();
+  auto args = std::make_shared<ReportCommand<commands::LikertCommandOptions>>();
   auto* cmd = app.add_subcommand(
       "likert",
       "Likert questionnaire analyses: per item and composite scale, descriptives, the Wilcoxon "

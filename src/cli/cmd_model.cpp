@@ -2,13 +2,13 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "feint/analysis/table_commands.hpp"
+#include "feint/commands/table_commands.hpp"
 #include "options.hpp"
 
 namespace feint::cli {
 
 void add_model_command(CLI::App& app) {
-  auto args = std::make_shared<ReportCommand<analysis::ModelCommandOptions>>();
+  auto args = std::make_shared<ReportCommand<commands::ModelCommandOptions>>();
   auto* cmd = app.add_subcommand(
       "model",
       "Linear mixed model per metric: metric ~ condition * iteration + (1 | participant) by REML, "
@@ -50,7 +50,7 @@ void add_model_command(CLI::App& app) {
                   "Name of the strategy column (--exposure)")
       ->capture_default_str();
   add_report_options(*cmd, args->report, {.tests = true, .presentation = true});
-  cmd->callback([args] { run_report(*args, analysis::model_report); });
+  cmd->callback([args] { run_report(*args, commands::model_report); });
 }
 
 }  // namespace feint::cli

@@ -1,9 +1,9 @@
 // `feint observer fit`: the goal-inference observer fitted to pad-trace logs (docs/observer.md).
-// Thin: sim::fit_observer_to_logs reads the logs and fits; report::render_observer_fit_* print it.
+// Thin: sim::fit_observer_to_logs reads the logs and fits; tables::render_observer_fit_* print it.
 #include <memory>
 
 #include "commands.hpp"
-#include "feint/report/observer_render.hpp"
+#include "feint/tables/observer_render.hpp"
 #include "feint/sim/observer_logs.hpp"
 #include "options.hpp"
 
@@ -14,8 +14,8 @@ namespace {
 void run_fit(const sim::ObserverFitOptions& a) {
   const models::ObserverFitSettings s = sim::observer_fit_settings(a);
   const sim::ObserverLogFit fit = sim::fit_observer_to_logs(a.inputs, s);
-  write_report(a.output, a.format == "json" ? report::render_observer_fit_json(fit, s)
-                                            : report::render_observer_fit_text(fit, s));
+  write_report(a.output, a.format == "json" ? tables::render_observer_fit_json(fit, s)
+                                            : tables::render_observer_fit_text(fit, s));
 }
 
 }  // namespace

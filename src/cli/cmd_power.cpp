@@ -4,7 +4,7 @@
 #include <string>
 
 #include "commands.hpp"
-#include "feint/analysis/power_reports.hpp"
+#include "feint/commands/power_reports.hpp"
 #include "options.hpp"
 
 namespace feint::cli {
@@ -16,7 +16,7 @@ void add_power_command(CLI::App& app) {
       "simulate` (the 2 x k design: ANOVA interaction and per-iteration contrasts, by simulation)");
   cmd->require_subcommand(1);
 
-  auto t = std::make_shared<ReportCommand<analysis::TTestPowerOptions>>();
+  auto t = std::make_shared<ReportCommand<commands::TTestPowerOptions>>();
   auto* tt = cmd->add_subcommand(
       "t-test",
       "Power, sample size or detectable difference of a one-sample, two-sample (Student or Welch) "
@@ -40,9 +40,9 @@ void add_power_command(CLI::App& app) {
   tt->add_option("--alternative", t->o.alternative,
                  "two.sided, greater or less (one-sided in the direction of the effect)");
   add_report_options(*tt, t->report, {.tests = false, .presentation = true});
-  tt->callback([t] { run_report(*t, analysis::t_test_power_report); });
+  tt->callback([t] { run_report(*t, commands::t_test_power_report); });
 
-  auto s = std::make_shared<ReportCommand<analysis::PowerSimulationOptions>>();
+  auto s = std::make_shared<ReportCommand<commands::PowerSimulationOptions>>();
   auto* sim = cmd->add_subcommand(
       "simulate",
       "Simulation power of the 2-condition x k-iteration design: the condition x iteration "
@@ -70,7 +70,7 @@ void add_power_command(CLI::App& app) {
   sim->add_flag("--null", s->o.null, "Simulate the null: both conditions get the average profile");
   add_scores_column_options(*sim, s->o.columns, "Pilot: ");
   add_report_options(*sim, s->report, {.tests = false, .presentation = true});
-  sim->callback([s] { run_report(*s, analysis::power_simulation_report); });
+  sim->callback([s] { run_report(*s, commands::power_simulation_report); });
 
   add_power_observer_command(*cmd);
 }

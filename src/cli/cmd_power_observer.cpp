@@ -4,13 +4,13 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "feint/analysis/observer_power.hpp"
+#include "feint/commands/observer_power.hpp"
 #include "options.hpp"
 
 namespace feint::cli {
 
 void add_power_observer_command(CLI::App& power) {
-  auto a = std::make_shared<ReportCommand<analysis::ObserverPowerOptions>>();
+  auto a = std::make_shared<ReportCommand<commands::ObserverPowerOptions>>();
   auto* cmd = power.add_subcommand(
       "observer",
       "Participants per condition for a given power to see adaptive > random, by simulating whole "
@@ -50,7 +50,7 @@ void add_power_observer_command(CLI::App& power) {
       ->capture_default_str()
       ->check(CLI::Range(0.0, 1.0));
   add_report_options(*cmd, a->report, {.tests = false, .presentation = true});
-  cmd->callback([a] { run_report(*a, analysis::observer_power_report); });
+  cmd->callback([a] { run_report(*a, commands::observer_power_report); });
 }
 
 }  // namespace feint::cli

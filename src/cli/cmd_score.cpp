@@ -5,50 +5,26 @@
 #include <cstdio>
 #include <memory>
 #include <string>
-#include <vector>
 
 #include "commands.hpp"
-#include "feint/io/progress.hpp"
-#include "feint/metrics/score.hpp"
+#include "feint/commands/score_command.hpp"
 #include "options.hpp"
 
 namespace feint::cli {
 
 namespace {
 
-struct ScoreArgs {
-  std::vector<std::string> inputs;
-  std::string output;
-  ScoreOptions scoring;
-  std::string rejects;
-  std::string sidecar;
-  bool unsorted = false;
-};
-
-void run(const ScoreArgs& a) {
-  metrics::ScoreSettings s = score_settings(a.scoring);
-  s.rejects_path = a.rejects;
-  s.sidecar_path = a.sidecar;
-  s.unsorted = a.unsorted;
-  s.tool_version = FEINT_VERSION;
-
-  auto progress = std::make_shared<io::ProgressLine>("feint score");
-  if (progress->active()) {
-    s.on_progress = [progress](const metrics::ScoreProgress& p) {
-      progress->update(p.rows_read, p.bytes_read, p.trials_scored, p.trials_rejected);
-    };
-  }
-  const auto summary = metrics::score_to_file(a.inputs, s, a.output);
-  progress->finish();
-
+void run(const commands::ScoreCommandOptions& a) {
+  const std::string summary = commands::score_command(a);
   std::fflush(stdout);
-  fmt::print(stderr, "{}", metrics::summary_text(summary));
+  fmt::print(stderr, "{}", summary);
 }
 
 }  // namespace
 
 void add_score_command(CLI::App& app) {
-  auto args = std::make_shared<ScoreArgs>();
+  auto args = std::make_shared<commands::ScoreCommandOptions>();
+  args->tool_version = FEINT_VERSION;
   auto* cmd = app.add_subcommand(
       "score",
       "Score pad-trace logs: one row per trial with error and confusion (seed paper sec. VI, "

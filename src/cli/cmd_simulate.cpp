@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "feint/report/simulation_render.hpp"
-#include "feint/report/trajectory_render.hpp"
+#include "feint/tables/simulation_render.hpp"
+#include "feint/tables/trajectory_render.hpp"
 #include "feint/sim/options.hpp"
 #include "options.hpp"
 
@@ -19,14 +19,14 @@ namespace feint::cli {
 namespace {
 
 void run_selection(const sim::SelectionOptions& o) {
-  const std::string format = report::output_format(o.format, o.output);
+  const std::string format = tables::output_format(o.format, o.output);
   const std::vector<sim::SimulationSettings> all = sim::selection_settings(o);
   std::vector<sim::SimulationSummary> rows;
   rows.reserve(all.size());
   for (const auto& s : all) rows.push_back(sim::simulate_selection(s));
-  if (!o.sequences.empty()) report::write_selection_sequences(o.sequences, all);
-  if (!o.occurrence.empty()) report::write_selection_occurrence(o.occurrence, rows);
-  write_report(o.output, report::render_selection(rows, format));
+  if (!o.sequences.empty()) tables::write_selection_sequences(o.sequences, all);
+  if (!o.occurrence.empty()) tables::write_selection_occurrence(o.occurrence, rows);
+  write_report(o.output, tables::render_selection(rows, format));
 }
 
 void add_selection_command(CLI::App& parent) {
@@ -69,7 +69,7 @@ void run_study(const sim::StudyOptions& o) {
   const sim::StudySettings s = sim::study_settings(o);
   const auto people = sim::write_study(s, o.out);
   // Where the files are, and the mean trial error by condition (first and last five iterations).
-  fmt::print("{}", report::study_summary_text(people, s, o.out));
+  fmt::print("{}", tables::study_summary_text(people, s, o.out));
 }
 
 void add_study_command(CLI::App& parent) {
@@ -109,9 +109,9 @@ void add_study_command(CLI::App& parent) {
 }
 
 void run_trajectories(const sim::TrajectoriesOptions& o) {
-  const std::string format = report::output_format(o.format, o.output);
+  const std::string format = tables::output_format(o.format, o.output);
   const sim::TrajectoryMeasures m = sim::trajectory_measures(o);
-  write_report(o.output, report::render_trajectories(m.rows, m.settings, format));
+  write_report(o.output, tables::render_trajectories(m.rows, m.settings, format));
 }
 
 void add_trajectories_command(CLI::App& parent) {

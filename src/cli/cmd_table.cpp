@@ -2,13 +2,13 @@
 #include <memory>
 
 #include "commands.hpp"
-#include "feint/analysis/table_commands.hpp"
+#include "feint/commands/table_commands.hpp"
 #include "options.hpp"
 
 namespace feint::cli {
 
 void add_table_command(CLI::App& app) {
-  auto args = std::make_shared<ReportCommand<analysis::TableCommandOptions>>();
+  auto args = std::make_shared<ReportCommand<commands::TableCommandOptions>>();
   auto* cmd = app.add_subcommand(
       "table",
       "The paper's Table 1: per iteration and metric, t-tests of the participants' scores against "
@@ -37,7 +37,7 @@ void add_table_command(CLI::App& app) {
   add_report_options(*cmd, args->report, {.tests = true, .presentation = true, .bayes = true});
   cmd->callback([args, equivalence] {
     args->o.equivalence_given = equivalence->count() > 0;  // TOST only when asked for
-    run_report(*args, analysis::table1_report);
+    run_report(*args, commands::table1_report);
   });
 }
 

@@ -18,12 +18,12 @@ void add_describe_command(CLI::App& app);          // cmd_describe.cpp (issue: T
 void add_analyze_command(CLI::App& app);           // cmd_analyze.cpp  (issue: Table 1)
 void add_likert_command(CLI::App& app);            // cmd_likert.cpp   (issue: Likert)
 void add_simulate_command(CLI::App& app);          // cmd_simulate.cpp (issue: selection simulator)
-void add_collect_command(CLI::App& app);           // cmd_collect.cpp  (issue 11: data collection)
-void add_anova_command(CLI::App& app);             // cmd_anova.cpp    (issue 10: mixed ANOVA)
-void add_power_command(CLI::App& app);             // cmd_power.cpp    (issue 10: power)
-void add_power_observer_command(CLI::App& power);  // cmd_power_observer.cpp (issue #17)
-void add_plot_command(CLI::App& app);              // cmd_plot.cpp     (issue #9: figures)
-void add_model_command(CLI::App& app);             // cmd_model.cpp    (issue #10: mixed model)
-void add_observer_command(CLI::App& app);          // cmd_observer.cpp (issue #16: observer fit)
+void add_collect_command(CLI::App& app);           // cmd_collect.cpp  (data collection)
+void add_anova_command(CLI::App& app);             // cmd_anova.cpp    (mixed ANOVA)
+void add_power_command(CLI::App& app);             // cmd_power.cpp    (power)
+void add_power_observer_command(CLI::App& power);  // cmd_power_observer.cpp
+void add_plot_command(CLI::App& app);              // cmd_plot.cpp     (figures)
+void add_model_command(CLI::App& app);             // cmd_model.cpp    (mixed model)
+void add_observer_command(CLI::App& app);          // cmd_observer.cpp (observer fit)
 
 }  // namespace feint::cli

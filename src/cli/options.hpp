@@ -13,16 +13,16 @@
 #include <utility>
 #include <vector>
 
-#include "feint/analysis/options.hpp"
+#include "feint/analysis/settings.hpp"
 #include "feint/io/scores.hpp"
-#include "feint/report/table1.hpp"
-#include "feint/report/writers.hpp"
+#include "feint/tables/table1.hpp"
+#include "feint/tables/writers.hpp"
 #include "feint/stats/htest.hpp"
 #include "feint/stats/p_adjust.hpp"
 
 namespace feint::cli {
 
-/// The option values and their checks live in the library (feint/analysis/options.hpp).
+/// The option values and their checks live in the library (feint/analysis/settings.hpp).
 using analysis::parse_compare;
 using analysis::parse_metric_specs;
 using analysis::parse_p_adjust_option;

@@ -312,121 +312,146 @@ void GroupCommitter::completer() {
   }
 }
 
-void GroupCommitter::write_batch(std::vector<std::shared_ptr<Group>>& batch) {
-  struct File {
-    Fd fd;
-    std::uint64_t size = 0;
-    bool created = false;
-    std::string error;
-    std::vector<Result*> results;  // the appends to it, for a failed sync
-  };
-  std::vector<std::pair<fs::path, std::unique_ptr<File>>> files;
-  auto file_of = [&](const fs::path& path) -> File& {
-    for (auto& [p, f] : files)
-      if (p == path) return *f;
-    auto f = std::make_unique<File>();
-    f->fd.fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
-    if (f->fd.fd < 0 && errno == ENOENT) {
-      f->fd.fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-      f->created = f->fd.fd >= 0;
+namespace {
+
+/// A file of a group: opened once for the group, its size followed through the group's appends.
+struct BatchFile {
+  Fd fd;
+  std::uint64_t size = 0;
+  bool created = false;
+  std::string error;
+  std::vector<GroupCommitter::Result*> results;  // the appends to it, for a failed sync
+};
+using BatchFiles = std::vector<std::pair<fs::path, std::unique_ptr<BatchFile>>>;
+
+/// The group's file for `path`, opened (created when missing) on its first append.
+BatchFile& file_of(BatchFiles& files, const fs::path& path) {
+  for (auto& [p, f] : files)
+    if (p == path) return *f;
+  auto f = std::make_unique<BatchFile>();
+  f->fd.fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+  if (f->fd.fd < 0 && errno == ENOENT) {
+    f->fd.fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    f->created = f->fd.fd >= 0;
+  }
+  struct stat st {};
+  if (f->fd.fd < 0) {
+    f->error = fmt::format("{}: cannot open for appending: {}", path.string(), std::strerror(errno));
+  } else if (::fstat(f->fd.fd, &st) != 0) {
+    f->error = fmt::format("{}: cannot stat: {}", path.string(), std::strerror(errno));
+  } else {
+    f->size = static_cast<std::uint64_t>(st.st_size);
+  }
+  files.emplace_back(path, std::move(f));
+  return *files.back().second;
+}
+
+/// Writes one commit's appends in order; after a failed one, the rest are not written.
+void write_commit(std::vector<GroupCommitter::Append>& items,
+                  std::vector<GroupCommitter::Result>& results, BatchFiles& files) {
+  bool failed = false;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    auto& item = items[i];
+    auto& res = results[i];
+    if (failed) {
+      res.error = "not written: an earlier append of the same commit failed";
+      continue;
     }
-    struct stat st {};
-    if (f->fd.fd < 0) {
-      f->error = fmt::format("{}: cannot open for appending: {}", path.string(), std::strerror(errno));
-    } else if (::fstat(f->fd.fd, &st) != 0) {
-      f->error = fmt::format("{}: cannot stat: {}", path.string(), std::strerror(errno));
-    } else {
-      f->size = static_cast<std::uint64_t>(st.st_size);
+    BatchFile& f = file_of(files, item.path);
+    if (!f.error.empty()) {
+      res.error = f.error;
+      failed = true;
+      continue;
     }
-    files.emplace_back(path, std::move(f));
-    return *files.back().second;
-  };
-  // 1. Write, in queue order.
-  for (auto& g : batch) {
-    bool failed = false;
-    for (std::size_t i = 0; i < g->items.size(); ++i) {
-      auto& item = g->items[i];
-      auto& res = g->results[i];
-      if (failed) {
-        res.error = "not written: an earlier append of the same commit failed";
-        continue;
-      }
-      File& f = file_of(item.path);
-      if (!f.error.empty()) {
-        res.error = f.error;
-        failed = true;
-        continue;
-      }
-      std::string_view data = item.data;
-      std::string first;
-      if (f.size == 0) {  // an empty file gets its header first, in the same write
-        first.append(item.header).append(item.data);
-        data = first;
-      }
-      try {
-        write_all(f.fd.fd, data, item.path);
-        f.size += data.size();
-        res.size = f.size;
-        f.results.push_back(&res);
-      } catch (const IoError& e) {
-        // Not acknowledged: its own partial bytes are cut back (see append_durably).
-        (void)::ftruncate(f.fd.fd, static_cast<off_t>(f.size));
-        res.error = e.what();
-        failed = true;
-      }
+    std::string_view data = item.data;
+    std::string first;
+    if (f.size == 0) {  // an empty file gets its header first, in the same write
+      first.append(item.header).append(item.data);
+      data = first;
+    }
+    try {
+      write_all(f.fd.fd, data, item.path);
+      f.size += data.size();
+      res.size = f.size;
+      f.results.push_back(&res);
+    } catch (const IoError& e) {
+      // Not acknowledged: its own partial bytes are cut back (see append_durably).
+      (void)::ftruncate(f.fd.fd, static_cast<off_t>(f.size));
+      res.error = e.what();
+      failed = true;
     }
   }
+}
+
+/// Marks every append to `f` that has not failed yet as failed, for `why`.
+void fail_all(BatchFile& f, const std::string& why) {
+  for (GroupCommitter::Result* r : f.results)
+    if (r->error.empty()) r->error = why;
+}
+
+/// The sync of a group that touched a single file (and its folder, when it created it).
+void sync_one(const BatchFiles& files, BatchFile& f) {
+  if (::fdatasync(f.fd.fd) != 0) fail_all(f, fmt::format("cannot sync: {}", std::strerror(errno)));
+  for (auto& [p, fp] : files) {
+    if (fp.get() != &f || !f.created) continue;
+    try {
+      sync_directory(p.parent_path());
+    } catch (const IoError& e) {
+      fail_all(f, e.what());
+    }
+  }
+}
+
+// fdatasync() of every file at once, from several threads: the file system joins them into
+// one journal commit (ext4, xfs), so the group costs about one sync, and only these files'
+// data is flushed (syncfs() would flush everything else on the disk too). (A template: the pool's
+// type is private to GroupCommitter.)
+template <class Pool>
+void sync_together(const BatchFiles& files, const std::vector<BatchFile*>& touched, Pool& pool) {
+  std::vector<fs::path> dirs;
+  for (auto& [p, f] : files)
+    if (f->created && std::find(dirs.begin(), dirs.end(), p.parent_path()) == dirs.end())
+      dirs.push_back(p.parent_path());
+  std::vector<std::string> errors(touched.size() + dirs.size());
+  auto work = [&](std::size_t i) {
+    if (i < touched.size()) {
+      if (::fdatasync(touched[i]->fd.fd) != 0)
+        errors[i] = fmt::format("cannot sync: {}", std::strerror(errno));
+    } else {
+      try {
+        sync_directory(dirs[i - touched.size()]);
+      } catch (const IoError& e) {
+        errors[i] = e.what();
+      }
+    }
+  };
+  pool.run(errors.size(), work);
+  for (std::size_t i = 0; i < touched.size(); ++i)
+    if (!errors[i].empty()) fail_all(*touched[i], errors[i]);
+  for (std::size_t d = 0; d < dirs.size(); ++d) {
+    if (errors[touched.size() + d].empty()) continue;
+    for (auto& [p, f] : files)
+      if (f->created && p.parent_path() == dirs[d]) fail_all(*f, errors[touched.size() + d]);
+  }
+}
+
+}  // namespace
+
+void GroupCommitter::write_batch(std::vector<std::shared_ptr<Group>>& batch) {
+  BatchFiles files;
+  // 1. Write, in queue order.
+  for (auto& g : batch) write_commit(g->items, g->results, files);
   // 2. One sync for the whole group.
-  std::vector<File*> touched;
+  std::vector<BatchFile*> touched;
   for (auto& [p, f] : files)
     if (!f->results.empty() || f->created) touched.push_back(f.get());
   if (touched.empty()) return;
   if (const auto ms = sync_delay_ms_.load(); ms > 0)
     std::this_thread::sleep_for(std::chrono::milliseconds(ms));
-  auto fail_all = [&](File& f, const std::string& why) {
-    for (Result* r : f.results)
-      if (r->error.empty()) r->error = why;
-  };
   if (touched.size() == 1) {
-    File& f = *touched.front();
-    if (::fdatasync(f.fd.fd) != 0) fail_all(f, fmt::format("cannot sync: {}", std::strerror(errno)));
-    for (auto& [p, fp] : files) {
-      if (fp.get() != &f || !f.created) continue;
-      try {
-        sync_directory(p.parent_path());
-      } catch (const IoError& e) {
-        fail_all(f, e.what());
-      }
-    }
+    sync_one(files, *touched.front());
   } else {
-    // fdatasync() of every file at once, from several threads: the file system joins them into
-    // one journal commit (ext4, xfs), so the group costs about one sync, and only these files'
-    // data is flushed (syncfs() would flush everything else on the disk too).
-    std::vector<fs::path> dirs;
-    for (auto& [p, f] : files)
-      if (f->created && std::find(dirs.begin(), dirs.end(), p.parent_path()) == dirs.end())
-        dirs.push_back(p.parent_path());
-    std::vector<std::string> errors(touched.size() + dirs.size());
-    auto work = [&](std::size_t i) {
-        if (i < touched.size()) {
-          if (::fdatasync(touched[i]->fd.fd) != 0)
-            errors[i] = fmt::format("cannot sync: {}", std::strerror(errno));
-        } else {
-          try {
-            sync_directory(dirs[i - touched.size()]);
-          } catch (const IoError& e) {
-            errors[i] = e.what();
-          }
-        }
-    };
-    pool_->run(errors.size(), work);
-    for (std::size_t i = 0; i < touched.size(); ++i)
-      if (!errors[i].empty()) fail_all(*touched[i], errors[i]);
-    for (std::size_t d = 0; d < dirs.size(); ++d) {
-      if (errors[touched.size() + d].empty()) continue;
-      for (auto& [p, f] : files)
-        if (f->created && p.parent_path() == dirs[d]) fail_all(*f, errors[touched.size() + d]);
-    }
+    sync_together(files, touched, *pool_);
   }
 }
 

@@ -215,6 +215,115 @@ void Study::start_round(const std::string& id, Then<Round> then) {
   });
 }
 
+namespace {
+
+// Order: practice rounds first, then the analysed ones, each 1, 2, ... (called with p.mu held).
+template <class P>
+void check_round_order(const P& p, RoundKind kind, int iteration, const Settings& settings,
+                       const std::string& name) {
+  const int k = static_cast<int>(kind);
+  const bool practice_open = p.saved[0] < settings.practice;
+  const int limit = kind == RoundKind::practice ? settings.practice : settings.iterations;
+  if (iteration < 1 || iteration > limit) {
+    throw Rejection(409, "out_of_order", fmt::format("{} does not exist in this study", name));
+  }
+  if (iteration <= p.saved[k]) {
+    throw Rejection(409, "duplicate", fmt::format("{} is already saved", name));
+  }
+  if (iteration != p.saved[k] + 1 || (kind == RoundKind::main && practice_open)) {
+    throw Rejection(409, "out_of_order",
+                    fmt::format("{} submitted before the rounds before it were saved", name));
+  }
+}
+
+// Validation: the trace as the page must have recorded it.
+void validate_trace(const std::vector<PadSample>& s, const Round& r, const Settings& settings,
+                    const std::string& name) {
+  auto bad = [&](const std::string& why) {
+    return Rejection(422, "invalid_trace", name + ": " + why);
+  };
+  if (s.size() < 2) throw bad("fewer than 2 samples");
+  if (s.size() > settings.max_samples) {
+    throw Rejection(
+        413, "too_many_samples",
+        fmt::format("{}: {} samples (at most {})", name, s.size(), settings.max_samples));
+  }
+  if (s.front().t != 0 || s.front().pad != 0.5)
+    throw bad("the first sample must be t = 0, pad = 0.5");
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (!std::isfinite(s[i].t) || !std::isfinite(s[i].pad))
+      throw bad(fmt::format("sample {} is not a number", i + 1));
+    if (s[i].pad < 0 || s[i].pad > 1) {
+      throw bad(
+          fmt::format("sample {}: pad {} is outside [0, 1]", i + 1, io::format_double(s[i].pad)));
+    }
+    if (i == 0) continue;
+    const double dt = s[i].t - s[i - 1].t;
+    if (!(dt > 0)) throw bad(fmt::format("sample {}: times must increase", i + 1));
+    const double dp = std::fabs(s[i].pad - s[i - 1].pad);
+    if (dp > settings.pad_speed * dt * (1 + kSpeedTolerance)) {
+      throw bad(fmt::format("sample {}: the pad moved {} in {} s, faster than the pad speed {}/s",
+                            i + 1, io::format_double(dp), io::format_double(dt),
+                            io::format_double(settings.pad_speed)));
+    }
+  }
+  if (s.back().t != r.duration()) {
+    throw bad(fmt::format("the last sample must be at the end of the round, t = {}",
+                          io::format_double(r.duration())));
+  }
+}
+
+// The round's log rows: one block of whole lines, so that it is one write, synced before the
+// page hears of it. A legacy log keeps its layout (no robot position).
+std::string round_rows(const std::string& id, const std::string& condition, int iteration,
+                       const Round& r, const Settings& settings, const std::vector<PadSample>& s,
+                       bool legacy) {
+  const std::string key =
+      fmt::format("{},{},{},{},{},{},", id, condition, iteration, sim::to_string(r.strategy),
+                  sim::to_string(r.variant), sim::to_string(r.target));
+  const std::string speed = io::format_double(settings.pad_speed);
+  std::vector<double> times;
+  times.reserve(s.size());
+  for (const auto& x : s) times.push_back(x.t);
+  const auto robot =
+      sim::robot_positions(r.strategy, r.variant, r.target, settings.geometry, times);
+  std::string block;
+  block.reserve(s.size() * (key.size() + 64));
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    block += key;
+    detail::append_double(block, s[i].t);
+    block += ',';
+    detail::append_double(block, s[i].pad);
+    block += ',';
+    block += speed;
+    if (!legacy) {
+      block += ',';
+      detail::append_metres(block, robot[i].x);
+      block += ',';
+      detail::append_metres(block, robot[i].y);
+    }
+    block += '\n';
+  }
+  return block;
+}
+
+// Once the commit is done: the round counts as saved only when its rows were written; sets the
+// participant's new status in `st` and returns the error to answer with.
+template <class P, class Done>
+std::exception_ptr record_saved_round(P& p, int k, int iteration, const Done& done,
+                                      const Settings& settings, ParticipantStatus& st) {
+  std::lock_guard lock(p.mu);
+  if (!done[0].error.empty()) return io_error(done[0].error);
+  p.log_size[k] = done[0].size;
+  p.saved[k] = iteration;
+  p.shown.reset();
+  st = make_status(p, settings);
+  // Saved; when its event failed the page hears 503, retries and gets "duplicate".
+  return done[1].error.empty() ? nullptr : io_error(done[1].error);
+}
+
+}  // namespace
+
 void Study::submit_round(const std::string& id, RoundKind kind, int iteration,
                          std::vector<PadSample> samples, Then<ParticipantStatus> then) {
   std::shared_ptr<Participant> p;
@@ -235,21 +344,7 @@ void Study::submit_round(const std::string& id, RoundKind kind, int iteration,
       {
         std::lock_guard lock(p->mu);
         p->last_seen = detail::unix_now();
-        // Order: practice rounds first, then the analysed ones, each 1, 2, ...
-        const bool practice_open = p->saved[0] < settings_.practice;
-        const int limit = kind == RoundKind::practice ? settings_.practice : settings_.iterations;
-        if (iteration < 1 || iteration > limit) {
-          throw Rejection(409, "out_of_order",
-                          fmt::format("{} does not exist in this study", name));
-        }
-        if (iteration <= p->saved[k]) {
-          throw Rejection(409, "duplicate", fmt::format("{} is already saved", name));
-        }
-        if (iteration != p->saved[k] + 1 || (kind == RoundKind::main && practice_open)) {
-          throw Rejection(
-              409, "out_of_order",
-              fmt::format("{} submitted before the rounds before it were saved", name));
-        }
+        check_round_order(*p, kind, iteration, settings_, name);
         if (detail::file_size_or_zero(path) != p->log_size[k]) {
           recover_log(*p, kind);  // an earlier failed write left a tail: set it aside first
           if (iteration != p->saved[k] + 1)
@@ -258,71 +353,12 @@ void Study::submit_round(const std::string& id, RoundKind kind, int iteration,
         r = plan_for(*p, kind, iteration);
         legacy = p->legacy_log[k];
       }
-      // Validation: the trace as the page must have recorded it.
-      auto bad = [&](const std::string& why) {
-        return Rejection(422, "invalid_trace", name + ": " + why);
-      };
-      if (s.size() < 2) throw bad("fewer than 2 samples");
-      if (s.size() > settings_.max_samples) {
-        throw Rejection(
-            413, "too_many_samples",
-            fmt::format("{}: {} samples (at most {})", name, s.size(), settings_.max_samples));
-      }
-      if (s.front().t != 0 || s.front().pad != 0.5)
-        throw bad("the first sample must be t = 0, pad = 0.5");
-      for (std::size_t i = 0; i < s.size(); ++i) {
-        if (!std::isfinite(s[i].t) || !std::isfinite(s[i].pad))
-          throw bad(fmt::format("sample {} is not a number", i + 1));
-        if (s[i].pad < 0 || s[i].pad > 1) {
-          throw bad(fmt::format("sample {}: pad {} is outside [0, 1]", i + 1,
-                                io::format_double(s[i].pad)));
-        }
-        if (i == 0) continue;
-        const double dt = s[i].t - s[i - 1].t;
-        if (!(dt > 0)) throw bad(fmt::format("sample {}: times must increase", i + 1));
-        const double dp = std::fabs(s[i].pad - s[i - 1].pad);
-        if (dp > settings_.pad_speed * dt * (1 + kSpeedTolerance)) {
-          throw bad(
-              fmt::format("sample {}: the pad moved {} in {} s, faster than the pad speed {}/s",
-                          i + 1, io::format_double(dp), io::format_double(dt),
-                          io::format_double(settings_.pad_speed)));
-        }
-      }
-      if (s.back().t != r.duration()) {
-        throw bad(fmt::format("the last sample must be at the end of the round, t = {}",
-                              io::format_double(r.duration())));
-      }
-      // One block of whole lines, one write, synced before the page hears of it.
-      const std::string key = fmt::format(
-          "{},{},{},{},{},{},", id, settings_.conditions[p->condition].name, iteration,
-          sim::to_string(r.strategy), sim::to_string(r.variant), sim::to_string(r.target));
-      const std::string speed = io::format_double(settings_.pad_speed);
-      std::vector<double> times;
-      times.reserve(s.size());
-      for (const auto& x : s) times.push_back(x.t);
-      const auto robot =
-          sim::robot_positions(r.strategy, r.variant, r.target, settings_.geometry, times);
-      std::string block;
-      block.reserve(s.size() * (key.size() + 64));
-      for (std::size_t i = 0; i < s.size(); ++i) {
-        block += key;
-        detail::append_double(block, s[i].t);
-        block += ',';
-        detail::append_double(block, s[i].pad);
-        block += ',';
-        block += speed;
-        if (!legacy) {
-          block += ',';
-          detail::append_metres(block, robot[i].x);
-          block += ',';
-          detail::append_metres(block, robot[i].y);
-        }
-        block += '\n';
-      }
+      validate_trace(s, r, settings_, name);
       // The round and its `saved` event in one commit: synced together with whatever other
       // rounds arrived meanwhile (group commit); the event is written only when the round was.
       commit.push_back({path, std::string(legacy ? detail::kLegacyLogHeader : detail::kLogHeader),
-                        std::move(block)});
+                        round_rows(id, settings_.conditions[p->condition].name, iteration, r,
+                                   settings_, s, legacy)});
       commit.push_back(
           {dir_ / "collect" / "events.csv", std::string(detail::kEventsHeader),
            fmt::format("{},{},saved,{}\n", detail::utc_now(), id,
@@ -334,20 +370,7 @@ void Study::submit_round(const std::string& id, RoundKind kind, int iteration,
     }
     committer_->commit_async(std::move(commit), [this, p, k, iteration, then](auto done) {
       ParticipantStatus st;
-      std::exception_ptr error;
-      {
-        std::lock_guard lock(p->mu);
-        if (!done[0].error.empty()) {
-          error = io_error(done[0].error);
-        } else {
-          p->log_size[k] = done[0].size;
-          p->saved[k] = iteration;
-          p->shown.reset();
-          // Saved; when its event failed the page hears 503, retries and gets "duplicate".
-          if (!done[1].error.empty()) error = io_error(done[1].error);
-          st = make_status(*p, settings_);
-        }
-      }
+      const std::exception_ptr error = record_saved_round(*p, k, iteration, done, settings_, st);
       then(error, std::move(st));
       release(p);
     });

@@ -438,6 +438,91 @@ void answer_failure(Study& study, const RequestInfo& info, const std::string& me
   }
 }
 
+using Form = std::map<std::string, std::string>;
+
+std::string form_value(const Form& form, const char* name) {
+  auto it = form.find(name);
+  return it == form.end() ? std::string() : it->second;
+}
+
+/// The pages and the admin views (GET or HEAD): answers or throws the Rejection to answer with.
+void serve_page(Study& study, const std::string& admin_token, const std::string& path,
+                const Form& query, const RequestInfo& info, const Reply& reply) {
+  if (path == "/" || path == "/index.html")
+    return reply({200, "text/html; charset=utf-8", std::string(asset("game.html"))});
+  if (path == "/game.js")
+    return reply({200, "text/javascript; charset=utf-8", std::string(asset("game.js"))});
+  if (path == "/game.css")
+    return reply({200, "text/css; charset=utf-8", std::string(asset("game.css"))});
+  if (path == "/favicon.ico") return reply({204, "image/x-icon", ""});  // browsers ask for it
+  if (path == "/admin" || path == "/api/admin") {
+    if (!constant_time_equal(form_value(query, "token"), admin_token)) {
+      throw Rejection(403, "forbidden", "the admin page needs the token printed at start-up");
+    }
+    const auto failure = info.state ? info.state->write_failure() : std::nullopt;
+    return reply(path == "/admin" ? admin_page(study, admin_token, failure)
+                                  : admin_json(study, failure));
+  }
+  if (path.rfind("/api/", 0) == 0) throw Rejection(405, "method", "use POST for " + path);
+  throw Rejection(404, "not_found", "no such page");
+}
+
+/// The answer of a write: its status, or the failure's.
+Then<ParticipantStatus> status_answer(Study& study, const RequestInfo& info,
+                                      const std::string& method, const std::string& path,
+                                      const std::string& who, const Reply& reply) {
+  return [&study, info, method, path, who, reply](std::exception_ptr e, ParticipantStatus st) {
+    if (e) return answer_failure(study, info, method, path, who, e, reply);
+    if (info.state) info.state->write_succeeded();
+    reply({200, "application/json", status_json(study, st)});
+  };
+}
+
+/// The answer of a join: as a write's, and the client's address noted in the events log.
+Then<ParticipantStatus> join_answer(Study& study, const RequestInfo& info,
+                                    const std::string& method, const std::string& path,
+                                    const std::string& who, const Reply& reply) {
+  return [&study, info, method, path, who, reply](std::exception_ptr e, ParticipantStatus st) {
+    if (e) return answer_failure(study, info, method, path, who, e, reply);
+    if (!info.client.empty()) study.note_event(st.id, "joined", "from " + info.client);
+    if (info.state) info.state->write_succeeded();
+    reply({200, "application/json", status_json(study, st)});
+  };
+}
+
+/// The answer of a round start: the round's robot path for the page to play.
+Then<Round> round_answer(Study& study, const RequestInfo& info, const std::string& method,
+                         const std::string& path, const std::string& participant,
+                         const Reply& reply) {
+  return [&study, info, method, path, participant, reply](std::exception_ptr e, Round r) {
+    if (e) return answer_failure(study, info, method, path, participant, e, reply);
+    const int total =
+        r.kind == RoundKind::practice ? study.settings().practice : study.settings().iterations;
+    std::string out =
+        fmt::format("{{\"kind\":\"{}\",\"iteration\":{},\"of\":{},\"duration\":{}",
+                    to_string(r.kind), r.iteration, total, io::json_number(r.duration()));
+    json_array(out, "t", r.path, &sim::TrajectorySample::t);
+    json_array(out, "x", r.path, &sim::TrajectorySample::x);
+    json_array(out, "y", r.path, &sim::TrajectorySample::y);
+    out += '}';
+    reply({200, "application/json", std::move(out)});
+  };
+}
+
+/// A round's submission: its kind and iteration from the query, its trace from the body.
+void submit_round_request(Study& study, const Form& query, const std::string& participant,
+                          const std::string& body, Then<ParticipantStatus> then) {
+  const std::string kind = form_value(query, "kind");
+  if (kind != "practice" && kind != "main")
+    throw Rejection(400, "malformed", "kind must be practice or main");
+  const auto it = io::parse_integer(form_value(query, "iteration"));
+  if (!it || *it < 1 || *it > 100000)
+    throw Rejection(400, "malformed", "iteration must be a whole number >= 1");
+  auto samples = parse_trace(body);
+  study.submit_round(participant, kind == "practice" ? RoundKind::practice : RoundKind::main,
+                     static_cast<int>(*it), std::move(samples), std::move(then));
+}
+
 }  // namespace
 
 void handle_request(Study& study, const std::string& admin_token, const std::string& method,
@@ -446,82 +531,28 @@ void handle_request(Study& study, const std::string& admin_token, const std::str
   const auto q = target.find('?');
   const std::string path = target.substr(0, q);
   std::string participant;
-  // The answer of a write: its status, or the failure's.
-  auto answered = [&study, info, method, path, reply](const std::string& who) {
-    return [&study, info, method, path, who, reply](std::exception_ptr e, ParticipantStatus st) {
-      if (e) return answer_failure(study, info, method, path, who, e, reply);
-      if (info.state) info.state->write_succeeded();
-      reply({200, "application/json", status_json(study, st)});
-    };
-  };
   try {
     const auto query = parse_form(q == std::string::npos ? std::string_view()
                                                          : std::string_view(target).substr(q + 1));
-    auto arg = [&](const char* name) {
-      auto it = query.find(name);
-      return it == query.end() ? std::string() : it->second;
-    };
-    participant = arg("participant");
-    if (method == "GET" || method == "HEAD") {
-      if (path == "/" || path == "/index.html")
-        return reply({200, "text/html; charset=utf-8", std::string(asset("game.html"))});
-      if (path == "/game.js")
-        return reply({200, "text/javascript; charset=utf-8", std::string(asset("game.js"))});
-      if (path == "/game.css")
-        return reply({200, "text/css; charset=utf-8", std::string(asset("game.css"))});
-      if (path == "/favicon.ico") return reply({204, "image/x-icon", ""});  // browsers ask for it
-      if (path == "/admin" || path == "/api/admin") {
-        if (!constant_time_equal(arg("token"), admin_token)) {
-          throw Rejection(403, "forbidden", "the admin page needs the token printed at start-up");
-        }
-        const auto failure = info.state ? info.state->write_failure() : std::nullopt;
-        return reply(path == "/admin" ? admin_page(study, admin_token, failure)
-                                      : admin_json(study, failure));
-      }
-      if (path.rfind("/api/", 0) == 0) throw Rejection(405, "method", "use POST for " + path);
-      throw Rejection(404, "not_found", "no such page");
-    }
+    participant = form_value(query, "participant");
+    if (method == "GET" || method == "HEAD")
+      return serve_page(study, admin_token, path, query, info, reply);
     if (method != "POST") throw Rejection(405, "method", "only GET and POST are served");
     if (path == "/api/join") {
-      if (participant.empty()) participant = arg("PROLIFIC_PID");
-      return study.join(participant, [&study, info, method, path, participant, reply](
-                                         std::exception_ptr e, ParticipantStatus st) {
-        if (e) return answer_failure(study, info, method, path, participant, e, reply);
-        if (!info.client.empty()) study.note_event(st.id, "joined", "from " + info.client);
-        if (info.state) info.state->write_succeeded();
-        reply({200, "application/json", status_json(study, st)});
-      });
+      if (participant.empty()) participant = form_value(query, "PROLIFIC_PID");
+      return study.join(participant, join_answer(study, info, method, path, participant, reply));
     }
-    if (path == "/api/round/start") {
-      return study.start_round(participant, [&study, info, method, path, participant, reply](
-                                                std::exception_ptr e, Round r) {
-        if (e) return answer_failure(study, info, method, path, participant, e, reply);
-        const int total = r.kind == RoundKind::practice ? study.settings().practice
-                                                        : study.settings().iterations;
-        std::string out = fmt::format("{{\"kind\":\"{}\",\"iteration\":{},\"of\":{},\"duration\":{}",
-                                      to_string(r.kind), r.iteration, total,
-                                      io::json_number(r.duration()));
-        json_array(out, "t", r.path, &sim::TrajectorySample::t);
-        json_array(out, "x", r.path, &sim::TrajectorySample::x);
-        json_array(out, "y", r.path, &sim::TrajectorySample::y);
-        out += '}';
-        reply({200, "application/json", std::move(out)});
-      });
-    }
+    if (path == "/api/round/start")
+      return study.start_round(participant,
+                               round_answer(study, info, method, path, participant, reply));
     if (path == "/api/round/submit") {
-      const std::string kind = arg("kind");
-      if (kind != "practice" && kind != "main")
-        throw Rejection(400, "malformed", "kind must be practice or main");
-      const auto it = io::parse_integer(arg("iteration"));
-      if (!it || *it < 1 || *it > 100000)
-        throw Rejection(400, "malformed", "iteration must be a whole number >= 1");
-      auto samples = parse_trace(body);
-      return study.submit_round(participant,
-                                kind == "practice" ? RoundKind::practice : RoundKind::main,
-                                static_cast<int>(*it), std::move(samples), answered(participant));
+      return submit_round_request(study, query, participant, body,
+                                  status_answer(study, info, method, path, participant, reply));
     }
     if (path == "/api/questionnaire") {
-      return study.submit_questionnaire(participant, parse_form(body), answered(participant));
+      return study.submit_questionnaire(
+          participant, parse_form(body),
+          status_answer(study, info, method, path, participant, reply));
     }
     throw Rejection(404, "not_found", "no such page");
   } catch (...) {

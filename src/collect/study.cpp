@@ -271,24 +271,42 @@ static void keep_complete_lines(const fs::path& path, const fs::path& damaged_di
                                                     detail::unix_now())));
 }
 
-void Study::recover_log(Participant& p, RoundKind kind) {
-  const fs::path path = log_path(p.id, kind);
-  const std::string content = detail::read_all(path);
-  const int k = static_cast<int>(kind);
-  p.saved[k] = 0;
-  p.log_size[k] = 0;
-  p.legacy_log[k] = false;
-  std::error_code ec;
-  if (content.empty() && !fs::is_regular_file(path, ec)) return;
-  const std::string where = path.string();
-  std::size_t good_end = 0;
+namespace {
+
+/// What a participant's round log holds, read row by row.
+struct LogScan {
+  std::size_t good_end = 0;  ///< bytes up to the end of the last complete round (or the header)
+  int complete = 0;          ///< complete rounds
+  bool headerless = false;   ///< rows without a header (see is_log_header)
+};
+
+/// Whether the first line of a log is its header; `legacy` is set from its layout.
+bool is_log_header(std::string_view line, const std::string& id, const std::string& where,
+                   bool& legacy) {
+  if (std::string(line) + "\n" == kLogHeader || std::string(line) + "\n" == kLegacyLogHeader) {
+    legacy = std::string(line) + "\n" == kLegacyLogHeader;
+    return true;
+  }
+  const auto f0 = io::split_csv_line(std::string(line), ',');
+  if ((f0.size() != 9 && f0.size() != 11) || f0[0] != id) {
+    throw InvalidData(fmt::format("{}:1: not a feint collect log (unexpected header)", where));
+  }
+  // Rows without a header: an earlier feint collect appended to a log that a crash had left
+  // empty. The rows are kept and the header is put back (by recover_log); this line is a row.
+  legacy = f0.size() == 9;
+  return false;
+}
+
+// A round is complete at its row with t = its duration (round_duration(iteration)); rounds must
+// be 1, 2, ... Throws InvalidData for a row feint collect did not write.
+LogScan scan_log(const std::string& content, const std::string& id, const std::string& where,
+                 bool& legacy, const std::function<double(int)>& round_duration) {
+  LogScan scan;
   std::size_t pos = 0;
   int current = 0;  // iteration of the rows being read
   bool current_done = true;
   double duration = 0;
   bool header = false;
-  bool headerless = false;
-  int complete = 0;
   while (pos < content.size()) {
     const auto nl = content.find('\n', pos);
     if (nl == std::string::npos) break;  // an incomplete last line: not part of any saved round
@@ -296,24 +314,15 @@ void Study::recover_log(Participant& p, RoundKind kind) {
     const std::size_t next = nl + 1;
     if (!header) {
       header = true;
-      if (std::string(line) + "\n" == kLogHeader ||
-          std::string(line) + "\n" == kLegacyLogHeader) {
-        p.legacy_log[k] = std::string(line) + "\n" == kLegacyLogHeader;
-        good_end = next;
+      if (is_log_header(line, id, where, legacy)) {
+        scan.good_end = next;
         pos = next;
         continue;
       }
-      const auto f0 = io::split_csv_line(std::string(line), ',');
-      if ((f0.size() != 9 && f0.size() != 11) || f0[0] != p.id) {
-        throw InvalidData(fmt::format("{}:1: not a feint collect log (unexpected header)", where));
-      }
-      // Rows without a header: an earlier feint collect appended to a log that a crash had left
-      // empty. The rows are kept and the header is put back (below); this line is a row.
-      p.legacy_log[k] = f0.size() == 9;
-      headerless = true;
+      scan.headerless = true;
     }
     const auto f = io::split_csv_line(std::string(line), ',');
-    if (f.size() != (p.legacy_log[k] ? 9U : 11U) || f[0] != p.id) {
+    if (f.size() != (legacy ? 9U : 11U) || f[0] != id) {
       throw InvalidData(
           fmt::format("{}: a row that feint collect did not write: '{}'", where, line));
     }
@@ -330,23 +339,47 @@ void Study::recover_log(Participant& p, RoundKind kind) {
       }
       current = static_cast<int>(*it);
       current_done = false;
-      duration = plan_for(p, kind, current).duration();
+      duration = round_duration(current);
     }
     if (!current_done && *t == duration) {
       current_done = true;
-      complete = current;
-      good_end = next;
+      scan.complete = current;
+      scan.good_end = next;
     }
     pos = next;
   }
+  return scan;
+}
+
+/// Where a damaged round log is set aside.
+fs::path log_aside(const fs::path& dir, const std::string& id, RoundKind kind) {
+  return detail::unique_aside(
+      dir / "collect" / "damaged",
+      fmt::format("{}-{}-{}.csv", id, to_string(kind), detail::unix_now()));
+}
+
+}  // namespace
+
+void Study::recover_log(Participant& p, RoundKind kind) {
+  const fs::path path = log_path(p.id, kind);
+  const std::string content = detail::read_all(path);
+  const int k = static_cast<int>(kind);
+  p.saved[k] = 0;
+  p.log_size[k] = 0;
+  p.legacy_log[k] = false;
+  std::error_code ec;
+  if (content.empty() && !fs::is_regular_file(path, ec)) return;
+  const std::string where = path.string();
+  const LogScan scan = scan_log(content, p.id, where, p.legacy_log[k], [&](int iteration) {
+    return plan_for(p, kind, iteration).duration();
+  });
+  const int complete = scan.complete;
   // A log without a complete round (empty, header only, cut in its header or in its first
   // round) is set aside whole: `feint analyze` never sees a log without rows, and the next round
   // creates it anew with its header.
-  if (complete == 0) good_end = 0;
-  if (headerless && good_end > 0) {
-    const fs::path aside = detail::unique_aside(
-        dir_ / "collect" / "damaged",
-        fmt::format("{}-{}-{}.csv", p.id, to_string(kind), detail::unix_now()));
+  const std::size_t good_end = complete == 0 ? 0 : scan.good_end;
+  if (scan.headerless && good_end > 0) {
+    const fs::path aside = log_aside(dir_, p.id, kind);
     const std::string_view log_header = p.legacy_log[k] ? kLegacyLogHeader : kLogHeader;
     detail::replace_with_content(path, std::string(log_header) + content.substr(0, good_end),
                                  aside);
@@ -359,9 +392,7 @@ void Study::recover_log(Participant& p, RoundKind kind) {
     return;
   }
   if (good_end < content.size() || content.empty()) {
-    const fs::path aside = detail::unique_aside(
-        dir_ / "collect" / "damaged",
-        fmt::format("{}-{}-{}.csv", p.id, to_string(kind), detail::unix_now()));
+    const fs::path aside = log_aside(dir_, p.id, kind);
     detail::replace_with_prefix(path, good_end, aside);
     record_event(
         p.id, "recovered",
@@ -375,6 +406,96 @@ void Study::recover_log(Participant& p, RoundKind kind) {
   if (good_end == 0) p.legacy_log[k] = false;
 }
 
+namespace {
+
+/// Row i of collect/assignment.csv (its line i + 1), whose index must be i - 1.
+struct AssignmentRow {
+  std::string id;
+  std::size_t condition = 0;  ///< index into the settings' conditions
+};
+
+AssignmentRow parse_assignment_row(std::string_view row, std::size_t i, const fs::path& assignment,
+                                   const std::vector<Condition>& conditions) {
+  const auto f = io::split_csv_line(std::string(row), ',');
+  const auto index = f.size() == 4 ? io::parse_integer(f[1]) : std::nullopt;
+  if (!index || *index != static_cast<long long>(i - 1) || !valid_participant_id(f[0])) {
+    throw InvalidData(fmt::format("{}:{}: unexpected row '{}'", assignment.string(), i + 1, row));
+  }
+  auto c = std::find_if(conditions.begin(), conditions.end(),
+                        [&](const Condition& x) { return x.name == f[2]; });
+  if (c == conditions.end()) {
+    throw InvalidData(
+        fmt::format("{}:{}: condition '{}' is not among the study's conditions; "
+                    "the settings must not change during a study",
+                    assignment.string(), i + 1, f[2]));
+  }
+  return {f[0], static_cast<std::size_t>(c - conditions.begin())};
+}
+
+// Log files of participants that were never assigned would be mixed into the analysis.
+// (Templates over the participants: Study::Participant is private to Study.)
+template <class Participants>
+void check_no_stray_logs(const fs::path& logs, const Participants& participants,
+                         const fs::path& assignment) {
+  for (const auto& entry : fs::directory_iterator(logs)) {
+    const std::string stem = entry.path().stem().string();
+    if (entry.path().extension() == ".csv" && valid_participant_id(stem) &&
+        !participants.count(stem)) {
+      throw InvalidData(fmt::format("{}: a log of a participant not in {}", entry.path().string(),
+                                    assignment.string()));
+    }
+  }
+}
+
+/// Sets `flag` of every participant with a row in the questionnaire file `path`.
+template <class Participants, class Flag>
+void read_done(const fs::path& path, std::string_view header, Participants& participants,
+               Flag flag) {
+  const std::string text = detail::read_all(path);
+  const auto lines = lines_of(text);
+  if (lines.empty()) return;
+  if (std::string(lines[0]) + "\n" != header) {
+    throw InvalidData(
+        fmt::format("{}:1: the header differs from the configured questionnaire "
+                    "items (expected '{}')",
+                    path.string(), io::trim(header)));
+  }
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const auto f = io::split_csv_line(std::string(lines[i]), ',');
+    auto p = f.empty() ? participants.end() : participants.find(f[0]);
+    if (p == participants.end()) {
+      throw InvalidData(fmt::format("{}:{}: unknown participant", path.string(), i + 1));
+    }
+    (*p->second).*flag = true;
+  }
+}
+
+// The round each participant was last shown: a reload after a restart still counts as an
+// interruption when that round was never saved.
+template <class Participants>
+void read_rounds_shown(const fs::path& events, Participants& participants) {
+  const std::string events_text = detail::read_all(events);
+  const auto event_lines = lines_of(events_text);
+  for (std::size_t i = 1; i < event_lines.size(); ++i) {
+    const auto f = io::split_csv_line(std::string(event_lines[i]), ',');
+    if (f.size() != 4 || f[2] != "round_shown") continue;
+    auto p = participants.find(f[1]);
+    const auto space = f[3].find(' ');
+    const auto it =
+        space == std::string::npos ? std::nullopt : io::parse_integer(f[3].substr(space + 1));
+    if (p == participants.end() || !it) continue;
+    const RoundKind kind =
+        f[3].substr(0, space) == "practice" ? RoundKind::practice : RoundKind::main;
+    if (*it > p->second->saved[static_cast<int>(kind)]) {
+      p->second->shown = std::make_pair(kind, static_cast<int>(*it));
+    } else {
+      p->second->shown.reset();
+    }
+  }
+}
+
+}  // namespace
+
 void Study::rebuild() {
   const fs::path damaged = dir_ / "collect" / "damaged";
   const fs::path assignment = dir_ / "collect" / "assignment.csv";
@@ -386,24 +507,11 @@ void Study::rebuild() {
   const std::string assignment_text = detail::read_all(assignment);
   const auto rows = lines_of(assignment_text);
   for (std::size_t i = 1; i < rows.size(); ++i) {
-    const auto f = io::split_csv_line(std::string(rows[i]), ',');
-    const auto index = f.size() == 4 ? io::parse_integer(f[1]) : std::nullopt;
-    if (!index || *index != static_cast<long long>(i - 1) || !valid_participant_id(f[0])) {
-      throw InvalidData(
-          fmt::format("{}:{}: unexpected row '{}'", assignment.string(), i + 1, rows[i]));
-    }
+    const AssignmentRow row = parse_assignment_row(rows[i], i, assignment, settings_.conditions);
     auto p = std::make_shared<Participant>();
-    p->id = f[0];
+    p->id = row.id;
     p->index = i - 1;
-    auto c = std::find_if(settings_.conditions.begin(), settings_.conditions.end(),
-                          [&](const Condition& x) { return x.name == f[2]; });
-    if (c == settings_.conditions.end()) {
-      throw InvalidData(
-          fmt::format("{}:{}: condition '{}' is not among the study's conditions; "
-                      "the settings must not change during a study",
-                      assignment.string(), i + 1, f[2]));
-    }
-    p->condition = static_cast<std::size_t>(c - settings_.conditions.begin());
+    p->condition = row.condition;
     if (participants_.count(p->id)) {
       throw InvalidData(
           fmt::format("{}:{}: participant '{}' twice", assignment.string(), i + 1, p->id));
@@ -412,61 +520,16 @@ void Study::rebuild() {
     recover_log(*p, RoundKind::main);
     participants_[p->id] = p;
   }
-  // Log files of participants that were never assigned would be mixed into the analysis.
-  for (const auto& entry : fs::directory_iterator(dir_ / "logs")) {
-    const std::string stem = entry.path().stem().string();
-    if (entry.path().extension() == ".csv" && valid_participant_id(stem) &&
-        !participants_.count(stem)) {
-      throw InvalidData(fmt::format("{}: a log of a participant not in {}", entry.path().string(),
-                                    assignment.string()));
-    }
-  }
-  auto read_done = [&](const fs::path& path, std::string_view header, bool Participant::*flag) {
-    const std::string text = detail::read_all(path);
-    const auto lines = lines_of(text);
-    if (lines.empty()) return;
-    if (std::string(lines[0]) + "\n" != header) {
-      throw InvalidData(
-          fmt::format("{}:1: the header differs from the configured questionnaire "
-                      "items (expected '{}')",
-                      path.string(), io::trim(header)));
-    }
-    for (std::size_t i = 1; i < lines.size(); ++i) {
-      const auto f = io::split_csv_line(std::string(lines[i]), ',');
-      auto p = f.empty() ? participants_.end() : participants_.find(f[0]);
-      if (p == participants_.end()) {
-        throw InvalidData(fmt::format("{}:{}: unknown participant", path.string(), i + 1));
-      }
-      (*p->second).*flag = true;
-    }
-  };
+  check_no_stray_logs(dir_ / "logs", participants_, assignment);
   std::string qh = "participant,condition";
   for (const auto& i : settings_.items) qh += "," + i;
-  read_done(dir_ / "questionnaire.csv", qh + "\n", &Participant::questionnaire_done);
+  read_done(dir_ / "questionnaire.csv", qh + "\n", participants_, &Participant::questionnaire_done);
   if (!settings_.yes_no_item.empty()) {
     read_done(dir_ / "questionnaire_yesno.csv",
-              "participant,condition," + settings_.yes_no_item + "\n", &Participant::yes_no_done);
+              "participant,condition," + settings_.yes_no_item + "\n", participants_,
+              &Participant::yes_no_done);
   }
-  // The round each participant was last shown: a reload after a restart still counts as an
-  // interruption when that round was never saved.
-  const std::string events_text = detail::read_all(dir_ / "collect" / "events.csv");
-  const auto event_lines = lines_of(events_text);
-  for (std::size_t i = 1; i < event_lines.size(); ++i) {
-    const auto f = io::split_csv_line(std::string(event_lines[i]), ',');
-    if (f.size() != 4 || f[2] != "round_shown") continue;
-    auto p = participants_.find(f[1]);
-    const auto space = f[3].find(' ');
-    const auto it =
-        space == std::string::npos ? std::nullopt : io::parse_integer(f[3].substr(space + 1));
-    if (p == participants_.end() || !it) continue;
-    const RoundKind kind =
-        f[3].substr(0, space) == "practice" ? RoundKind::practice : RoundKind::main;
-    if (*it > p->second->saved[static_cast<int>(kind)]) {
-      p->second->shown = std::make_pair(kind, static_cast<int>(*it));
-    } else {
-      p->second->shown.reset();
-    }
-  }
+  read_rounds_shown(dir_ / "collect" / "events.csv", participants_);
   if (!participants_.empty()) {
     record_event("", "restart",
                  fmt::format("state rebuilt: {} participants", participants_.size()));

@@ -109,6 +109,137 @@ class JsonCursor {
   std::size_t i_ = 0;
 };
 
+// The fields of sample `index` (1-based) up to its closing '}', its '{' already read: the numbers
+// (or null = NaN) of t_key into t and pad_key into p; other keys are skipped. `key` is the
+// caller's scratch, reused so that a sample costs no allocation.
+bool parse_sample_fields(JsonCursor& j, std::size_t index, std::string_view t_key,
+                         std::string_view pad_key, std::string& key, double& t, double& p,
+                         std::string& error) {
+  bool has_t = false, has_p = false;
+  if (!j.eat('}')) {
+    for (;;) {
+      if (!j.string(key) || !j.eat(':')) {
+        error = fmt::format("sample {}: malformed JSON at character {}", index, j.pos() + 1);
+        return false;
+      }
+      if (key == t_key || key == pad_key) {
+        double v = 0;
+        if (!j.number(v)) {
+          error = fmt::format("sample {}: \"{}\" is not a number", index, key);
+          return false;
+        }
+        (key == t_key ? t : p) = v;
+        (key == t_key ? has_t : has_p) = true;
+      } else if (!j.skip()) {
+        error = fmt::format("sample {}: malformed JSON at character {}", index, j.pos() + 1);
+        return false;
+      }
+      if (j.eat('}')) break;
+      if (!j.eat(',')) {
+        error = fmt::format("sample {}: malformed JSON at character {}", index, j.pos() + 1);
+        return false;
+      }
+    }
+  }
+  if (!has_t || !has_p) {
+    error = fmt::format("sample {}: no \"{}\" key (each sample needs \"{}\" and \"{}\"; "
+                        "--map t=KEY / pad=KEY name other keys)",
+                        index, has_t ? pad_key : t_key, t_key, pad_key);
+    return false;
+  }
+  return true;
+}
+
+// [{"t": 0, "pad": 0.5}, ...]: one object per sample.
+bool parse_sample_objects(JsonCursor& j, std::string_view t_key, std::string_view pad_key,
+                          std::vector<double>& times, std::vector<double>& pads,
+                          std::string& error) {
+  j.eat('[');
+  if (j.eat(']')) return true;
+  std::string key;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (;;) {
+    if (!j.eat('{')) {
+      error = fmt::format("sample {}: expected an object {{\"{}\": ..., \"{}\": ...}}",
+                          times.size() + 1, t_key, pad_key);
+      return false;
+    }
+    double t = nan, p = nan;
+    if (!parse_sample_fields(j, times.size() + 1, t_key, pad_key, key, t, p, error)) return false;
+    times.push_back(t);
+    pads.push_back(p);
+    if (j.eat(']')) return true;
+    if (!j.eat(',')) {
+      error = fmt::format("after sample {}: malformed JSON at character {}", times.size(),
+                          j.pos() + 1);
+      return false;
+    }
+  }
+}
+
+// The array of numbers (null = NaN) under `key`, appended to `out`.
+bool parse_number_array(JsonCursor& j, const std::string& key, std::vector<double>& out,
+                        std::string& error) {
+  if (!j.eat('[')) {
+    error = fmt::format("\"{}\" is not an array", key);
+    return false;
+  }
+  if (j.eat(']')) return true;
+  for (;;) {
+    double v = 0;
+    if (!j.number(v)) {
+      error = fmt::format("\"{}\"[{}] is not a number", key, out.size());
+      return false;
+    }
+    out.push_back(v);
+    if (j.eat(']')) return true;
+    if (!j.eat(',')) {
+      error = fmt::format("malformed JSON at character {}", j.pos() + 1);
+      return false;
+    }
+  }
+}
+
+// {"t": [...], "pad": [...]}: parallel arrays, which must be equally long.
+bool parse_parallel_arrays(JsonCursor& j, std::string_view t_key, std::string_view pad_key,
+                           std::vector<double>& times, std::vector<double>& pads,
+                           std::string& error) {
+  j.eat('{');
+  std::string key;
+  bool has_t = false, has_p = false;
+  if (!j.eat('}')) {
+    for (;;) {
+      if (!j.string(key) || !j.eat(':')) {
+        error = fmt::format("malformed JSON at character {}", j.pos() + 1);
+        return false;
+      }
+      if (key == t_key || key == pad_key) {
+        (key == t_key ? has_t : has_p) = true;
+        if (!parse_number_array(j, key, key == t_key ? times : pads, error)) return false;
+      } else if (!j.skip()) {
+        error = fmt::format("malformed JSON at character {}", j.pos() + 1);
+        return false;
+      }
+      if (j.eat('}')) break;
+      if (!j.eat(',')) {
+        error = fmt::format("malformed JSON at character {}", j.pos() + 1);
+        return false;
+      }
+    }
+  }
+  if (!has_t || !has_p) {
+    error = fmt::format("no \"{}\" array (expected {{\"{}\": [...], \"{}\": [...]}})",
+                        has_t ? pad_key : t_key, t_key, pad_key);
+    return false;
+  }
+  if (times.size() != pads.size()) {
+    error = fmt::format("\"{}\" has {} values and \"{}\" has {}", t_key, times.size(), pad_key,
+                        pads.size());
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 bool parse_json_samples(std::string_view cell, std::string_view t_key, std::string_view pad_key,
@@ -116,113 +247,10 @@ bool parse_json_samples(std::string_view cell, std::string_view t_key, std::stri
   times.clear();
   pads.clear();
   JsonCursor j(cell);
-  std::string key;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
   if (j.peek() == '[') {
-    // [{"t": 0, "pad": 0.5}, ...]: one object per sample.
-    j.eat('[');
-    if (!j.eat(']')) {
-      for (;;) {
-        if (!j.eat('{')) {
-          error = fmt::format("sample {}: expected an object {{\"{}\": ..., \"{}\": ...}}",
-                              times.size() + 1, t_key, pad_key);
-          return false;
-        }
-        double t = nan, p = nan;
-        bool has_t = false, has_p = false;
-        if (!j.eat('}')) {
-          for (;;) {
-            if (!j.string(key) || !j.eat(':')) {
-              error = fmt::format("sample {}: malformed JSON at character {}", times.size() + 1, j.pos() + 1);
-              return false;
-            }
-            if (key == t_key || key == pad_key) {
-              double v = 0;
-              if (!j.number(v)) {
-                error = fmt::format("sample {}: \"{}\" is not a number", times.size() + 1, key);
-                return false;
-              }
-              (key == t_key ? t : p) = v;
-              (key == t_key ? has_t : has_p) = true;
-            } else if (!j.skip()) {
-              error = fmt::format("sample {}: malformed JSON at character {}", times.size() + 1, j.pos() + 1);
-              return false;
-            }
-            if (j.eat('}')) break;
-            if (!j.eat(',')) {
-              error = fmt::format("sample {}: malformed JSON at character {}", times.size() + 1, j.pos() + 1);
-              return false;
-            }
-          }
-        }
-        if (!has_t || !has_p) {
-          error = fmt::format("sample {}: no \"{}\" key (each sample needs \"{}\" and \"{}\"; "
-                              "--map t=KEY / pad=KEY name other keys)",
-                              times.size() + 1, has_t ? pad_key : t_key, t_key, pad_key);
-          return false;
-        }
-        times.push_back(t);
-        pads.push_back(p);
-        if (j.eat(']')) break;
-        if (!j.eat(',')) {
-          error = fmt::format("after sample {}: malformed JSON at character {}", times.size(), j.pos() + 1);
-          return false;
-        }
-      }
-    }
+    if (!parse_sample_objects(j, t_key, pad_key, times, pads, error)) return false;
   } else if (j.peek() == '{') {
-    // {"t": [...], "pad": [...]}: parallel arrays.
-    j.eat('{');
-    bool has_t = false, has_p = false;
-    if (!j.eat('}')) {
-      for (;;) {
-        if (!j.string(key) || !j.eat(':')) {
-          error = fmt::format("malformed JSON at character {}", j.pos() + 1);
-          return false;
-        }
-        if (key == t_key || key == pad_key) {
-          auto& out = key == t_key ? times : pads;
-          (key == t_key ? has_t : has_p) = true;
-          if (!j.eat('[')) {
-            error = fmt::format("\"{}\" is not an array", key);
-            return false;
-          }
-          if (!j.eat(']')) {
-            for (;;) {
-              double v = 0;
-              if (!j.number(v)) {
-                error = fmt::format("\"{}\"[{}] is not a number", key, out.size());
-                return false;
-              }
-              out.push_back(v);
-              if (j.eat(']')) break;
-              if (!j.eat(',')) {
-                error = fmt::format("malformed JSON at character {}", j.pos() + 1);
-                return false;
-              }
-            }
-          }
-        } else if (!j.skip()) {
-          error = fmt::format("malformed JSON at character {}", j.pos() + 1);
-          return false;
-        }
-        if (j.eat('}')) break;
-        if (!j.eat(',')) {
-          error = fmt::format("malformed JSON at character {}", j.pos() + 1);
-          return false;
-        }
-      }
-    }
-    if (!has_t || !has_p) {
-      error = fmt::format("no \"{}\" array (expected {{\"{}\": [...], \"{}\": [...]}})",
-                          has_t ? pad_key : t_key, t_key, pad_key);
-      return false;
-    }
-    if (times.size() != pads.size()) {
-      error = fmt::format("\"{}\" has {} values and \"{}\" has {}", t_key, times.size(), pad_key,
-                          pads.size());
-      return false;
-    }
+    if (!parse_parallel_arrays(j, t_key, pad_key, times, pads, error)) return false;
   } else {
     error = fmt::format("expected a JSON array of samples [{{\"{}\": ..., \"{}\": ...}}, ...] or "
                         "parallel arrays {{\"{}\": [...], \"{}\": [...]}}",

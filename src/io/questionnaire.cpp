@@ -111,7 +111,7 @@ class ResponseParser {
 };
 
 // The column spelled exactly `name` (trimmed), else the one equal to it ignoring case; two or more
-// equal only ignoring case are ambiguous (issue 18: never take the first silently).
+// equal only ignoring case are ambiguous (never take the first silently).
 int find_column(const std::vector<std::string>& header, std::string_view name,
                 const std::string& file = {}) {
   for (std::size_t i = 0; i < header.size(); ++i) {
@@ -352,8 +352,11 @@ std::string describe_exclusions(const Questionnaire& q) {
                      list, keep);
 }
 
-Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOptions& options) {
-  using detail::Record;
+namespace detail {
+namespace {
+
+// --scale and --labels, checked before the file is opened.
+void check_scale_options(const QuestionnaireOptions& options) {
   if (options.scale_min >= options.scale_max ||
       static_cast<long long>(options.scale_max) - options.scale_min + 1 > kMaxScalePoints) {
     throw UsageError(fmt::format("--scale {}-{}: expected MIN < MAX and at most {} points",
@@ -365,13 +368,9 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
                                    options.scale_min, options.scale_max));
     }
   }
+}
 
-  CsvOptions csv;
-  csv.delimiter = options.delimiter;
-  CsvReader reader(path, csv);
-  const std::string file = path == "-" ? "standard input" : path;
-  const std::vector<std::string> header = reader.header();
-
+std::vector<Record> read_records(CsvReader& reader) {
   std::vector<Record> records;
   while (reader.next()) {
     Record r;
@@ -379,14 +378,12 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
     for (const auto f : reader.fields()) r.fields.emplace_back(f);
     records.push_back(std::move(r));
   }
+  return records;
+}
 
-  Questionnaire q;
-  q.source = path;
-  q.scale_min = options.scale_min;
-  q.scale_max = options.scale_max;
-
-  // Qualtrics: row 2 is the question text, row 3 holds {"ImportId": ...} cells.
-  std::size_t first = 0;
+// Qualtrics: row 2 is the question text, row 3 holds {"ImportId": ...} cells. Sets q.qualtrics;
+// returns the index of the first data record.
+std::size_t skip_qualtrics_rows(const std::vector<Record>& records, Questionnaire& q) {
   if (records.size() >= 2) {
     const auto& third = records[1].fields;
     const bool import_ids = std::any_of(third.begin(), third.end(), [](const std::string& f) {
@@ -394,237 +391,363 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
     });
     if (import_ids) {
       q.qualtrics = true;
-      first = 2;
+      return 2;
     }
   }
+  return 0;
+}
 
-  // Columns.
-  int id_col = detail::find_column(header, options.id_column, file);
-  if (id_col < 0 && q.qualtrics) id_col = detail::find_column(header, "ResponseId", file);
-  if (id_col < 0) {
+// Where a questionnaire file's columns are (-1 = absent).
+struct Columns {
+  int id = -1;
+  int condition = -1;
+  int item = -1;      // long layout
+  int response = -1;  // long layout
+  int status = -1;    // survey exports only: Status, Finished, Progress
+  int finished = -1;
+  int progress = -1;
+};
+
+Columns find_columns(const std::vector<std::string>& header, const QuestionnaireOptions& options,
+                     const std::string& file, bool qualtrics) {
+  Columns cols;
+  cols.id = find_column(header, options.id_column, file);
+  if (cols.id < 0 && qualtrics) cols.id = find_column(header, "ResponseId", file);
+  if (cols.id < 0) {
     throw InvalidData(fmt::format(
         "{}: no column '{}' (the respondent id); name the study's column with --id-column "
         "(columns: {})",
-        file, options.id_column, detail::list_names(header)));
+        file, options.id_column, list_names(header)));
   }
-  const int cond_col = detail::find_column(header, options.condition_column, file);
-  q.has_condition = cond_col >= 0;
-  const int item_col = detail::find_column(header, options.item_column, file);
-  const int resp_col = detail::find_column(header, options.response_column, file);
+  cols.condition = find_column(header, options.condition_column, file);
+  cols.item = find_column(header, options.item_column, file);
+  cols.response = find_column(header, options.response_column, file);
 
   // Survey exports: previews, tests, spam and unfinished responses are not participants.
-  const bool survey_export = q.qualtrics || detail::find_column(header, "ResponseId", file) >= 0;
-  const int status_col = survey_export ? detail::find_column(header, "Status", file) : -1;
-  const int finished_col = survey_export ? detail::find_column(header, "Finished", file) : -1;
-  const int progress_col = survey_export ? detail::find_column(header, "Progress", file) : -1;
-  const auto excluded = [&](const Record& r) {
-    std::optional<std::string> reason;
-    if (status_col >= 0 && !options.keep_previews) {
-      reason = detail::non_response_status(r.fields[static_cast<std::size_t>(status_col)]);
+  const bool survey_export = qualtrics || find_column(header, "ResponseId", file) >= 0;
+  cols.status = survey_export ? find_column(header, "Status", file) : -1;
+  cols.finished = survey_export ? find_column(header, "Finished", file) : -1;
+  cols.progress = survey_export ? find_column(header, "Progress", file) : -1;
+  return cols;
+}
+
+// One answer of the long layout, kept until the items x respondents table is built.
+struct Answer {
+  std::size_t respondent;
+  std::size_t item;
+  std::optional<int> value;
+};
+
+// Reads the data records of one file into a Questionnaire, in its layout: the state every step
+// shares, held by reference.
+class RecordReader {
+ public:
+  RecordReader(const QuestionnaireOptions& options, const std::string& file,
+               const std::vector<std::string>& header, const Columns& cols, Questionnaire& q,
+               ResponseParser& parser, Respondents& respondents)
+      : options_(options), file_(file), header_(header), cols_(cols), q_(q), parser_(parser),
+        respondents_(respondents) {}
+
+  void read_long(const std::vector<Record>& records, std::size_t first,
+                 const std::vector<ItemSpec>& item_specs);
+  void read_wide(const std::vector<Record>& records, std::size_t first,
+                 const std::vector<ItemSpec>& item_specs);
+
+ private:
+  bool excluded(const Record& r);
+  std::pair<std::string, std::string> read_key(const Record& r);
+  std::vector<Answer> collect_long_answers(const std::vector<Record>& records, std::size_t first,
+                                           const std::vector<ItemSpec>& item_specs);
+  void build_long_table(const std::vector<Answer>& answers);
+  void order_items_as_listed(const std::vector<ItemSpec>& item_specs);
+  void add_wide_items(const std::vector<ItemSpec>& item_specs, std::vector<std::size_t>& cols);
+
+  const QuestionnaireOptions& options_;
+  const std::string& file_;
+  const std::vector<std::string>& header_;
+  const Columns& cols_;
+  Questionnaire& q_;
+  ResponseParser& parser_;
+  Respondents& respondents_;
+};
+
+// A survey-export row that is no participant's response is noted in q.excluded (true), unless the
+// options keep it.
+bool RecordReader::excluded(const Record& r) {
+  std::optional<std::string> reason;
+  if (cols_.status >= 0 && !options_.keep_previews) {
+    reason = non_response_status(r.fields[static_cast<std::size_t>(cols_.status)]);
+  }
+  if (!reason && !options_.keep_unfinished && (cols_.finished >= 0 || cols_.progress >= 0)) {
+    const std::string_view fin =
+        cols_.finished >= 0 ? trim(r.fields[static_cast<std::size_t>(cols_.finished)]) : "";
+    const std::string_view prog =
+        cols_.progress >= 0 ? trim(r.fields[static_cast<std::size_t>(cols_.progress)]) : "";
+    const auto progress = parse_double(prog);
+    if (iequals(fin, "false") || fin == "0" || (progress && *progress < 100.0)) {
+      std::vector<std::string> parts;
+      if (cols_.finished >= 0) parts.push_back(fmt::format("Finished {}", fin));
+      if (cols_.progress >= 0) parts.push_back(fmt::format("Progress {}", prog));
+      reason = fmt::format("unfinished ({})", list_names(parts));
     }
-    if (!reason && !options.keep_unfinished && (finished_col >= 0 || progress_col >= 0)) {
-      const std::string_view fin =
-          finished_col >= 0 ? trim(r.fields[static_cast<std::size_t>(finished_col)]) : "";
-      const std::string_view prog =
-          progress_col >= 0 ? trim(r.fields[static_cast<std::size_t>(progress_col)]) : "";
-      const auto progress = parse_double(prog);
-      if (detail::iequals(fin, "false") || fin == "0" || (progress && *progress < 100.0)) {
-        std::vector<std::string> parts;
-        if (finished_col >= 0) parts.push_back(fmt::format("Finished {}", fin));
-        if (progress_col >= 0) parts.push_back(fmt::format("Progress {}", prog));
-        reason = fmt::format("unfinished ({})", detail::list_names(parts));
+  }
+  if (!reason) return false;
+  std::string id = cols_.id >= 0 ? std::string(trim(r.fields[static_cast<std::size_t>(cols_.id)]))
+                                 : std::string();
+  if (id.empty()) id = fmt::format("line {}", r.line);
+  q_.excluded.push_back({static_cast<std::size_t>(r.line), std::move(id), std::move(*reason)});
+  return true;
+}
+
+// The record's (participant, condition); neither may be empty.
+std::pair<std::string, std::string> RecordReader::read_key(const Record& r) {
+  const std::string participant(trim(r.fields[static_cast<std::size_t>(cols_.id)]));
+  if (participant.empty()) {
+    parser_.fail(r.line, fmt::format("column '{}': empty respondent id",
+                                     header_[static_cast<std::size_t>(cols_.id)]));
+  }
+  std::string condition;
+  if (cols_.condition >= 0) {
+    condition = std::string(trim(r.fields[static_cast<std::size_t>(cols_.condition)]));
+    if (condition.empty()) {
+      parser_.fail(r.line, fmt::format("column '{}': empty condition (participant {})",
+                                       header_[static_cast<std::size_t>(cols_.condition)],
+                                       participant));
+    }
+  }
+  return std::make_pair(participant, condition);
+}
+
+// The long layout: one row per respondent and item.
+void RecordReader::read_long(const std::vector<Record>& records, std::size_t first,
+                             const std::vector<ItemSpec>& item_specs) {
+  if (cols_.item < 0 || cols_.response < 0) {
+    throw InvalidData(fmt::format("{}: the long layout needs columns '{}' and '{}' (columns: {})",
+                                  file_, options_.item_column, options_.response_column,
+                                  list_names(header_)));
+  }
+  // Answers are collected as (respondent, item, value) first and the items x respondents table
+  // is built once at the end: memory stays linear in the rows (a table grown row by row is
+  // items x respondents, quadratic when every row brings a new item and a new respondent).
+  std::vector<Answer> answers = collect_long_answers(records, first, item_specs);
+  build_long_table(answers);
+  answers = {};
+  if (!item_specs.empty()) order_items_as_listed(item_specs);
+}
+
+std::vector<Answer> RecordReader::collect_long_answers(const std::vector<Record>& records,
+                                                       std::size_t first,
+                                                       const std::vector<ItemSpec>& item_specs) {
+  const auto item_col = static_cast<std::size_t>(cols_.item);
+  const auto resp_col = static_cast<std::size_t>(cols_.response);
+  // --items selects items (rows of other items are skipped, unread) and sets their order.
+  const auto selected = [&](const std::string& item) {
+    if (item_specs.empty()) return true;
+    return std::any_of(item_specs.begin(), item_specs.end(),
+                       [&](const ItemSpec& s) { return iequals(s.source, item); });
+  };
+  std::vector<Answer> answers;
+  std::unordered_map<std::string, std::size_t> item_index;
+  // (respondent, item) -> line of the answer, to name both places of a duplicate.
+  std::map<std::pair<std::size_t, std::size_t>, std::uint64_t> seen;
+  for (std::size_t k = first; k < records.size(); ++k) {
+    const Record& r = records[k];
+    ++q_.rows_read;
+    if (excluded(r)) continue;
+    const auto [participant, condition] = read_key(r);
+    const std::string item(trim(r.fields[item_col]));
+    if (item.empty()) {
+      parser_.fail(r.line, fmt::format("column '{}': empty item name (participant {})",
+                                       header_[item_col], participant));
+    }
+    if (!selected(item)) continue;
+    const auto [found, added] = item_index.try_emplace(item, q_.items.size());
+    if (added) {
+      q_.items.push_back(item);
+      q_.item_columns.push_back(header_[resp_col]);
+    }
+    const std::size_t it = found->second;
+    const auto [resp, inserted] = respondents_.find_or_add(participant, condition, r.line);
+    (void)inserted;
+    if (const auto prev = seen.find({resp, it}); prev != seen.end()) {
+      parser_.fail(r.line, fmt::format("{} answered item '{}' twice (first at line {})",
+                                       who(q_, participant, condition), item, prev->second));
+    }
+    seen.emplace(std::make_pair(resp, it), r.line);
+    answers.push_back({resp, it,
+                       parser_.parse(r.fields[resp_col], r.line, header_[resp_col],
+                                     who(q_, participant, condition) + ", item " + item)});
+  }
+  return answers;
+}
+
+// q.responses (items x respondents) from the long layout's answers.
+void RecordReader::build_long_table(const std::vector<Answer>& answers) {
+  // A table that is mostly holes is not a questionnaire read right (typically the wrong item
+  // column: free text, timestamps): refuse it rather than allocate items x respondents cells.
+  const std::size_t n_items = q_.items.size(), n_resp = q_.participants.size();
+  const double cells = static_cast<double>(n_items) * static_cast<double>(n_resp);
+  if (cells > std::max(1048576.0, 64.0 * static_cast<double>(answers.size()))) {
+    throw InvalidData(fmt::format(
+        "{}: {} items and {} respondents but only {} answers (each item answered by {:.1f} "
+        "respondents on average): is the item column right? (--item-column '{}', "
+        "--response-column '{}', --layout)",
+        file_, n_items, n_resp, answers.size(),
+        static_cast<double>(answers.size()) / static_cast<double>(n_items),
+        options_.item_column, options_.response_column));
+  }
+  q_.responses.assign(n_items, std::vector<std::optional<int>>(n_resp));
+  for (const auto& ans : answers) q_.responses[ans.item][ans.respondent] = ans.value;
+}
+
+// Reorders, renames (and checks) the long layout's items as --items lists them.
+void RecordReader::order_items_as_listed(const std::vector<ItemSpec>& item_specs) {
+  std::vector<std::string> items, item_columns;
+  std::vector<std::vector<std::optional<int>>> responses;
+  std::vector<bool> taken(q_.items.size(), false);
+  for (const auto& spec : item_specs) {
+    const auto i = q_.item_index(spec.source);
+    if (!i) {
+      throw UsageError(fmt::format("--items: no item '{}' in {} (items: {})", spec.source, file_,
+                                   list_names(q_.items)));
+    }
+    if (taken[*i]) {
+      throw UsageError(fmt::format("--items: item '{}' is named twice", spec.source));
+    }
+    taken[*i] = true;
+    items.push_back(spec.renamed ? spec.name : q_.items[*i]);
+    item_columns.push_back(spec.renamed ? q_.items[*i] : q_.item_columns[*i]);
+    responses.push_back(std::move(q_.responses[*i]));
+  }
+  q_.items = std::move(items);
+  q_.item_columns = std::move(item_columns);
+  q_.responses = std::move(responses);
+}
+
+// The wide layout: one row per respondent, one column per item.
+void RecordReader::read_wide(const std::vector<Record>& records, std::size_t first,
+                             const std::vector<ItemSpec>& item_specs) {
+  std::vector<std::size_t> cols;
+  add_wide_items(item_specs, cols);
+  for (std::size_t k = first; k < records.size(); ++k) {
+    const Record& r = records[k];
+    ++q_.rows_read;
+    if (excluded(r)) continue;
+    const auto [participant, condition] = read_key(r);
+    const auto [resp, inserted] = respondents_.find_or_add(participant, condition, r.line);
+    if (!inserted) {
+      parser_.fail(r.line, fmt::format("{} has a second row (first at line {}); the wide layout "
+                                       "has one row per respondent",
+                                       who(q_, participant, condition),
+                                       respondents_.first_line(resp)));
+    }
+    for (std::size_t j = 0; j < cols.size(); ++j) {
+      q_.responses[j][resp] = parser_.parse(r.fields[cols[j]], r.line, header_[cols[j]],
+                                            who(q_, participant, condition));
+    }
+  }
+}
+
+// The wide layout's item columns (those --items names, else every column that is not the id, the
+// condition or survey-platform metadata) into `cols`, and their items into q.
+void RecordReader::add_wide_items(const std::vector<ItemSpec>& item_specs,
+                                  std::vector<std::size_t>& cols) {
+  const int id_col = cols_.id, cond_col = cols_.condition;
+  std::vector<std::string> names;  // item names (renamed by --items NAME=COLUMN)
+  if (!item_specs.empty()) {
+    for (const auto& spec : item_specs) {
+      const std::string& name = spec.source;
+      const int c = find_column(header_, name, file_);
+      if (c < 0) {
+        throw UsageError(fmt::format("--items: no column '{}' in {} (columns: {})", name, file_,
+                                     list_names(header_)));
+      }
+      if (c == id_col || c == cond_col) {
+        throw UsageError(fmt::format("--items: '{}' is the id or condition column", name));
+      }
+      if (std::find(cols.begin(), cols.end(), static_cast<std::size_t>(c)) != cols.end()) {
+        throw UsageError(fmt::format("--items: column '{}' is named twice", name));
+      }
+      cols.push_back(static_cast<std::size_t>(c));
+      names.push_back(spec.renamed ? spec.name : std::string(trim(header_[c])));
+    }
+  } else {
+    for (std::size_t c = 0; c < header_.size(); ++c) {
+      if (static_cast<int>(c) == id_col || static_cast<int>(c) == cond_col) continue;
+      if (is_platform_column(header_[c])) continue;
+      if (trim(header_[c]).empty()) continue;
+      cols.push_back(c);
+      names.emplace_back(trim(header_[c]));
+    }
+  }
+  if (cols.empty()) {
+    throw InvalidData(fmt::format("{}: no item columns (columns: {})", file_, list_names(header_)));
+  }
+  for (std::size_t j = 0; j < cols.size(); ++j) {
+    for (const auto& prev : q_.items) {
+      if (iequals(prev, names[j])) {
+        throw InvalidData(
+            fmt::format("{}: item column '{}' appears twice in the header", file_, prev));
       }
     }
-    if (!reason) return false;
-    std::string id = id_col >= 0 ? std::string(trim(r.fields[static_cast<std::size_t>(id_col)]))
-                                 : std::string();
-    if (id.empty()) id = fmt::format("line {}", r.line);
-    q.excluded.push_back({static_cast<std::size_t>(r.line), std::move(id), std::move(*reason)});
-    return true;
-  };
+    q_.items.push_back(names[j]);
+    q_.item_columns.push_back(header_[cols[j]]);
+    q_.responses.emplace_back();
+  }
+}
+
+// Reverse coding (--reverse), before anything else sees the data.
+void reverse_code(Questionnaire& q, const std::vector<std::string>& reverse) {
+  q.reversed.assign(q.items.size(), false);
+  for (const auto& name : reverse) {
+    const auto i = q.item_index(name);
+    if (!i) {
+      throw UsageError(
+          fmt::format("--reverse: no item '{}' (items: {})", name, list_names(q.items)));
+    }
+    if (q.reversed[*i]) throw UsageError(fmt::format("--reverse: item '{}' is named twice", name));
+    q.reversed[*i] = true;
+    for (auto& x : q.responses[*i]) {
+      if (x) x = q.scale_min + q.scale_max - *x;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace detail
+
+Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOptions& options) {
+  detail::check_scale_options(options);
+
+  CsvOptions csv;
+  csv.delimiter = options.delimiter;
+  CsvReader reader(path, csv);
+  const std::string file = path == "-" ? "standard input" : path;
+  const std::vector<std::string> header = reader.header();
+  const std::vector<detail::Record> records = detail::read_records(reader);
+
+  Questionnaire q;
+  q.source = path;
+  q.scale_min = options.scale_min;
+  q.scale_max = options.scale_max;
+  const std::size_t first = detail::skip_qualtrics_rows(records, q);
+  const detail::Columns cols = detail::find_columns(header, options, file, q.qualtrics);
+  q.has_condition = cols.condition >= 0;
   const std::vector<detail::ItemSpec> item_specs = detail::parse_item_specs(options.items);
 
   q.layout = options.layout;
   if (q.layout == QuestionnaireLayout::automatic) {
-    q.layout = item_col >= 0 && resp_col >= 0 ? QuestionnaireLayout::long_format
-                                              : QuestionnaireLayout::wide_format;
+    q.layout = cols.item >= 0 && cols.response >= 0 ? QuestionnaireLayout::long_format
+                                                    : QuestionnaireLayout::wide_format;
   }
 
   detail::ResponseParser parser(options, file);
   detail::Respondents respondents(q);
-
-  const auto read_key = [&](const Record& r) {
-    const std::string participant(trim(r.fields[static_cast<std::size_t>(id_col)]));
-    if (participant.empty()) {
-      parser.fail(r.line, fmt::format("column '{}': empty respondent id",
-                                      header[static_cast<std::size_t>(id_col)]));
-    }
-    std::string condition;
-    if (cond_col >= 0) {
-      condition = std::string(trim(r.fields[static_cast<std::size_t>(cond_col)]));
-      if (condition.empty()) {
-        parser.fail(r.line, fmt::format("column '{}': empty condition (participant {})",
-                                        header[static_cast<std::size_t>(cond_col)], participant));
-      }
-    }
-    return std::make_pair(participant, condition);
-  };
-
+  detail::RecordReader rows(options, file, header, cols, q, parser, respondents);
   if (q.layout == QuestionnaireLayout::long_format) {
-    if (item_col < 0 || resp_col < 0) {
-      throw InvalidData(fmt::format("{}: the long layout needs columns '{}' and '{}' (columns: {})",
-                                    file, options.item_column, options.response_column,
-                                    detail::list_names(header)));
-    }
-    // --items selects items (rows of other items are skipped, unread) and sets their order.
-    const auto selected = [&](const std::string& item) {
-      if (item_specs.empty()) return true;
-      return std::any_of(
-          item_specs.begin(), item_specs.end(),
-          [&](const detail::ItemSpec& s) { return detail::iequals(s.source, item); });
-    };
-    // Answers are collected as (respondent, item, value) first and the items x respondents table
-    // is built once at the end: memory stays linear in the rows (a table grown row by row is
-    // items x respondents, quadratic when every row brings a new item and a new respondent).
-    struct Answer {
-      std::size_t respondent;
-      std::size_t item;
-      std::optional<int> value;
-    };
-    std::vector<Answer> answers;
-    std::unordered_map<std::string, std::size_t> item_index;
-    // (respondent, item) -> line of the answer, to name both places of a duplicate.
-    std::map<std::pair<std::size_t, std::size_t>, std::uint64_t> seen;
-    for (std::size_t k = first; k < records.size(); ++k) {
-      const Record& r = records[k];
-      ++q.rows_read;
-      if (excluded(r)) continue;
-      const auto [participant, condition] = read_key(r);
-      const std::string item(trim(r.fields[static_cast<std::size_t>(item_col)]));
-      if (item.empty()) {
-        parser.fail(r.line, fmt::format("column '{}': empty item name (participant {})",
-                                        header[static_cast<std::size_t>(item_col)], participant));
-      }
-      if (!selected(item)) continue;
-      const auto [found, added] = item_index.try_emplace(item, q.items.size());
-      if (added) {
-        q.items.push_back(item);
-        q.item_columns.push_back(header[static_cast<std::size_t>(resp_col)]);
-      }
-      const std::size_t it = found->second;
-      const auto [resp, inserted] = respondents.find_or_add(participant, condition, r.line);
-      (void)inserted;
-      if (const auto prev = seen.find({resp, it}); prev != seen.end()) {
-        parser.fail(r.line,
-                    fmt::format("{} answered item '{}' twice (first at line {})",
-                                detail::who(q, participant, condition), item, prev->second));
-      }
-      seen.emplace(std::make_pair(resp, it), r.line);
-      answers.push_back({resp, it,
-                         parser.parse(r.fields[static_cast<std::size_t>(resp_col)], r.line,
-                                      header[static_cast<std::size_t>(resp_col)],
-                                      detail::who(q, participant, condition) + ", item " + item)});
-    }
-    // A table that is mostly holes is not a questionnaire read right (typically the wrong item
-    // column: free text, timestamps): refuse it rather than allocate items x respondents cells.
-    const std::size_t n_items = q.items.size(), n_resp = q.participants.size();
-    const double cells = static_cast<double>(n_items) * static_cast<double>(n_resp);
-    if (cells > std::max(1048576.0, 64.0 * static_cast<double>(answers.size()))) {
-      throw InvalidData(fmt::format(
-          "{}: {} items and {} respondents but only {} answers (each item answered by {:.1f} "
-          "respondents on average): is the item column right? (--item-column '{}', "
-          "--response-column '{}', --layout)",
-          file, n_items, n_resp, answers.size(),
-          static_cast<double>(answers.size()) / static_cast<double>(n_items),
-          options.item_column, options.response_column));
-    }
-    q.responses.assign(n_items, std::vector<std::optional<int>>(n_resp));
-    for (const auto& ans : answers) q.responses[ans.item][ans.respondent] = ans.value;
-    answers = {};
-    if (!item_specs.empty()) {
-      // Reorder, rename (and check) the items as --items lists them.
-      std::vector<std::string> items, item_columns;
-      std::vector<std::vector<std::optional<int>>> responses;
-      std::vector<bool> taken(n_items, false);
-      for (const auto& spec : item_specs) {
-        const auto i = q.item_index(spec.source);
-        if (!i) {
-          throw UsageError(fmt::format("--items: no item '{}' in {} (items: {})", spec.source,
-                                       file, detail::list_names(q.items)));
-        }
-        if (taken[*i]) {
-          throw UsageError(fmt::format("--items: item '{}' is named twice", spec.source));
-        }
-        taken[*i] = true;
-        items.push_back(spec.renamed ? spec.name : q.items[*i]);
-        item_columns.push_back(spec.renamed ? q.items[*i] : q.item_columns[*i]);
-        responses.push_back(std::move(q.responses[*i]));
-      }
-      q.items = std::move(items);
-      q.item_columns = std::move(item_columns);
-      q.responses = std::move(responses);
-    }
+    rows.read_long(records, first, item_specs);
   } else {
-    std::vector<std::size_t> cols;
-    std::vector<std::string> names;  // item names (renamed by --items NAME=COLUMN)
-    if (!item_specs.empty()) {
-      for (const auto& spec : item_specs) {
-        const std::string& name = spec.source;
-        const int c = detail::find_column(header, name, file);
-        if (c < 0) {
-          throw UsageError(fmt::format("--items: no column '{}' in {} (columns: {})", name, file,
-                                       detail::list_names(header)));
-        }
-        if (c == id_col || c == cond_col) {
-          throw UsageError(fmt::format("--items: '{}' is the id or condition column", name));
-        }
-        if (std::find(cols.begin(), cols.end(), static_cast<std::size_t>(c)) != cols.end()) {
-          throw UsageError(fmt::format("--items: column '{}' is named twice", name));
-        }
-        cols.push_back(static_cast<std::size_t>(c));
-        names.push_back(spec.renamed ? spec.name : std::string(trim(header[c])));
-      }
-    } else {
-      for (std::size_t c = 0; c < header.size(); ++c) {
-        if (static_cast<int>(c) == id_col || static_cast<int>(c) == cond_col) continue;
-        if (detail::is_platform_column(header[c])) continue;
-        if (trim(header[c]).empty()) continue;
-        cols.push_back(c);
-        names.emplace_back(trim(header[c]));
-      }
-    }
-    if (cols.empty()) {
-      throw InvalidData(
-          fmt::format("{}: no item columns (columns: {})", file, detail::list_names(header)));
-    }
-    for (std::size_t j = 0; j < cols.size(); ++j) {
-      for (const auto& prev : q.items) {
-        if (detail::iequals(prev, names[j])) {
-          throw InvalidData(
-              fmt::format("{}: item column '{}' appears twice in the header", file, prev));
-        }
-      }
-      q.items.push_back(names[j]);
-      q.item_columns.push_back(header[cols[j]]);
-      q.responses.emplace_back();
-    }
-    for (std::size_t k = first; k < records.size(); ++k) {
-      const Record& r = records[k];
-      ++q.rows_read;
-      if (excluded(r)) continue;
-      const auto [participant, condition] = read_key(r);
-      const auto [resp, inserted] = respondents.find_or_add(participant, condition, r.line);
-      if (!inserted) {
-        parser.fail(r.line, fmt::format("{} has a second row (first at line {}); the wide layout "
-                                        "has one row per respondent",
-                                        detail::who(q, participant, condition),
-                                        respondents.first_line(resp)));
-      }
-      for (std::size_t j = 0; j < cols.size(); ++j) {
-        q.responses[j][resp] = parser.parse(r.fields[cols[j]], r.line, header[cols[j]],
-                                            detail::who(q, participant, condition));
-      }
-    }
+    rows.read_wide(records, first, item_specs);
   }
 
   if (q.participants.empty()) {
@@ -635,21 +758,7 @@ Questionnaire load_questionnaire(const std::string& path, const QuestionnaireOpt
   }
   q.text_answers_mapped = parser.mapped();
   if (q.text_answers_mapped > 0) q.label_map = parser.label_map();
-
-  // Reverse coding, before anything else sees the data.
-  q.reversed.assign(q.items.size(), false);
-  for (const auto& name : options.reverse) {
-    const auto i = q.item_index(name);
-    if (!i) {
-      throw UsageError(
-          fmt::format("--reverse: no item '{}' (items: {})", name, detail::list_names(q.items)));
-    }
-    if (q.reversed[*i]) throw UsageError(fmt::format("--reverse: item '{}' is named twice", name));
-    q.reversed[*i] = true;
-    for (auto& x : q.responses[*i]) {
-      if (x) x = q.scale_min + q.scale_max - *x;
-    }
-  }
+  detail::reverse_code(q, options.reverse);
   return q;
 }
 

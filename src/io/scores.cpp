@@ -42,6 +42,156 @@ std::string trial_key(const ScoreRecord& r, bool has_condition) {
                        : fmt::format("{}/{}", r.participant, r.iteration);
 }
 
+// Where a scores table's columns are (indices into its header; condition -1 when absent).
+struct ScoreColumns {
+  int participant = -1;
+  int iteration = -1;
+  int condition = -1;
+  std::vector<int> metrics;
+};
+
+// The columns the options name, each missing one named in a single message (not one per run), and
+// the condition column required when the study has two or more conditions.
+ScoreColumns find_score_columns(const CsvReader& reader, const std::string& path,
+                                const ScoresOptions& options) {
+  ScoreColumns cols;
+  std::vector<std::string> missing;
+  auto find = [&](const std::string& name, std::string_view role, std::string_view option) {
+    const int i = reader.column(name, fmt::format("name one exactly with {}", option));
+    if (i < 0) missing.push_back(fmt::format("'{}' ({})", name, role));
+    return i;
+  };
+  cols.participant = find(options.participant_column, "participant", "--participant-column");
+  cols.iteration = find(options.iteration_column, "iteration", "--iteration-column");
+  cols.condition = reader.column(options.condition_column,
+                                 "name one exactly with --condition-column");
+  for (const auto& m : options.metrics) cols.metrics.push_back(find(m, "metric", "--metric"));
+  if (missing.size() == 1) {
+    const bool metric = missing[0].ends_with("(metric)");
+    const std::string name = missing[0].substr(0, missing[0].rfind(" ("));
+    throw InvalidData(metric ? fmt::format("{}:1: metric column {} is missing; the header has: {}",
+                                           path, name, header_list(reader))
+                             : fmt::format("{}:1: column {} is missing; the header has: {}", path,
+                                           missing[0], header_list(reader)));
+  }
+  if (!missing.empty()) {
+    throw InvalidData(fmt::format("{}:1: columns {} are missing; the header has: {}", path,
+                                  fmt::join(missing, ", "), header_list(reader)));
+  }
+  if (cols.condition < 0 && options.expected_conditions.size() >= 2) {
+    throw InvalidData(fmt::format(
+        "{}:1: no condition column '{}', but the study has {} conditions ({}): name it with "
+        "--condition-column COLUMN (the header has: {}); the conditions would otherwise be pooled",
+        path, options.condition_column, options.expected_conditions.size(),
+        fmt::join(options.expected_conditions, ", "), header_list(reader)));
+  }
+  return cols;
+}
+
+// Metric values in the table's decimal mark (ScoresOptions::decimal): the given one, '.' in a
+// ','-delimited file, else the first value holding a '.' or ',' decides.
+class MetricNumbers {
+ public:
+  MetricNumbers(const ScoresOptions& options, const CsvReader& reader)
+      : mark_(options.decimal != 0 ? options.decimal : reader.delimiter() == ',' ? '.' : 0) {}
+
+  std::optional<double> operator()(std::string_view text) {
+    if (mark_ == 0) {
+      if (text.find('.') != std::string_view::npos) mark_ = '.';
+      else if (text.find(',') != std::string_view::npos) mark_ = ',';
+    }
+    if (mark_ != ',') return parse_double(text);
+    if (text.find('.') != std::string_view::npos) return std::nullopt;
+    comma_scratch_.assign(text);
+    std::replace(comma_scratch_.begin(), comma_scratch_.end(), ',', '.');
+    return parse_double(comma_scratch_);
+  }
+  char mark() const noexcept { return mark_; }
+
+ private:
+  char mark_;
+  std::string comma_scratch_;  // reused for every value: no allocation per row
+};
+
+// A condition column that is empty on EVERY row means no conditions (`feint score` writes one for
+// logs without a condition column); empty on some rows only is an error, reported once the whole
+// file has been seen. This remembers the first row of each kind.
+struct ConditionPresence {
+  std::uint64_t first_empty = 0;
+  std::uint64_t first_given = 0;
+  std::string first_empty_participant;
+
+  void note(const ScoreRecord& rec) {
+    if (rec.condition.empty()) {
+      if (first_empty == 0) {
+        first_empty = rec.line;
+        first_empty_participant = rec.participant;
+      }
+    } else if (first_given == 0) {
+      first_given = rec.line;
+    }
+  }
+};
+
+// The row's iteration: a whole number from 0 to 1e9.
+long long read_iteration(const CsvReader& reader, int column, const ScoreRecord& rec,
+                         bool has_condition, const std::string& path) {
+  const std::string_view it_text = reader.field(static_cast<std::size_t>(column));
+  auto iteration = parse_integer(it_text);
+  if (iteration && (*iteration < 0 || *iteration > 1000000000)) iteration.reset();
+  if (!iteration) {
+    throw InvalidData(fmt::format(
+        "{}:{}: column '{}': '{}' is not an iteration number (participant {}{}; expected a "
+        "whole number from 0 to 1e9)",
+        path, rec.line, reader.header()[static_cast<std::size_t>(column)], it_text, rec.participant,
+        has_condition ? "/" + rec.condition : std::string()));
+  }
+  return *iteration;
+}
+
+// The row's metric values into rec.values, an empty cell as missing.
+void read_metric_values(const CsvReader& reader, const std::vector<int>& columns,
+                        MetricNumbers& number, bool has_condition, const std::string& path,
+                        ScoreRecord& rec) {
+  for (std::size_t m = 0; m < columns.size(); ++m) {
+    const std::string_view text = reader.field(static_cast<std::size_t>(columns[m]));
+    if (trim(text).empty()) {
+      rec.values.emplace_back();  // missing: excluded from this metric's tests, and counted
+      continue;
+    }
+    const auto v = number(text);
+    if (!v) {
+      const char mark = number.mark();
+      throw InvalidData(fmt::format("{}:{}: column '{}': '{}' is not a number ({}; expected a "
+                                    "finite number with a decimal {}, or an empty cell{})",
+                                    path, rec.line,
+                                    reader.header()[static_cast<std::size_t>(columns[m])], text,
+                                    trial_key(rec, has_condition),
+                                    mark == ',' ? "comma" : "point",
+                                    mark != ',' && text.find(',') != std::string_view::npos
+                                        ? "; a decimal comma? give --delimiter ';' --decimal ,"
+                                        : mark == ',' ? "; give --decimal . if the point is the decimal mark" : ""));
+    }
+    rec.values.push_back(*v);
+  }
+}
+
+// After the last row: a condition column empty on some rows only is an error; empty on all of them,
+// it means one condition for everybody.
+void settle_conditions(const ConditionPresence& conditions, const CsvReader& reader,
+                       int condition_column, const std::string& path, ScoresTable& table) {
+  if (table.has_condition && conditions.first_empty != 0) {
+    if (conditions.first_given != 0) {
+      throw InvalidData(fmt::format("{}:{}: column '{}': empty condition (participant {}; line {} "
+                                    "has one: every row needs its condition, or none does)",
+                                    path, conditions.first_empty,
+                                    reader.header()[static_cast<std::size_t>(condition_column)],
+                                    conditions.first_empty_participant, conditions.first_given));
+    }
+    table.has_condition = false;  // an empty column: one condition for everybody
+  }
+}
+
 }  // namespace
 
 std::vector<std::string> ScoresTable::conditions() const {
@@ -78,113 +228,28 @@ ScoresTable load_scores(const std::string& path, const ScoresOptions& options) {
   ScoresTable table;
   table.path = path;
   table.metrics = options.metrics;
-  // Every missing column in one message (not one per run).
-  std::vector<std::string> missing;
-  auto find = [&](const std::string& name, std::string_view role, std::string_view option) {
-    const int i = reader.column(name, fmt::format("name one exactly with {}", option));
-    if (i < 0) missing.push_back(fmt::format("'{}' ({})", name, role));
-    return i;
-  };
-  const int ip = find(options.participant_column, "participant", "--participant-column");
-  const int ii = find(options.iteration_column, "iteration", "--iteration-column");
-  const int ic = reader.column(options.condition_column,
-                               "name one exactly with --condition-column");
-  table.has_condition = ic >= 0;
-  std::vector<int> im;
-  for (const auto& m : options.metrics) im.push_back(find(m, "metric", "--metric"));
-  if (missing.size() == 1) {
-    const bool metric = missing[0].ends_with("(metric)");
-    const std::string name = missing[0].substr(0, missing[0].rfind(" ("));
-    throw InvalidData(metric ? fmt::format("{}:1: metric column {} is missing; the header has: {}",
-                                           path, name, header_list(reader))
-                             : fmt::format("{}:1: column {} is missing; the header has: {}", path,
-                                           missing[0], header_list(reader)));
-  }
-  if (!missing.empty()) {
-    throw InvalidData(fmt::format("{}:1: columns {} are missing; the header has: {}", path,
-                                  fmt::join(missing, ", "), header_list(reader)));
-  }
-  if (!table.has_condition && options.expected_conditions.size() >= 2) {
-    throw InvalidData(fmt::format(
-        "{}:1: no condition column '{}', but the study has {} conditions ({}): name it with "
-        "--condition-column COLUMN (the header has: {}); the conditions would otherwise be pooled",
-        path, options.condition_column, options.expected_conditions.size(),
-        fmt::join(options.expected_conditions, ", "), header_list(reader)));
-  }
-  // The decimal mark of the metric values (ScoresOptions::decimal).
-  char mark = options.decimal != 0 ? options.decimal : reader.delimiter() == ',' ? '.' : 0;
-  std::string comma_scratch;
-  auto number = [&](std::string_view text) -> std::optional<double> {
-    if (mark == 0) {
-      if (text.find('.') != std::string_view::npos) mark = '.';
-      else if (text.find(',') != std::string_view::npos) mark = ',';
-    }
-    if (mark != ',') return parse_double(text);
-    if (text.find('.') != std::string_view::npos) return std::nullopt;
-    comma_scratch.assign(text);
-    std::replace(comma_scratch.begin(), comma_scratch.end(), ',', '.');
-    return parse_double(comma_scratch);
-  };
+  const ScoreColumns cols = find_score_columns(reader, path, options);
+  table.has_condition = cols.condition >= 0;
+  MetricNumbers number(options, reader);
 
   // (participant, condition, iteration) -> line, to name both places of a duplicate.
   std::map<std::tuple<std::string, std::string, long long>, std::uint64_t> seen;
-  std::uint64_t first_empty_condition = 0, first_condition_line = 0;
-  std::string first_empty_participant;
+  ConditionPresence conditions;
   while (reader.next()) {
     ScoreRecord rec;
     rec.line = reader.line();
-    rec.participant = std::string(trim(reader.field(static_cast<std::size_t>(ip))));
+    rec.participant = std::string(trim(reader.field(static_cast<std::size_t>(cols.participant))));
     if (table.has_condition) {
-      rec.condition = std::string(trim(reader.field(static_cast<std::size_t>(ic))));
+      rec.condition = std::string(trim(reader.field(static_cast<std::size_t>(cols.condition))));
     }
-    const std::string_view it_text = reader.field(static_cast<std::size_t>(ii));
     if (rec.participant.empty()) {
       throw InvalidData(fmt::format("{}:{}: column '{}': empty participant (expected an id)", path,
-                                    rec.line, reader.header()[static_cast<std::size_t>(ip)]));
+                                    rec.line,
+                                    reader.header()[static_cast<std::size_t>(cols.participant)]));
     }
-    if (table.has_condition) {
-      // A condition column that is empty on EVERY row means no conditions (`feint score` writes
-      // one for logs without a condition column); empty on some rows only is an error, reported
-      // once the whole file has been seen.
-      if (rec.condition.empty()) {
-        if (first_empty_condition == 0) {
-          first_empty_condition = rec.line;
-          first_empty_participant = rec.participant;
-        }
-      } else if (first_condition_line == 0) {
-        first_condition_line = rec.line;
-      }
-    }
-    auto iteration = parse_integer(it_text);
-    if (iteration && (*iteration < 0 || *iteration > 1000000000)) iteration.reset();
-    if (!iteration) {
-      throw InvalidData(fmt::format(
-          "{}:{}: column '{}': '{}' is not an iteration number (participant {}{}; expected a "
-          "whole number from 0 to 1e9)",
-          path, rec.line, reader.header()[static_cast<std::size_t>(ii)], it_text, rec.participant,
-          table.has_condition ? "/" + rec.condition : std::string()));
-    }
-    rec.iteration = *iteration;
-    for (std::size_t m = 0; m < im.size(); ++m) {
-      const std::string_view text = reader.field(static_cast<std::size_t>(im[m]));
-      if (trim(text).empty()) {
-        rec.values.emplace_back();  // missing: excluded from this metric's tests, and counted
-        continue;
-      }
-      const auto v = number(text);
-      if (!v) {
-        throw InvalidData(fmt::format("{}:{}: column '{}': '{}' is not a number ({}; expected a "
-                                      "finite number with a decimal {}, or an empty cell{})",
-                                      path, rec.line,
-                                      reader.header()[static_cast<std::size_t>(im[m])], text,
-                                      trial_key(rec, table.has_condition),
-                                      mark == ',' ? "comma" : "point",
-                                      mark != ',' && text.find(',') != std::string_view::npos
-                                          ? "; a decimal comma? give --delimiter ';' --decimal ,"
-                                          : mark == ',' ? "; give --decimal . if the point is the decimal mark" : ""));
-      }
-      rec.values.push_back(*v);
-    }
+    if (table.has_condition) conditions.note(rec);
+    rec.iteration = read_iteration(reader, cols.iteration, rec, table.has_condition, path);
+    read_metric_values(reader, cols.metrics, number, table.has_condition, path, rec);
     const auto [pos, inserted] =
         seen.emplace(std::make_tuple(rec.participant, rec.condition, rec.iteration), rec.line);
     if (!inserted) {
@@ -201,16 +266,7 @@ ScoresTable load_scores(const std::string& path, const ScoresOptions& options) {
                                   "iteration after the header)",
                                   path));
   }
-  if (table.has_condition && first_empty_condition != 0) {
-    if (first_condition_line != 0) {
-      throw InvalidData(fmt::format("{}:{}: column '{}': empty condition (participant {}; line {} "
-                                    "has one: every row needs its condition, or none does)",
-                                    path, first_empty_condition,
-                                    reader.header()[static_cast<std::size_t>(ic)],
-                                    first_empty_participant, first_condition_line));
-    }
-    table.has_condition = false;  // an empty column: one condition for everybody
-  }
+  settle_conditions(conditions, reader, cols.condition, path, table);
   return table;
 }
 

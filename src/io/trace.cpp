@@ -117,6 +117,14 @@ bool looks_like_condition(std::string_view header_cell) {
          k == "between";
 }
 
+// The columns a file lacks, gathered so that one message names them all.
+struct MissingColumns {
+  std::vector<std::string> columns;  // as the message names them
+  std::vector<std::string> maps;     // the --map that would name each
+  bool id = false;                   // the participant's column is among them
+  bool samples = false;              // t or pad is among them
+};
+
 bool has_data_extension(const fs::path& p) {
   std::string name = to_lower(p.filename().string());
   if (name.size() > 3 && name.ends_with(".gz")) name.resize(name.size() - 3);
@@ -250,6 +258,7 @@ struct TraceReader::Impl {
     }
   }
 
+  // Opens the next input file and reads its header: false when there is none left.
   bool open_next_file() {
     if (reader) {
       bytes_done += reader->bytes_consumed();
@@ -265,109 +274,11 @@ struct TraceReader::Impl {
     reader = std::make_unique<CsvReader>(files[file_index], copt);
     row = &reader->fields();
     const std::string& name = names[file_index];
-    if (options.no_header) {
-      // A header read as data would fail later on its iteration; say what happened instead.
-      // (Before the first next(), fields() holds the first row, which next() hands out again.)
-      for (const auto f : reader->fields()) {
-        const std::string cell = to_lower(trim(f));
-        if (std::find(kFieldNames.begin(), kFieldNames.end(), cell) != kFieldNames.end()) {
-          throw InvalidData(fmt::format("{}:{}: --no-header, but the first row holds the column "
-                                        "name '{}': the file has a header; drop --no-header "
-                                        "(and --columns) and name its columns with --map",
-                                        name, reader->line(), trim(f)));
-        }
-      }
-    }
-    const auto& header = reader->header();
+    if (options.no_header) reject_header_as_data(name);
     mark = options.decimal != 0 ? options.decimal : reader->delimiter() == ',' ? '.' : 0;
     if (!options.participant_from_path.empty()) file_participant = participant_from(files[file_index]);
-    const bool json = !options.samples_column.empty();
-    cols = {};
-    cols.width = header.size();
-    std::vector<std::string> missing;  // every missing column, reported in one message
-    std::vector<std::string> maps;     // the --map that would name each
-    bool missing_id = false, missing_samples = false;
-    for (int f = 0; f < kFieldCount; ++f) {
-      const auto mapped = options.column_map.find(kFieldNames[f]);
-      const bool is_mapped = mapped != options.column_map.end();
-      const std::string want = is_mapped ? mapped->second : kFieldNames[f];
-      cols.name[f] = want;
-      // Replaced by an option: the column is not read.
-      if ((f == kPadSpeed && options.pad_speed) ||
-          (f == kParticipant && !options.participant_from_path.empty()) ||
-          (json && (f == kT || f == kPad))) {
-        cols.index[f] = -1;
-        continue;
-      }
-      const int idx = reader->column(
-          want, fmt::format("name one exactly with --map {}=COLUMN (the exact-case match is taken)",
-                            kFieldNames[f]));
-      cols.index[f] = idx;
-      if (idx >= 0) {
-        cols.name[f] = header[static_cast<std::size_t>(idx)];
-        continue;
-      }
-      if (is_mapped) {
-        missing.push_back(fmt::format("'{}' (given by --map {}={})", want, kFieldNames[f], want));
-      } else if (kRequired[f]) {
-        missing.push_back(fmt::format("'{}' (required)", want));
-      } else {
-        continue;
-      }
-      maps.push_back(fmt::format("--map {}=COLUMN", kFieldNames[f]));
-      missing_id = missing_id || f == kParticipant;
-      missing_samples = missing_samples || f == kT || f == kPad;
-    }
-    if (json) {
-      samples_index = reader->column(options.samples_column,
-                                     "name one exactly with --samples-column (the exact-case match is taken)");
-      if (samples_index < 0) {
-        missing.push_back(fmt::format("'{}' (given by --samples-column)", options.samples_column));
-      }
-    }
-    if (!missing.empty()) {
-      std::string fixes = maps.empty() ? std::string("give --samples-column the JSON column's name")
-                                       : fmt::format("name the study's column{} with {}",
-                                                     maps.size() > 1 ? "s" : "", fmt::join(maps, " "));
-      if (missing_id) {
-        fixes += "; ids only in the file or folder name: --participant-from-path filename (or "
-                 "dirname, or a regular expression whose first group is the id)";
-      }
-      if (missing_samples && !json) {
-        fixes += "; samples stored as a JSON array in one cell (jsPsych): --samples-column COLUMN";
-      }
-      bool numeric = !options.no_header;
-      for (const auto& h : header) numeric = numeric && parse_double(h).has_value();
-      if (numeric) {
-        fixes = fmt::format("the first row holds only numbers, so the file has no header: name its "
-                            "{} columns by position with --no-header --columns "
-                            "participant,iteration,target,t,pad (one name per column, in order) or "
-                            "--no-header --map t=3 (columns are numbered from 1); ",
-                            header.size()) + fixes;
-      }
-      throw InvalidData(fmt::format("{}:1: no column {} (the header has: {}); {}", name,
-                                    fmt::join(missing, ", no column "), fmt::join(header, ", "),
-                                    fixes));
-    }
-    if (cols.index[kCondition] < 0 && !options.single_condition) {
-      if (options.expected_conditions.size() >= 2) {
-        throw InvalidData(fmt::format(
-            "{}:1: no condition column '{}', but the study has {} conditions ({}): name the "
-            "column with --map condition=COLUMN (the header has: {}); trials would otherwise be "
-            "pooled into one condition", name, cols.name[kCondition],
-            options.expected_conditions.size(), fmt::join(options.expected_conditions, ", "),
-            fmt::join(header, ", ")));
-      }
-      for (std::size_t i = 0; i < header.size(); ++i) {
-        if (looks_like_condition(header[i])) {
-          throw InvalidData(fmt::format(
-              "{}:1: column '{}' (column {}) looks like the condition, but the condition is read "
-              "from a column named '{}': name it with --map condition={}, or give "
-              "--single-condition to pool every trial into one condition",
-              name, header[i], i + 1, cols.name[kCondition], trim(header[i])));
-        }
-      }
-    }
+    find_columns(name);
+    check_condition_column(name);
     if (cols.index[kPadSpeed] < 0 && !options.pad_speed && options.require_pad_speed) {
       throw UsageError(fmt::format(
           "{}: no 'pad_speed' column, but the 'speed' confusion normalisation needs the pad "
@@ -375,7 +286,136 @@ struct TraceReader::Impl {
           "pad_speed=COLUMN, or use --confusion-norm raw",
           name));
     }
-    if (!options.read_robot_path || json) {  // a JSON cell holds a whole trial, not one sample
+    check_robot_columns(name);
+    return true;
+  }
+
+  // --no-header: a header read as data would fail later on its iteration; say what happened
+  // instead. (Before the first next(), fields() holds the first row, which next() hands out again.)
+  void reject_header_as_data(const std::string& name) const {
+    for (const auto f : reader->fields()) {
+      const std::string cell = to_lower(trim(f));
+      if (std::find(kFieldNames.begin(), kFieldNames.end(), cell) != kFieldNames.end()) {
+        throw InvalidData(fmt::format("{}:{}: --no-header, but the first row holds the column "
+                                      "name '{}': the file has a header; drop --no-header "
+                                      "(and --columns) and name its columns with --map",
+                                      name, reader->line(), trim(f)));
+      }
+    }
+  }
+
+  // cols (and samples_index) for the open file; every missing column in one message.
+  void find_columns(const std::string& name) {
+    const bool json = !options.samples_column.empty();
+    cols = {};
+    cols.width = reader->header().size();
+    MissingColumns missing;
+    for (int f = 0; f < kFieldCount; ++f) find_column(static_cast<Field>(f), json, missing);
+    if (json) {
+      samples_index = reader->column(options.samples_column,
+                                     "name one exactly with --samples-column (the exact-case match is taken)");
+      if (samples_index < 0) {
+        missing.columns.push_back(
+            fmt::format("'{}' (given by --samples-column)", options.samples_column));
+      }
+    }
+    if (!missing.columns.empty()) throw_missing_columns(missing, json, name);
+  }
+
+  // The column of field f (by its name or its --map), noted in `missing` when a required or
+  // mapped one is absent.
+  void find_column(Field f, bool json, MissingColumns& missing) {
+    const auto mapped = options.column_map.find(kFieldNames[f]);
+    const bool is_mapped = mapped != options.column_map.end();
+    const std::string want = is_mapped ? mapped->second : kFieldNames[f];
+    cols.name[f] = want;
+    // Replaced by an option: the column is not read.
+    if ((f == kPadSpeed && options.pad_speed) ||
+        (f == kParticipant && !options.participant_from_path.empty()) ||
+        (json && (f == kT || f == kPad))) {
+      cols.index[f] = -1;
+      return;
+    }
+    const int idx = reader->column(
+        want, fmt::format("name one exactly with --map {}=COLUMN (the exact-case match is taken)",
+                          kFieldNames[f]));
+    cols.index[f] = idx;
+    if (idx >= 0) {
+      cols.name[f] = reader->header()[static_cast<std::size_t>(idx)];
+      return;
+    }
+    if (is_mapped) {
+      missing.columns.push_back(
+          fmt::format("'{}' (given by --map {}={})", want, kFieldNames[f], want));
+    } else if (kRequired[f]) {
+      missing.columns.push_back(fmt::format("'{}' (required)", want));
+    } else {
+      return;
+    }
+    missing.maps.push_back(fmt::format("--map {}=COLUMN", kFieldNames[f]));
+    missing.id = missing.id || f == kParticipant;
+    missing.samples = missing.samples || f == kT || f == kPad;
+  }
+
+  // The message for missing columns, with the options that would fix it.
+  [[noreturn]] void throw_missing_columns(const MissingColumns& missing, bool json,
+                                          const std::string& name) const {
+    const auto& header = reader->header();
+    std::string fixes = missing.maps.empty()
+                            ? std::string("give --samples-column the JSON column's name")
+                            : fmt::format("name the study's column{} with {}",
+                                          missing.maps.size() > 1 ? "s" : "",
+                                          fmt::join(missing.maps, " "));
+    if (missing.id) {
+      fixes += "; ids only in the file or folder name: --participant-from-path filename (or "
+               "dirname, or a regular expression whose first group is the id)";
+    }
+    if (missing.samples && !json) {
+      fixes += "; samples stored as a JSON array in one cell (jsPsych): --samples-column COLUMN";
+    }
+    bool numeric = !options.no_header;
+    for (const auto& h : header) numeric = numeric && parse_double(h).has_value();
+    if (numeric) {
+      fixes = fmt::format("the first row holds only numbers, so the file has no header: name its "
+                          "{} columns by position with --no-header --columns "
+                          "participant,iteration,target,t,pad (one name per column, in order) or "
+                          "--no-header --map t=3 (columns are numbered from 1); ",
+                          header.size()) + fixes;
+    }
+    throw InvalidData(fmt::format("{}:1: no column {} (the header has: {}); {}", name,
+                                  fmt::join(missing.columns, ", no column "),
+                                  fmt::join(header, ", "), fixes));
+  }
+
+  // Without a condition column, trials are pooled into one condition: wrong when the study has
+  // several, or when another column looks like the condition (unless --single-condition).
+  void check_condition_column(const std::string& name) const {
+    if (cols.index[kCondition] >= 0 || options.single_condition) return;
+    const auto& header = reader->header();
+    if (options.expected_conditions.size() >= 2) {
+      throw InvalidData(fmt::format(
+          "{}:1: no condition column '{}', but the study has {} conditions ({}): name the "
+          "column with --map condition=COLUMN (the header has: {}); trials would otherwise be "
+          "pooled into one condition", name, cols.name[kCondition],
+          options.expected_conditions.size(), fmt::join(options.expected_conditions, ", "),
+          fmt::join(header, ", ")));
+    }
+    for (std::size_t i = 0; i < header.size(); ++i) {
+      if (looks_like_condition(header[i])) {
+        throw InvalidData(fmt::format(
+            "{}:1: column '{}' (column {}) looks like the condition, but the condition is read "
+            "from a column named '{}': name it with --map condition={}, or give "
+            "--single-condition to pool every trial into one condition",
+            name, header[i], i + 1, cols.name[kCondition], trim(header[i])));
+      }
+    }
+  }
+
+  // The robot's position is read only when asked for and per sample (a JSON cell holds a whole
+  // trial), and needs both of its columns.
+  void check_robot_columns(const std::string& name) {
+    const bool json = !options.samples_column.empty();
+    if (!options.read_robot_path || json) {
       cols.index[kRobotX] = cols.index[kRobotY] = -1;
     } else if ((cols.index[kRobotX] >= 0) != (cols.index[kRobotY] >= 0)) {
       const Field has = cols.index[kRobotX] >= 0 ? kRobotX : kRobotY;
@@ -384,7 +424,6 @@ struct TraceReader::Impl {
                                     "both; name it with --map {}=COLUMN)", name, cols.name[has],
                                     cols.name[lacks], kFieldNames[lacks]));
     }
-    return true;
   }
 
   // TraceOptions::participant_from_path applied to one file.
@@ -458,7 +497,6 @@ struct TraceReader::Impl {
     }
     return {};
   }
-
   [[gnu::always_inline]] std::string_view get(Field f) const {
     const int i = cols.index[f];
     if (i < 0) return f == kParticipant ? std::string_view(file_participant) : std::string_view{};
@@ -468,6 +506,23 @@ struct TraceReader::Impl {
 
   // Starts a trial with the key of the current row.
   void start(Builder& b, std::string_view p, std::string_view c, std::string_view it) {
+    reset_trial(b, p, c, it);
+    const std::uint64_t line = reader->line();
+    if (reader->fields().size() != cols.width) return;  // reported by add_row
+    if (p.empty()) invalid(b, line, fmt::format("column '{}': empty (every row needs a participant)",
+                                                cols.name[kParticipant]));
+    if (cols.index[kCondition] >= 0 && c.empty()) {
+      invalid(b, line, fmt::format("column '{}': empty (expected the condition's name)",
+                                   cols.name[kCondition]));
+    }
+    read_iteration(b, line, it);
+    read_target(b, line);
+    read_pad_speed(b, line);
+  }
+
+  // b for a new trial: its key and trial-level text from the current row, no samples, no error
+  // (b's buffers are reused, not reallocated).
+  void reset_trial(Builder& b, std::string_view p, std::string_view c, std::string_view it) {
     b.participant.assign(p);
     b.condition.assign(c);
     b.iteration.assign(it);
@@ -498,18 +553,13 @@ struct TraceReader::Impl {
     b.pad_speed_text.assign(get(kPadSpeed));
     t.target = 0;
     t.pad_speed = options.pad_speed;
+  }
 
-    const std::uint64_t line = reader->line();
-    if (reader->fields().size() != cols.width) return;  // reported by add_row
-    if (p.empty()) invalid(b, line, fmt::format("column '{}': empty (every row needs a participant)",
-                                                cols.name[kParticipant]));
-    if (cols.index[kCondition] >= 0 && c.empty()) {
-      invalid(b, line, fmt::format("column '{}': empty (expected the condition's name)",
-                                   cols.name[kCondition]));
-    }
+  // The trial's iteration (counted from 1 in Trial), and the range seen for diagnostics().
+  void read_iteration(Builder& b, std::uint64_t line, std::string_view it) {
     if (const auto i = parse_integer(it);
         i && *i >= 0 && *i <= kMaxIteration - (options.iteration_base == 0 ? 1 : 0)) {
-      t.iteration = options.iteration_base == 0 ? *i + 1 : *i;
+      b.trial.iteration = options.iteration_base == 0 ? *i + 1 : *i;
       if (*i < min_iteration) {
         min_iteration = *i;
         min_iteration_at = fmt::format("{}:{}", names[file_index], line);
@@ -530,6 +580,11 @@ struct TraceReader::Impl {
                                   : fmt::format("column '{}': '{}' is not a whole number",
                                                 cols.name[kIteration], it));
     }
+  }
+
+  // The trial's target: left (0), right (1) or a pad coordinate in [0, 1].
+  void read_target(Builder& b, std::uint64_t line) {
+    Trial& t = b.trial;
     const std::string tl = to_lower(b.target_text);
     if (tl == "left") {
       t.target = 0;
@@ -549,19 +604,22 @@ struct TraceReader::Impl {
                   : fmt::format("column '{}': '{}' is not left, right, or a number in [0, 1]",
                                 cols.name[kTarget], b.target_text));
     }
-    if (!options.pad_speed && cols.index[kPadSpeed] >= 0) {
-      if (b.pad_speed_text.empty()) {
-        if (options.require_pad_speed) {
-          invalid(b, line, fmt::format("column '{}': empty (the 'speed' confusion normalisation "
-                                       "needs the pad speed in pad units per second; or give "
-                                       "--pad-speed V)", cols.name[kPadSpeed]));
-        }
-      } else if (const auto v = num(b.pad_speed_text); v && *v > 0) {
-        t.pad_speed = *v;
-      } else {
-        invalid(b, line, fmt::format("column '{}': '{}' is not a number > 0 (pad units per second)",
-                                     cols.name[kPadSpeed], b.pad_speed_text));
+  }
+
+  // The trial's pad speed from its column, unless --pad-speed gives it.
+  void read_pad_speed(Builder& b, std::uint64_t line) {
+    if (options.pad_speed || cols.index[kPadSpeed] < 0) return;
+    if (b.pad_speed_text.empty()) {
+      if (options.require_pad_speed) {
+        invalid(b, line, fmt::format("column '{}': empty (the 'speed' confusion normalisation "
+                                     "needs the pad speed in pad units per second; or give "
+                                     "--pad-speed V)", cols.name[kPadSpeed]));
       }
+    } else if (const auto v = num(b.pad_speed_text); v && *v > 0) {
+      b.trial.pad_speed = *v;
+    } else {
+      invalid(b, line, fmt::format("column '{}': '{}' is not a number > 0 (pad units per second)",
+                                   cols.name[kPadSpeed], b.pad_speed_text));
     }
   }
 

@@ -91,6 +91,93 @@ ExposureFit fit_line(const std::vector<Obs>& obs, const std::vector<double>& at,
   return f;
 }
 
+// participant, condition, iteration -> strategy, exposure
+using TrialKey = std::tuple<std::string, std::string, long long>;
+using Exposures = std::map<TrialKey, std::pair<std::string, long long>>;
+using Cell = std::vector<std::pair<std::string, double>>;  // (participant, value)
+// strategy -> condition -> exposure -> cell
+using CellsByCondition = std::map<std::string, std::map<long long, Cell>>;
+using Cells = std::map<std::string, CellsByCondition>;
+
+// Exposure from the labels: per participant, in iteration order, count each strategy.
+Exposures exposure_by_trial(const std::vector<TrialLabel>& labels) {
+  std::vector<const TrialLabel*> sorted;
+  for (const auto& t : labels) sorted.push_back(&t);
+  std::stable_sort(sorted.begin(), sorted.end(), [](const TrialLabel* a, const TrialLabel* b) {
+    return std::tie(a->participant, a->condition, a->iteration) <
+           std::tie(b->participant, b->condition, b->iteration);
+  });
+  Exposures exposure;
+  std::map<std::tuple<std::string, std::string, std::string>, long long> seen;
+  for (const TrialLabel* t : sorted) {
+    const std::string s = t->strategy.empty() ? "(none)" : t->strategy;
+    const long long e = ++seen[{t->participant, t->condition, s}];
+    exposure[{t->participant, t->condition, t->iteration}] = {s, e};
+  }
+  return exposure;
+}
+
+// Metric m's finite values per strategy, condition and exposure; counts the scored trials that
+// have no label in `unmatched`. A missing value still creates its strategy and cell, so a
+// strategy whose values are all missing keeps its (empty) series.
+Cells values_by_cell(const io::ScoresTable& scores, int m, const Exposures& exposure,
+                     std::size_t& unmatched) {
+  Cells values;
+  for (const auto& r : scores.records) {
+    const auto e = exposure.find({r.participant, r.condition, r.iteration});
+    if (e == exposure.end()) {
+      ++unmatched;
+      continue;
+    }
+    const auto& v = r.values[static_cast<std::size_t>(m)];
+    auto& per_exposure = values[e->second.first][r.condition];
+    auto& cell = per_exposure[e->second.second];
+    if (v && std::isfinite(*v)) cell.emplace_back(r.participant, *v);
+  }
+  return values;
+}
+
+// A cell's mean with its t interval (NaN bounds below two values).
+ExposurePoint mean_point(long long e, const Cell& cell, double conf_level) {
+  ExposurePoint p;
+  p.exposure = e;
+  p.n = cell.size();
+  double sum = 0;
+  for (const auto& [who, y] : cell) sum += y;
+  p.mean = sum / static_cast<double>(cell.size());
+  p.conf_low = p.conf_high = kNaN;
+  if (cell.size() >= 2) {
+    double ss = 0;
+    for (const auto& [who, y] : cell) ss += (y - p.mean) * (y - p.mean);
+    const double n = static_cast<double>(cell.size());
+    const double half = t_quantile(n - 1, conf_level) * std::sqrt(ss / (n - 1) / n);
+    p.conf_low = p.mean - half;
+    p.conf_high = p.mean + half;
+  }
+  return p;
+}
+
+// One condition's line for a strategy: a point per non-empty exposure, and the line fitted through
+// the values themselves (clustered by participant, see fit_line), not through the means.
+ExposureSeries condition_series(const CellsByCondition& per_condition, const std::string& c,
+                                double conf_level) {
+  ExposureSeries series;
+  series.condition = c;
+  std::vector<Obs> obs;
+  std::vector<double> at;
+  const auto pc = per_condition.find(c);
+  if (pc != per_condition.end()) {
+    for (const auto& [e, cell] : pc->second) {
+      if (cell.empty()) continue;
+      series.points.push_back(mean_point(e, cell, conf_level));
+      at.push_back(static_cast<double>(e));
+      for (const auto& [who, y] : cell) obs.push_back({who, static_cast<double>(e), y});
+    }
+  }
+  series.fit = fit_line(obs, at, conf_level);
+  return series;
+}
+
 }  // namespace
 
 ExposureTrend exposure_trend(const io::ScoresTable& scores, const std::vector<TrialLabel>& labels,
@@ -104,72 +191,13 @@ ExposureTrend exposure_trend(const io::ScoresTable& scores, const std::vector<Tr
   out.conf_level = conf_level;
   out.conditions = scores.conditions();
 
-  // Exposure from the labels: per participant, in iteration order, count each strategy.
-  using TrialKey = std::tuple<std::string, std::string, long long>;
-  std::vector<const TrialLabel*> sorted;
-  for (const auto& t : labels) sorted.push_back(&t);
-  std::stable_sort(sorted.begin(), sorted.end(), [](const TrialLabel* a, const TrialLabel* b) {
-    return std::tie(a->participant, a->condition, a->iteration) <
-           std::tie(b->participant, b->condition, b->iteration);
-  });
-  std::map<TrialKey, std::pair<std::string, long long>> exposure;  // strategy, exposure
-  std::map<std::tuple<std::string, std::string, std::string>, long long> seen;
-  for (const TrialLabel* t : sorted) {
-    const std::string s = t->strategy.empty() ? "(none)" : t->strategy;
-    const long long e = ++seen[{t->participant, t->condition, s}];
-    exposure[{t->participant, t->condition, t->iteration}] = {s, e};
-  }
-
-  // Values per strategy, condition and exposure.
-  // strategy -> condition -> exposure -> (participant, value)
-  std::map<std::string,
-           std::map<std::string, std::map<long long, std::vector<std::pair<std::string, double>>>>>
-      values;
-  for (const auto& r : scores.records) {
-    const auto e = exposure.find({r.participant, r.condition, r.iteration});
-    if (e == exposure.end()) {
-      ++out.unmatched;
-      continue;
-    }
-    const auto& v = r.values[static_cast<std::size_t>(m)];
-    auto& per_exposure = values[e->second.first][r.condition];
-    auto& cell = per_exposure[e->second.second];
-    if (v && std::isfinite(*v)) cell.emplace_back(r.participant, *v);
-  }
+  const Exposures exposure = exposure_by_trial(labels);
+  const Cells values = values_by_cell(scores, m, exposure, out.unmatched);
   for (const auto& [strategy, per_condition] : values) {
     ExposureStrategy es;
     es.strategy = strategy;
     for (const auto& c : out.conditions) {
-      ExposureSeries series;
-      series.condition = c;
-      std::vector<Obs> obs;
-      std::vector<double> at;
-      const auto pc = per_condition.find(c);
-      if (pc != per_condition.end()) {
-        for (const auto& [e, cell] : pc->second) {
-          if (cell.empty()) continue;
-          ExposurePoint p;
-          p.exposure = e;
-          p.n = cell.size();
-          double sum = 0;
-          for (const auto& [who, y] : cell) sum += y;
-          p.mean = sum / static_cast<double>(cell.size());
-          p.conf_low = p.conf_high = kNaN;
-          if (cell.size() >= 2) {
-            double ss = 0;
-            for (const auto& [who, y] : cell) ss += (y - p.mean) * (y - p.mean);
-            const double n = static_cast<double>(cell.size());
-            const double half = t_quantile(n - 1, conf_level) * std::sqrt(ss / (n - 1) / n);
-            p.conf_low = p.mean - half;
-            p.conf_high = p.mean + half;
-          }
-          series.points.push_back(p);
-          at.push_back(static_cast<double>(e));
-          for (const auto& [who, y] : cell) obs.push_back({who, static_cast<double>(e), y});
-        }
-      }
-      series.fit = fit_line(obs, at, conf_level);
-      es.series.push_back(std::move(series));
+      es.series.push_back(condition_series(per_condition, c, conf_level));
     }
     out.strategies.push_back(std::move(es));
   }

@@ -4,9 +4,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <memory>
+#include <initializer_list>
 #include <limits>
+#include <memory>
 #include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 #include <zlib.h>
@@ -94,7 +98,7 @@ const std::vector<std::string>& score_columns() {
       "participant", "condition", "iteration",     "strategy", "variant",
       "target",      "n_samples", "duration",      "error",    "confusion",
       "reversal_time", "reversals", "final_pad", "overspeed_segments",
-      // belief-trace measures (issue 16), appended so that existing readers keep their columns
+      // belief-trace measures, appended so that existing readers keep their columns
       "signed_area", "max_deviation", "flips", "time_deceived", "final_belief_time"};
   return cols;
 }
@@ -116,11 +120,10 @@ void validate(const ScoreSettings& settings, const std::string& output_path) {
   }
 }
 
-ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSettings& settings,
-                        const std::function<void(const io::Trial&, const TrialScore&)>& on_trial,
-                        const std::function<void(const io::Rejection&)>& on_reject) {
-  settings.metrics.validate();
-  const auto files = io::expand_inputs(inputs);
+namespace {
+
+// The reader's options from the scoring settings (on_reject is set by score_each).
+io::TraceOptions reading_options(const ScoreSettings& settings) {
   io::TraceOptions opt = settings.reading;
   opt.on_reject = {};
   opt.column_map = settings.column_map;
@@ -130,10 +133,266 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
       settings.metrics.norm == ConfusionNorm::speed && !settings.metrics.pad_speed;
   opt.unsorted = settings.unsorted;
   opt.time_divisor = settings.time_unit == TimeUnit::ms ? 1000 : 1;
-  ScoreSummary summary;
-  std::vector<double> durations;  // 8 bytes per trial: the median for the time-unit check
+  return opt;
+}
+
+// What the time-unit check needs of the scored trials: every duration (8 bytes per trial, for the
+// median) and the longest trial, named when the unit is refused.
+struct Durations {
+  std::vector<double> all;
   double longest = 0;
-  std::string longest_at, longest_label;  // the longest trial, named when the unit is refused
+  std::string longest_at, longest_label;
+
+  void add(const io::Trial& trial, double duration) {
+    if (all.empty() || duration > longest) {
+      longest = duration;
+      longest_at = fmt::format("{}:{}", trial.file, trial.line);
+      longest_label = trial.label();
+    }
+    all.push_back(duration);
+  }
+};
+
+// A trial the reader accepted but whose score cannot be represented (not finite).
+io::Rejection unscorable_rejection(const io::Trial& trial, const InvalidData& e) {
+  io::Rejection r;
+  r.file = trial.file;
+  r.line = trial.line;
+  r.participant = trial.participant;
+  r.condition = trial.condition;
+  r.iteration = std::to_string(trial.iteration);
+  r.rows = trial.rows;
+  r.reason = e.what();
+  return r;
+}
+
+// The summary's counts: the reader's, less the trials rejected after reading. Every row read must
+// end up either scored or rejected.
+void count_rows_and_trials(ScoreSummary& summary, const io::TraceReader& reader,
+                           std::uint64_t trials_scored, std::uint64_t unscorable_trials,
+                           std::uint64_t unscorable_rows) {
+  summary.files = reader.files_read();
+  summary.rows_read = reader.rows_read();
+  summary.rows_scored = reader.rows_in_trials() - unscorable_rows;
+  summary.rows_rejected = reader.rows_rejected() + unscorable_rows;
+  summary.trials_scored = trials_scored;
+  summary.trials_rejected = reader.trials_rejected() + unscorable_trials;
+  summary.bytes_read = reader.bytes_consumed();
+  if (summary.rows_read != summary.rows_scored + summary.rows_rejected) {
+    throw std::logic_error(fmt::format("row accounting does not add up: {} read, {} scored, {} "
+                                       "rejected", summary.rows_read, summary.rows_scored,
+                                       summary.rows_rejected));
+  }
+}
+
+// Records the median and longest duration, and applies the time-unit plausibility rule: refuses
+// seconds that would make the median trial last over 20 minutes, and warns (in
+// summary.diagnostics) of a median implausible for the unit given.
+void check_time_unit(ScoreSummary& summary, Durations& durations, const ScoreSettings& settings) {
+  std::vector<double>& all = durations.all;
+  if (all.empty()) return;
+  const auto mid = all.begin() + static_cast<std::ptrdiff_t>(all.size() / 2);
+  std::nth_element(all.begin(), mid, all.end());
+  double median = *mid;
+  if (all.size() % 2 == 0) median = 0.5 * (median + *std::max_element(all.begin(), mid));
+  summary.median_duration = median;
+  summary.max_duration = *std::max_element(all.begin(), all.end());
+  const auto t_column = settings.column_map.count("t") != 0 ? settings.column_map.at("t") : "t";
+  if (settings.check_durations && settings.time_unit == TimeUnit::s &&
+      median > kMedianDurationRefuseS) {
+    throw InvalidData(fmt::format(
+        "{}: column '{}': the median trial lasts {:.4g} s ({} trials; the longest, trial {}, "
+        "{:.4g} s): these times cannot be seconds (a trial lasting more than {:.0f} s = 20 "
+        "minutes is not a round of the game); if they are milliseconds, give --time-unit ms",
+        durations.longest_at, t_column, median, all.size(), durations.longest_label,
+        summary.max_duration, kMedianDurationRefuseS));
+  }
+  std::string warning, code;
+  if (!settings.check_durations) {
+    // No plausibility rule asked for.
+  } else if (settings.time_unit == TimeUnit::s && median > kMedianDurationHighS) {
+    code = "time-unit-ms-suspected";
+    warning = fmt::format(
+        "the median trial lasts {:.4g} s ({} trials, longest {:.4g} s): implausible for seconds; "
+        "if the logs' times are in milliseconds, give --time-unit ms (every confusion and "
+        "duration would otherwise be off by a factor of 1000)",
+        median, all.size(), summary.max_duration);
+  } else if (settings.time_unit == TimeUnit::ms && median < kMedianDurationLowMs) {
+    code = "time-unit-s-suspected";
+    warning = fmt::format(
+        "with --time-unit ms the median trial lasts {:.4g} s ({} trials, longest {:.4g} s): "
+        "implausibly short; are the logs' times in seconds already?",
+        median, all.size(), summary.max_duration);
+  }
+  if (!warning.empty()) summary.diagnostics.push_back({code, "", 0, t_column, warning});
+}
+
+// Puts the reader's notes first (how the files were read), then the time-unit check's, and hands
+// each to on_warning (or standard error).
+void report_diagnostics(ScoreSummary& summary, std::vector<io::Diagnostic> notes,
+                        const ScoreSettings& settings) {
+  notes.insert(notes.end(), summary.diagnostics.begin(), summary.diagnostics.end());
+  summary.diagnostics = std::move(notes);
+  for (const auto& d : summary.diagnostics) {
+    const std::string& warning = d.message;
+    summary.warnings.push_back(warning);
+    if (settings.on_warning) {
+      settings.on_warning(warning);
+    } else {
+      fmt::print(stderr, "feint: warning: {}\n", warning);
+    }
+  }
+}
+
+// No trial was scored: says why, naming the file(s) when they hold no data rows at all ("the input
+// holds no data rows" does not say which file was meant).
+[[noreturn]] void throw_nothing_scored(const ScoreSummary& summary,
+                                       const std::vector<std::string>& files) {
+  if (summary.rows_read == 0) {
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < files.size() && i < 3; ++i) {
+      names.push_back(files[i] == "-" ? "<stdin>" : files[i]);
+    }
+    if (files.size() > 3) names.push_back(fmt::format("and {} more", files.size() - 3));
+    throw InvalidData(fmt::format("{}: no data rows (a header only; expected one row per pad "
+                                  "sample after it), so no valid trial to score",
+                                  fmt::join(names, ", ")));
+  }
+  throw InvalidData(fmt::format("no valid trial: {} rows read, all {} trial(s) rejected",
+                                summary.rows_read, summary.trials_rejected));
+}
+
+// feint never overwrites its inputs: refuses any output (empty = none) that is one of them.
+void refuse_inputs_as_outputs(const std::vector<std::string>& files,
+                              std::initializer_list<std::string> outputs) {
+  for (const auto& f : files) {
+    for (const auto& out : outputs) {
+      if (!out.empty() && io::same_file(f, out)) {
+        throw UsageError(fmt::format("the output '{}' is also an input: feint never overwrites "
+                                     "its inputs", out));
+      }
+    }
+  }
+}
+
+void append_header(std::string& buf) {
+  const auto& cols = score_columns();
+  for (std::size_t i = 0; i < cols.size(); ++i) {
+    buf += cols[i];
+    buf.push_back(i + 1 < cols.size() ? ',' : '\n');
+  }
+}
+
+// The range of the trials' pad_speed column (empty when min > max), for the sidecar.
+struct SpeedRange {
+  double min = std::numeric_limits<double>::infinity(), max = -min;
+};
+
+// The sidecar's "settings" object (without its key), as a run with `settings` applied them.
+std::string sidecar_settings(const ScoreSettings& settings, const SpeedRange& speeds) {
+  const auto& m = settings.metrics;
+  std::string j = "{\n";
+  j += fmt::format("    \"trim_start\": {},\n    \"trim_end\": {},\n",
+                   io::json_number(m.trim_start), io::json_number(m.trim_end));
+  j += fmt::format("    \"deadband\": {},\n", io::json_number(m.deadband));
+  j += fmt::format("    \"belief_deadband\": {},\n", io::json_number(m.belief_deadband));
+  j += fmt::format("    \"confusion_norm\": {},\n", io::json_quote(to_string(m.norm)));
+  if (m.pad_speed) {
+    j += fmt::format("    \"pad_speed\": {{\"source\": \"option\", \"value\": {}}},\n",
+                     io::json_number(*m.pad_speed));
+  } else if (speeds.min <= speeds.max) {
+    j += fmt::format("    \"pad_speed\": {{\"source\": \"column\", \"min\": {}, \"max\": {}}},\n",
+                     io::json_number(speeds.min), io::json_number(speeds.max));
+  } else {
+    j += "    \"pad_speed\": {\"source\": \"none\"},\n";
+  }
+  j += fmt::format("    \"overspeed_tolerance\": {},\n", io::json_number(kOverspeedTolerance));
+  j += fmt::format("    \"on_error\": \"{}\",\n",
+                   settings.on_error == OnError::strict ? "strict" : "skip");
+  j += fmt::format("    \"unsorted\": {},\n", settings.unsorted ? "true" : "false");
+  j += fmt::format("    \"time_unit\": \"{}\",\n", to_string(settings.time_unit));
+  j += fmt::format("    \"delimiter\": {},\n",
+                   settings.delimiter == 0 ? std::string("\"auto\"")
+                                           : io::json_quote(std::string(1, settings.delimiter)));
+  j += "    \"column_map\": {";
+  bool first = true;
+  for (const auto& [k, v] : settings.column_map) {
+    j += fmt::format("{}{}: {}", first ? "" : ", ", io::json_quote(k), io::json_quote(v));
+    first = false;
+  }
+  j += "}\n  }";
+  return j;
+}
+
+// The sidecar's "units" object (without its key): what each column's numbers measure.
+std::string sidecar_units(ConfusionNorm norm) {
+  std::string j =
+      "{\"duration\": \"s\", \"reversal_time\": \"s since the trial's first sample\", "
+      "\"error\": \"pad units, [0, 1]\", \"confusion\": ";
+  j += norm == ConfusionNorm::speed ? "\"fraction of full-speed movement, [0, 1]\""
+                                    : "\"pad units (paper's eq. 4, unnormalised)\"";
+  j += ", \"target\": \"pad coordinate (0 = left, 1 = right)\", "
+       "\"signed_area\": \"pad units toward the false side, mean over the window, [-1, 1]\", "
+       "\"max_deviation\": \"pad units past 0.5 toward the false target, [-0.5, 0.5]\", "
+       "\"flips\": \"count (belief dead band)\", "
+       "\"time_deceived\": \"share of the window, [0, 1]\", "
+       "\"final_belief_time\": \"s since the trial's first sample; empty if never\"}";
+  return j;
+}
+
+// The table's size and CRC-32, recorded in the sidecar: a reader can tell whether a sidecar
+// describes the table beside it (io::read_scores_provenance ignores one that does not).
+struct TableCheck {
+  std::uint64_t bytes = 0;
+  uLong crc = ::crc32(0L, Z_NULL, 0);
+};
+
+// The sidecar: the run's settings, inputs, counts and warnings beside the scores table.
+std::string sidecar_json(const ScoreSettings& settings, const std::string& output_path,
+                         const std::vector<std::string>& files, const ScoreSummary& summary,
+                         const std::string& rejects, const TableCheck& table,
+                         const SpeedRange& speeds) {
+  std::string j = "{\n";
+  j += fmt::format("  \"tool\": \"feint score\",\n  \"feint_version\": {},\n",
+                   io::json_quote(settings.tool_version));
+  j += fmt::format("  \"output\": {},\n", io::json_quote(output_path));
+  j += fmt::format("  \"output_check\": {{\"bytes\": {}, \"crc32\": \"{:08x}\"}},\n", table.bytes,
+                   static_cast<unsigned long>(table.crc));
+  j += "  \"settings\": " + sidecar_settings(settings, speeds) + ",\n";
+  j += "  \"inputs\": [";
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    j += fmt::format("{}{}", i ? ", " : "", io::json_quote(files[i] == "-" ? "<stdin>" : files[i]));
+  }
+  j += "],\n";
+  j += fmt::format(
+      "  \"counts\": {{\"files\": {}, \"rows_read\": {}, \"rows_scored\": {}, "
+      "\"rows_rejected\": {}, \"trials_scored\": {}, \"trials_rejected\": {}, "
+      "\"overspeed_trials\": {}}},\n",
+      summary.files, summary.rows_read, summary.rows_scored, summary.rows_rejected,
+      summary.trials_scored, summary.trials_rejected, summary.overspeed_trials);
+  j += fmt::format("  \"durations\": {{\"median\": {}, \"max\": {}}},\n",
+                   io::json_number(summary.median_duration), io::json_number(summary.max_duration));
+  j += "  \"warnings\": [";
+  for (std::size_t i = 0; i < summary.warnings.size(); ++i) {
+    j += fmt::format("{}{}", i ? ", " : "", io::json_quote(summary.warnings[i]));
+  }
+  j += "],\n";
+  j += fmt::format("  \"rejects\": {},\n",
+                   rejects.empty() ? std::string("null") : io::json_quote(rejects));
+  j += "  \"units\": " + sidecar_units(settings.metrics.norm) + "\n}\n";
+  return j;
+}
+
+}  // namespace
+
+ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSettings& settings,
+                        const std::function<void(const io::Trial&, const TrialScore&)>& on_trial,
+                        const std::function<void(const io::Rejection&)>& on_reject) {
+  settings.metrics.validate();
+  const auto files = io::expand_inputs(inputs);
+  io::TraceOptions opt = reading_options(settings);
+  ScoreSummary summary;
+  Durations durations;
   ScoreProgress progress;
   if (settings.on_error == OnError::skip) {
     opt.on_reject = [&](const io::Rejection& r) {
@@ -152,26 +411,14 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
       s = score_trial(trial, settings.metrics);
     } catch (const InvalidData& e) {
       if (settings.on_error != OnError::skip) throw;
-      io::Rejection r;
-      r.file = trial.file;
-      r.line = trial.line;
-      r.participant = trial.participant;
-      r.condition = trial.condition;
-      r.iteration = std::to_string(trial.iteration);
-      r.rows = trial.rows;
-      r.reason = e.what();
+      const io::Rejection r = unscorable_rejection(trial, e);
       ++unscorable_trials;
       unscorable_rows += trial.rows;
       opt.on_reject(r);
       continue;
     }
     if (s.overspeed_segments > 0) ++summary.overspeed_trials;
-    if (durations.empty() || s.duration > longest) {
-      longest = s.duration;
-      longest_at = fmt::format("{}:{}", trial.file, trial.line);
-      longest_label = trial.label();
-    }
-    durations.push_back(s.duration);
+    durations.add(trial, s.duration);
     on_trial(trial, s);
     ++progress.trials_scored;
     if (settings.on_progress) {
@@ -180,85 +427,11 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
       settings.on_progress(progress);
     }
   }
-  summary.files = reader.files_read();
-  summary.rows_read = reader.rows_read();
-  summary.rows_scored = reader.rows_in_trials() - unscorable_rows;
-  summary.rows_rejected = reader.rows_rejected() + unscorable_rows;
-  summary.trials_scored = progress.trials_scored;
-  summary.trials_rejected = reader.trials_rejected() + unscorable_trials;
-  summary.bytes_read = reader.bytes_consumed();
-  if (summary.rows_read != summary.rows_scored + summary.rows_rejected) {
-    throw std::logic_error(fmt::format("row accounting does not add up: {} read, {} scored, {} "
-                                       "rejected", summary.rows_read, summary.rows_scored,
-                                       summary.rows_rejected));
-  }
-  if (!durations.empty()) {
-    const auto mid = durations.begin() + static_cast<std::ptrdiff_t>(durations.size() / 2);
-    std::nth_element(durations.begin(), mid, durations.end());
-    double median = *mid;
-    if (durations.size() % 2 == 0) median = 0.5 * (median + *std::max_element(durations.begin(), mid));
-    summary.median_duration = median;
-    summary.max_duration = *std::max_element(durations.begin(), durations.end());
-    const auto t_column = settings.column_map.count("t") != 0 ? settings.column_map.at("t") : "t";
-    if (settings.check_durations && settings.time_unit == TimeUnit::s && median > kMedianDurationRefuseS) {
-      throw InvalidData(fmt::format(
-          "{}: column '{}': the median trial lasts {:.4g} s ({} trials; the longest, trial {}, "
-          "{:.4g} s): these times cannot be seconds (a trial lasting more than {:.0f} s = 20 "
-          "minutes is not a round of the game); if they are milliseconds, give --time-unit ms",
-          longest_at, t_column, median, durations.size(), longest_label, summary.max_duration,
-          kMedianDurationRefuseS));
-    }
-    std::string warning, code;
-    if (!settings.check_durations) {
-      // No plausibility rule asked for.
-    } else if (settings.time_unit == TimeUnit::s && median > kMedianDurationHighS) {
-      code = "time-unit-ms-suspected";
-      warning = fmt::format(
-          "the median trial lasts {:.4g} s ({} trials, longest {:.4g} s): implausible for seconds; "
-          "if the logs' times are in milliseconds, give --time-unit ms (every confusion and "
-          "duration would otherwise be off by a factor of 1000)",
-          median, durations.size(), summary.max_duration);
-    } else if (settings.time_unit == TimeUnit::ms && median < kMedianDurationLowMs) {
-      code = "time-unit-s-suspected";
-      warning = fmt::format(
-          "with --time-unit ms the median trial lasts {:.4g} s ({} trials, longest {:.4g} s): "
-          "implausibly short; are the logs' times in seconds already?",
-          median, durations.size(), summary.max_duration);
-    }
-    if (!warning.empty()) summary.diagnostics.push_back({code, "", 0, t_column, warning});
-  }
-  {
-    // The reader's notes first (how the files were read), then the time-unit check's.
-    auto notes = reader.diagnostics();
-    notes.insert(notes.end(), summary.diagnostics.begin(), summary.diagnostics.end());
-    summary.diagnostics = std::move(notes);
-  }
-  for (const auto& d : summary.diagnostics) {
-    const std::string& warning = d.message;
-    {
-      summary.warnings.push_back(warning);
-      if (settings.on_warning) {
-        settings.on_warning(warning);
-      } else {
-        fmt::print(stderr, "feint: warning: {}\n", warning);
-      }
-    }
-  }
-  if (summary.trials_scored == 0) {
-    if (summary.rows_read == 0) {
-      // Name the file(s): "the input holds no data rows" does not say which file was meant.
-      std::vector<std::string> names;
-      for (std::size_t i = 0; i < files.size() && i < 3; ++i) {
-        names.push_back(files[i] == "-" ? "<stdin>" : files[i]);
-      }
-      if (files.size() > 3) names.push_back(fmt::format("and {} more", files.size() - 3));
-      throw InvalidData(fmt::format("{}: no data rows (a header only; expected one row per pad "
-                                    "sample after it), so no valid trial to score",
-                                    fmt::join(names, ", ")));
-    }
-    throw InvalidData(fmt::format("no valid trial: {} rows read, all {} trial(s) rejected",
-                                  summary.rows_read, summary.trials_rejected));
-  }
+  count_rows_and_trials(summary, reader, progress.trials_scored, unscorable_trials,
+                        unscorable_rows);
+  check_time_unit(summary, durations, settings);
+  report_diagnostics(summary, reader.diagnostics(), settings);
+  if (summary.trials_scored == 0) throw_nothing_scored(summary, files);
   return summary;
 }
 
@@ -269,36 +442,20 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
       settings.sidecar_path.empty() ? default_sidecar(output_path) : settings.sidecar_path;
   const std::string rejects = rejects_for(settings, output_path);
   const auto files = io::expand_inputs(inputs);
-  for (const auto& f : files) {
-    for (const auto& out : {output_path, sidecar, rejects}) {
-      if (!out.empty() && io::same_file(f, out)) {
-        throw UsageError(fmt::format("the output '{}' is also an input: feint never overwrites "
-                                     "its inputs", out));
-      }
-    }
-  }
+  refuse_inputs_as_outputs(files, {output_path, sidecar, rejects});
 
   io::AtomicOutput out(output_path);
   std::string buf;
   buf.reserve(1 << 16);
-  {
-    const auto& cols = score_columns();
-    for (std::size_t i = 0; i < cols.size(); ++i) {
-      buf += cols[i];
-      buf.push_back(i + 1 < cols.size() ? ',' : '\n');
-    }
-  }
+  append_header(buf);
   std::ostream& os = out.stream();
-  // The table's size and CRC-32, recorded in the sidecar: a reader can tell whether a sidecar
-  // describes the table beside it (io::read_scores_provenance ignores one that does not).
-  std::uint64_t table_bytes = 0;
-  uLong table_crc = ::crc32(0L, Z_NULL, 0);
+  TableCheck table;
   auto emit = [&](const std::string& b) {
-    table_crc = ::crc32_z(table_crc, reinterpret_cast<const Bytef*>(b.data()), b.size());
-    table_bytes += b.size();
+    table.crc = ::crc32_z(table.crc, reinterpret_cast<const Bytef*>(b.data()), b.size());
+    table.bytes += b.size();
     os.write(b.data(), static_cast<std::streamsize>(b.size()));
   };
-  double v_min = std::numeric_limits<double>::infinity(), v_max = -v_min;
+  SpeedRange speeds;
   std::string rejects_csv;
   if (!rejects.empty()) rejects_csv = "file,line,participant,condition,iteration,rows,reason\n";
   auto on_reject = [&](const io::Rejection& r) {
@@ -309,8 +466,8 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
   auto on_trial = [&](const io::Trial& t, const TrialScore& s) {
     append_row(buf, t, s);
     if (t.pad_speed) {
-      v_min = std::min(v_min, *t.pad_speed);
-      v_max = std::max(v_max, *t.pad_speed);
+      speeds.min = std::min(speeds.min, *t.pad_speed);
+      speeds.max = std::max(speeds.max, *t.pad_speed);
     }
     // Standard output cannot be rolled back: keep the (small) table until the run has succeeded.
     if (!out.is_stdout() && !out.in_place() && buf.size() >= (1 << 16) - 512) {
@@ -336,75 +493,10 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
 
   std::unique_ptr<io::AtomicOutput> sidecar_out;
   if (!sidecar.empty()) {
-    const auto& m = settings.metrics;
-    std::string j = "{\n";
-    j += fmt::format("  \"tool\": \"feint score\",\n  \"feint_version\": {},\n",
-                     io::json_quote(settings.tool_version));
-    j += fmt::format("  \"output\": {},\n", io::json_quote(output_path));
-    j += fmt::format("  \"output_check\": {{\"bytes\": {}, \"crc32\": \"{:08x}\"}},\n", table_bytes,
-                     static_cast<unsigned long>(table_crc));
-    j += "  \"settings\": {\n";
-    j += fmt::format("    \"trim_start\": {},\n    \"trim_end\": {},\n", io::json_number(m.trim_start),
-                     io::json_number(m.trim_end));
-    j += fmt::format("    \"deadband\": {},\n", io::json_number(m.deadband));
-    j += fmt::format("    \"belief_deadband\": {},\n", io::json_number(m.belief_deadband));
-    j += fmt::format("    \"confusion_norm\": {},\n", io::json_quote(to_string(m.norm)));
-    if (m.pad_speed) {
-      j += fmt::format("    \"pad_speed\": {{\"source\": \"option\", \"value\": {}}},\n",
-                       io::json_number(*m.pad_speed));
-    } else if (v_min <= v_max) {
-      j += fmt::format("    \"pad_speed\": {{\"source\": \"column\", \"min\": {}, \"max\": {}}},\n",
-                       io::json_number(v_min), io::json_number(v_max));
-    } else {
-      j += "    \"pad_speed\": {\"source\": \"none\"},\n";
-    }
-    j += fmt::format("    \"overspeed_tolerance\": {},\n", io::json_number(kOverspeedTolerance));
-    j += fmt::format("    \"on_error\": \"{}\",\n",
-                     settings.on_error == OnError::strict ? "strict" : "skip");
-    j += fmt::format("    \"unsorted\": {},\n", settings.unsorted ? "true" : "false");
-    j += fmt::format("    \"time_unit\": \"{}\",\n", to_string(settings.time_unit));
-    j += fmt::format("    \"delimiter\": {},\n",
-                     settings.delimiter == 0 ? std::string("\"auto\"")
-                                             : io::json_quote(std::string(1, settings.delimiter)));
-    j += "    \"column_map\": {";
-    bool first = true;
-    for (const auto& [k, v] : settings.column_map) {
-      j += fmt::format("{}{}: {}", first ? "" : ", ", io::json_quote(k), io::json_quote(v));
-      first = false;
-    }
-    j += "}\n  },\n";
-    j += "  \"inputs\": [";
-    for (std::size_t i = 0; i < files.size(); ++i) {
-      j += fmt::format("{}{}", i ? ", " : "", io::json_quote(files[i] == "-" ? "<stdin>" : files[i]));
-    }
-    j += "],\n";
-    j += fmt::format(
-        "  \"counts\": {{\"files\": {}, \"rows_read\": {}, \"rows_scored\": {}, "
-        "\"rows_rejected\": {}, \"trials_scored\": {}, \"trials_rejected\": {}, "
-        "\"overspeed_trials\": {}}},\n",
-        summary.files, summary.rows_read, summary.rows_scored, summary.rows_rejected,
-        summary.trials_scored, summary.trials_rejected, summary.overspeed_trials);
-    j += fmt::format("  \"durations\": {{\"median\": {}, \"max\": {}}},\n",
-                     io::json_number(summary.median_duration), io::json_number(summary.max_duration));
-    j += "  \"warnings\": [";
-    for (std::size_t i = 0; i < summary.warnings.size(); ++i) {
-      j += fmt::format("{}{}", i ? ", " : "", io::json_quote(summary.warnings[i]));
-    }
-    j += "],\n";
-    j += fmt::format("  \"rejects\": {},\n",
-                     rejects.empty() ? std::string("null") : io::json_quote(rejects));
-    j += "  \"units\": {\"duration\": \"s\", \"reversal_time\": \"s since the trial's first sample\", "
-         "\"error\": \"pad units, [0, 1]\", \"confusion\": ";
-    j += m.norm == ConfusionNorm::speed ? "\"fraction of full-speed movement, [0, 1]\""
-                                        : "\"pad units (paper's eq. 4, unnormalised)\"";
-    j += ", \"target\": \"pad coordinate (0 = left, 1 = right)\", "
-         "\"signed_area\": \"pad units toward the false side, mean over the window, [-1, 1]\", "
-         "\"max_deviation\": \"pad units past 0.5 toward the false target, [-0.5, 0.5]\", "
-         "\"flips\": \"count (belief dead band)\", "
-         "\"time_deceived\": \"share of the window, [0, 1]\", "
-         "\"final_belief_time\": \"s since the trial's first sample; empty if never\"}\n}\n";
+    const std::string json =
+        sidecar_json(settings, output_path, files, summary, rejects, table, speeds);
     sidecar_out = std::make_unique<io::AtomicOutput>(sidecar);
-    sidecar_out->stream() << j;
+    sidecar_out->stream() << json;
   }
   std::unique_ptr<io::AtomicOutput> rejects_out;
   if (!rejects.empty()) {

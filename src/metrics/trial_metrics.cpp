@@ -161,8 +161,11 @@ class BeliefAccumulator {
 
 }  // namespace detail
 
-TrialScore score_trace(std::span<const double> times, std::span<const double> pads, double target,
-                       std::optional<double> pad_speed, const MetricSettings& settings) {
+namespace {
+
+// Throws unless the trace can be scored: as many pad positions as times, at least 2 samples, the
+// target and every pad in [0, 1], the times finite and strictly increasing.
+void check_trace(std::span<const double> times, std::span<const double> pads, double target) {
   const std::size_t n = times.size();
   if (pads.size() != n) {
     throw InvalidData(fmt::format("{} times but {} pad positions", n, pads.size()));
@@ -181,6 +184,12 @@ TrialScore score_trace(std::span<const double> times, std::span<const double> pa
                                     "increase)", i, times[i], times[i - 1]));
     }
   }
+}
+
+// The pad speed v the trial is scored with (the settings' overrides the trial's), checked; empty
+// when unknown, which only the raw confusion allows.
+std::optional<double> checked_pad_speed(std::optional<double> pad_speed,
+                                        const MetricSettings& settings) {
   const std::optional<double> v = settings.pad_speed ? settings.pad_speed : pad_speed;
   if (v && !(std::isfinite(*v) && *v > 0)) {
     throw InvalidData(fmt::format("pad speed {} must be > 0 (pad units per second)", *v));
@@ -189,39 +198,59 @@ TrialScore score_trace(std::span<const double> times, std::span<const double> pa
     throw InvalidData("the pad speed is unknown: the 'speed' confusion normalisation needs it "
                       "(give --pad-speed V, a pad_speed column, or use --confusion-norm raw)");
   }
+  return v;
+}
 
-  // Work in w = t - t0 (the time weight of metrics.md) so that the result does not depend on where
-  // the clock started, and in units of 2^-k s with 2^k <= tau < 2^(k+1): multiplying by a power of
-  // two is exact, so ordinary durations give bit for bit the seconds' result, while 1e-300 s or
-  // 1e263 s no longer underflow or overflow in the squared time weights (w^2 / 2).
+// tau in seconds, checked (> 0 and finite).
+double checked_duration(std::span<const double> times) {
   const double t0 = times[0];
-  const double duration = times[n - 1] - t0;
+  const double duration = times[times.size() - 1] - t0;
   if (!std::isfinite(duration)) {
-    throw InvalidData(fmt::format("duration ({} - {} s) is not a finite number", times[n - 1], t0));
+    throw InvalidData(fmt::format("duration ({} - {} s) is not a finite number",
+                                  times[times.size() - 1], t0));
   }
   if (!(duration > 0)) throw InvalidData(fmt::format("duration {} must be > 0", duration));
+  return duration;
+}
+
+// Sample i's time as w = t - t0 (the time weight of metrics.md), so that the result does not
+// depend on where the clock started, in units of 2^-k s with 2^k <= tau < 2^(k+1): multiplying by a
+// power of two is exact, so ordinary durations give bit for bit the seconds' result, while 1e-300 s
+// or 1e263 s no longer underflow or overflow in the squared time weights (w^2 / 2).
+struct ScaledTime {
+  std::span<const double> times;
+  double t0;
+  int k;
+  double s1, s2;  // 2^-k = s1 s2
+  double operator()(std::size_t i) const noexcept { return (times[i] - t0) * s1 * s2; }
+};
+
+ScaledTime scaled_time(std::span<const double> times, double duration) {
   const int k = std::ilogb(duration);
   // 2^-k as one or two factors (2^1074 for the smallest subnormal duration is not a double); a
   // multiplication, not std::ldexp, which is a library call in the hot loop.
   const int k1 = std::clamp(-k, -1000, 1000);
-  const double s1 = std::ldexp(1.0, k1), s2 = std::ldexp(1.0, -k - k1);
-  auto w = [&](std::size_t i) { return (times[i] - t0) * s1 * s2; };
-  const double tau = w(n - 1);
-  const double a = settings.trim_start * tau;
-  const double b = (1 - settings.trim_end) * tau;
+  return {times, times[0], k, std::ldexp(1.0, k1), std::ldexp(1.0, -k - k1)};
+}
 
-  TrialScore s;
-  s.n_samples = n;
-  s.duration = duration;
-  s.final_pad = pads[n - 1];
+struct Directions {
+  std::size_t rev_segment;  // the first segment against the first direction; n when none
+  int reversals = 0;
+  int overspeed_segments;  // -1 when v is unknown
+};
 
-  // Direction of each segment, first direction, reversal, number of reversals, overspeed.
-  const double eps = settings.deadband;
+// First pass over the segments (the whole trace): each one's direction (dead band eps) gives the
+// first reversal and the reversals; the speeds give the overspeed segments; the belief
+// accumulator sees every sample for its flips.
+Directions scan_directions(std::span<const double> times, std::span<const double> pads,
+                           double eps, std::optional<double> v,
+                           detail::BeliefAccumulator& belief) {
+  const std::size_t n = times.size();
+  std::size_t rev_segment = n;
+  int reversals = 0;
+  int overspeed_segments = v ? 0 : -1;
   int first_dir = 0;
   int last_dir = 0;
-  std::size_t rev_segment = n;  // none
-  s.overspeed_segments = v ? 0 : -1;
-  detail::BeliefAccumulator belief(target, settings.belief_deadband, pads[0]);
   for (std::size_t i = 0; i + 1 < n; ++i) {
     belief.sample(pads[i + 1]);
     const double d = pads[i + 1] - pads[i];
@@ -229,34 +258,45 @@ TrialScore score_trace(std::span<const double> times, std::span<const double> pa
     if (dir != 0) {
       if (first_dir == 0) first_dir = dir;
       if (dir == -first_dir && rev_segment == n) rev_segment = i;
-      if (last_dir != 0 && dir != last_dir) ++s.reversals;
+      if (last_dir != 0 && dir != last_dir) ++reversals;
       last_dir = dir;
     }
     if (v) {
       const double speed = std::fabs(d) / (times[i + 1] - times[i]);
-      if (speed > *v * (1 + kOverspeedTolerance)) ++s.overspeed_segments;
+      if (speed > *v * (1 + kOverspeedTolerance)) ++overspeed_segments;
     }
   }
-  s.reversal_time = rev_segment < n ? times[rev_segment] - t0
-                                    : std::numeric_limits<double>::quiet_NaN();
+  return {rev_segment, reversals, overspeed_segments};
+}
 
-  // Error: exact integral of |T - mu| over [a, b].
+struct WindowIntegrals {
+  double error = 0;   // integral of |T - mu| over [a, b]
+  double moving = 0;  // M (speed) or the raw sum over [c, b]
+};
+
+// Second pass, over the segments inside the window [a, b] (scaled time): the exact error integral,
+// the time-weighted movement after the first reversal, and the belief accumulator's window part.
+WindowIntegrals integrate_window(const ScaledTime& w, std::span<const double> pads, double target,
+                                 double a, double b, std::size_t rev_segment,
+                                 ConfusionNorm norm, std::optional<double> v,
+                                 detail::BeliefAccumulator& belief) {
+  const std::span<const double> times = w.times;
+  const std::size_t n = times.size();
   auto mu_at = [&](std::size_t i, double x) {  // mu at w = x inside segment i
     const double x0 = w(i), x1 = w(i + 1);
     if (x <= x0) return pads[i];
     if (x >= x1) return pads[i + 1];
     return pads[i] + (pads[i + 1] - pads[i]) * ((x - x0) / (x1 - x0));
   };
-  double err_integral = 0;
+  WindowIntegrals r;
   const double c = rev_segment < n ? std::max(a, w(rev_segment)) : b;
-  double moving = 0;  // M (speed) or the raw sum
   for (std::size_t i = 0; i + 1 < n; ++i) {
     const double x0 = w(i), x1 = w(i + 1);
     if (x1 <= a) continue;
     if (x0 >= b) break;
     const double lo = std::max(x0, a), hi = std::min(x1, b);
     const double m_lo = mu_at(i, lo), m_hi = mu_at(i, hi);
-    if (hi > lo) err_integral += detail::abs_linear_integral(target - m_lo, target - m_hi, hi - lo);
+    if (hi > lo) r.error += detail::abs_linear_integral(target - m_lo, target - m_hi, hi - lo);
     belief.window_segment(lo, hi, m_lo, m_hi);
     if (rev_segment < n) {
       const double cs = std::max(x0, c), ce = std::min(x1, b);
@@ -265,31 +305,64 @@ TrialScore score_trace(std::span<const double> times, std::span<const double> pa
         // is full speed for 'speed' and makes the raw confusion infinite (rejected below).
         const double seg_speed = std::fabs(pads[i + 1] - pads[i]) / (times[i + 1] - times[i]);
         const double weight = 0.5 * (ce * ce - cs * cs);  // integral of w over [cs, ce]
-        const double rate = settings.norm == ConfusionNorm::speed ? std::min(1.0, seg_speed / *v)
-                                                                  : seg_speed;
-        moving += rate * weight;
+        const double rate = norm == ConfusionNorm::speed ? std::min(1.0, seg_speed / *v)
+                                                         : seg_speed;
+        r.moving += rate * weight;
       }
     }
   }
-  // Rounding can push a mean of values in [0, 1] an ulp outside; the true values cannot be.
-  s.error = std::clamp(err_integral / (b - a), 0.0, 1.0);
-  if (settings.norm == ConfusionNorm::speed) {
-    const double denom = 0.5 * (b * b - a * a);
-    s.confusion = std::clamp(moving / denom, 0.0, 1.0);
-  } else {
-    // moving / tau in seconds: the 2^-k of the weights (squared) and of tau (once) leave one.
-    s.confusion = std::ldexp(moving / tau, k);
-  }
-  belief.finish(pads, w, a, b, k, s);
-  // A score that is not a finite number must never be written: the trial is invalid (e.g. a
-  // segment moving faster than the largest double pad units per second, for the raw confusion).
+  return r;
+}
+
+// A score that is not a finite number must never be written: the trial is invalid (e.g. a
+// segment moving faster than the largest double pad units per second, for the raw confusion).
+void reject_non_finite(const TrialScore& s) {
   for (const auto& [name, value] : {std::pair<const char*, double>{"error", s.error},
                                     {"confusion", s.confusion}}) {
     if (!std::isfinite(value)) {
       throw InvalidData(fmt::format("{} is not a finite number ({}; the trial's {} samples span "
-                                    "{} s)", name, value, n, duration));
+                                    "{} s)", name, value, s.n_samples, s.duration));
     }
   }
+}
+
+}  // namespace
+
+TrialScore score_trace(std::span<const double> times, std::span<const double> pads, double target,
+                       std::optional<double> pad_speed, const MetricSettings& settings) {
+  check_trace(times, pads, target);
+  const std::optional<double> v = checked_pad_speed(pad_speed, settings);
+  const std::size_t n = times.size();
+  const double duration = checked_duration(times);
+  const ScaledTime w = scaled_time(times, duration);
+  const double tau = w(n - 1);
+  const double a = settings.trim_start * tau;
+  const double b = (1 - settings.trim_end) * tau;
+
+  TrialScore s;
+  s.n_samples = n;
+  s.duration = duration;
+  s.final_pad = pads[n - 1];
+  detail::BeliefAccumulator belief(target, settings.belief_deadband, pads[0]);
+  const Directions dirs = scan_directions(times, pads, settings.deadband, v, belief);
+  s.reversals = dirs.reversals;
+  s.overspeed_segments = dirs.overspeed_segments;
+  s.reversal_time = dirs.rev_segment < n ? times[dirs.rev_segment] - w.t0
+                                         : std::numeric_limits<double>::quiet_NaN();
+
+  const WindowIntegrals in =
+      integrate_window(w, pads, target, a, b, dirs.rev_segment, settings.norm, v, belief);
+  // Rounding can push a mean of values in [0, 1] an ulp outside; the true values cannot be.
+  s.error = std::clamp(in.error / (b - a), 0.0, 1.0);
+  if (settings.norm == ConfusionNorm::speed) {
+    const double denom = 0.5 * (b * b - a * a);
+    s.confusion = std::clamp(in.moving / denom, 0.0, 1.0);
+  } else {
+    // moving / tau in seconds: the 2^-k of the weights (squared) and of tau (once) leave one.
+    s.confusion = std::ldexp(in.moving / tau, w.k);
+  }
+  belief.finish(pads, w, a, b, w.k, s);
+  reject_non_finite(s);
   return s;
 }
 

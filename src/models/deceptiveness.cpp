@@ -44,19 +44,20 @@ std::vector<double> arc_lengths(std::span<const PathSample> path) {
   return s;
 }
 
-DeceptivenessMeasures deceptiveness(std::span<const PathSample> path, GoalSide goal,
-                                    const DeceptivenessSettings& settings) {
-  validate(settings.observer);
-  if (!(settings.pad_speed > 0) || !std::isfinite(settings.pad_speed)) {
-    throw UsageError(fmt::format("pad speed = {} is invalid: expected a finite number > 0 (pad units per "
-                                 "second)", settings.pad_speed));
-  }
-  validate_path(path);
-  const std::size_t n = path.size();
-  const Position start{path.front().x, path.front().y};
-  const auto arc = arc_lengths(path);
+namespace {
 
-  DeceptivenessMeasures m;
+void validate_pad_speed(double pad_speed) {
+  if (!(pad_speed > 0) || !std::isfinite(pad_speed)) {
+    throw UsageError(
+        fmt::format("pad speed = {} is invalid: expected a finite number > 0 (pad units per "
+                    "second)",
+                    pad_speed));
+  }
+}
+
+// Duration, lengths and the cost overhead of the path against the straight line.
+void measure_lengths(std::span<const PathSample> path, const Position& start,
+                     const std::vector<double>& arc, DeceptivenessMeasures& m) {
   const double t0 = path.front().t;
   m.duration = path.back().t - t0;
   m.path_length = arc.back();
@@ -66,18 +67,27 @@ DeceptivenessMeasures deceptiveness(std::span<const PathSample> path, GoalSide g
                       "overhead is undefined");
   }
   m.cost_overhead = m.path_length / m.straight_length - 1;
+}
 
-  // p_i = P(G* | path up to sample i), no delay.
-  const bool right = goal == GoalSide::right;
+// p_i = P(G* | path up to sample i), no delay.
+std::vector<double> goal_beliefs(std::span<const PathSample> path, const Position& start,
+                                 bool right, const DeceptivenessSettings& settings) {
+  const std::size_t n = path.size();
   std::vector<double> p(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double b = belief_right(start, {path[i].x, path[i].y}, settings.goals, settings.observer.beta,
                                   settings.observer.prior_right);
     p[i] = right ? b : 1.0 - b;
   }
-  m.final_belief = p.back();
+  return p;
+}
 
-  // Legibility: trapezoids of p f, divided by int f = T^2 / 2 (exact for the linear f).
+// Legibility: trapezoids of p f, divided by int f = T^2 / 2 (exact for the linear f); and the share
+// of time deceived, both in one pass over the pieces.
+void measure_legibility(std::span<const PathSample> path, const std::vector<double>& p,
+                        DeceptivenessMeasures& m) {
+  const std::size_t n = path.size();
+  const double t0 = path.front().t;
   const double T = m.duration;
   double num = 0, deceived = 0;
   for (std::size_t i = 1; i < n; ++i) {
@@ -92,9 +102,13 @@ DeceptivenessMeasures deceptiveness(std::span<const PathSample> path, GoalSide g
   }
   m.legibility = num / (T * T / 2);
   m.time_deceived = deceived / T;
+}
 
-  // Last deceptive point: the last sample that is not truthful (p <= 1/2), then where p crosses 1/2
-  // on the next piece.
+// Last deceptive point: the last sample that is not truthful (p <= 1/2), then where p crosses 1/2
+// on the next piece, as a share of the path length.
+double last_deceptive_point(const std::vector<double>& p, const std::vector<double>& arc,
+                            double path_length) {
+  const std::size_t n = p.size();
   std::optional<std::size_t> last;
   for (std::size_t i = n; i-- > 0;) {
     if (p[i] - 0.5 <= 0) {
@@ -102,18 +116,18 @@ DeceptivenessMeasures deceptiveness(std::span<const PathSample> path, GoalSide g
       break;
     }
   }
-  if (!last) {
-    m.last_deceptive_point = 0;
-  } else if (*last == n - 1) {
-    m.last_deceptive_point = 1;
-  } else {
-    const std::size_t k = *last;
-    const double d0 = p[k] - 0.5, d1 = p[k + 1] - 0.5;  // d0 <= 0 < d1
-    const double frac = -d0 / (d1 - d0);
-    m.last_deceptive_point = (arc[k] + frac * (arc[k + 1] - arc[k])) / m.path_length;
-  }
+  if (!last) return 0;
+  if (*last == n - 1) return 1;
+  const std::size_t k = *last;
+  const double d0 = p[k] - 0.5, d1 = p[k + 1] - 0.5;  // d0 <= 0 < d1
+  const double frac = -d0 / (d1 - d0);
+  return (arc[k] + frac * (arc[k + 1] - arc[k])) / path_length;
+}
 
-  // Error and confusion of the delayed belief trace, scored as a pad.
+// Error and confusion of the delayed belief trace, scored as a pad.
+void score_belief_trace(std::span<const PathSample> path, bool right,
+                        const DeceptivenessSettings& settings, DeceptivenessMeasures& m) {
+  const std::size_t n = path.size();
   std::vector<double> times(n);
   for (std::size_t i = 0; i < n; ++i) times[i] = path[i].t;
   const auto b = belief_trace(path, times, settings.goals, settings.observer);
@@ -123,6 +137,26 @@ DeceptivenessMeasures deceptiveness(std::span<const PathSample> path, GoalSide g
   m.belief_error = score.error;
   m.belief_confusion = score.confusion;
   m.belief_overspeed_segments = score.overspeed_segments;
+}
+
+}  // namespace
+
+DeceptivenessMeasures deceptiveness(std::span<const PathSample> path, GoalSide goal,
+                                    const DeceptivenessSettings& settings) {
+  validate(settings.observer);
+  validate_pad_speed(settings.pad_speed);
+  validate_path(path);
+  const Position start{path.front().x, path.front().y};
+  const auto arc = arc_lengths(path);
+  const bool right = goal == GoalSide::right;
+
+  DeceptivenessMeasures m;
+  measure_lengths(path, start, arc, m);
+  const auto p = goal_beliefs(path, start, right, settings);
+  m.final_belief = p.back();
+  measure_legibility(path, p, m);
+  m.last_deceptive_point = last_deceptive_point(p, arc, m.path_length);
+  score_belief_trace(path, right, settings, m);
   return m;
 }
 

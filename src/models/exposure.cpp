@@ -93,6 +93,113 @@ constexpr const char* kDifferenceMethod =
     "difference of exposure slopes between conditions: Welch two-sample t test on the participants' "
     "OLS slopes (two-stage)";
 
+/// Each participant's OLS exposure slope per (condition, strategy), row-major with the strategy
+/// fastest, and how many participants of each had no slope.
+struct ParticipantSlopes {
+  std::vector<std::vector<double>> slopes;
+  std::vector<std::size_t> left_out;
+};
+
+// Stage 1: each participant's trials of each strategy (condition, strategy, participant), then
+// their slopes.
+ParticipantSlopes participant_slopes(std::span<const std::string> participant,
+                                     std::span<const std::string> condition,
+                                     std::span<const std::string> strategy,
+                                     std::span<const double> exposure, std::span<const double> y,
+                                     const std::vector<std::string>& conditions,
+                                     const std::vector<std::string>& strategies) {
+  struct Trials {
+    std::vector<double> x, y;
+  };
+  std::map<std::tuple<std::string, std::string, std::string>, Trials> cells;
+  for (std::size_t i = 0; i < participant.size(); ++i) {
+    Trials& c = cells[{condition[i], strategy[i], participant[i]}];  // seen, even without a value
+    if (!std::isfinite(y[i]) || !std::isfinite(exposure[i])) continue;
+    c.x.push_back(exposure[i]);
+    c.y.push_back(y[i]);
+  }
+  ParticipantSlopes out;
+  out.slopes.resize(conditions.size() * strategies.size());
+  out.left_out.assign(out.slopes.size(), 0);
+  for (std::size_t c = 0; c < conditions.size(); ++c)
+    for (std::size_t s = 0; s < strategies.size(); ++s) {
+      auto it = cells.lower_bound({conditions[c], strategies[s], std::string()});
+      for (; it != cells.end() && std::get<0>(it->first) == conditions[c] && std::get<1>(it->first) == strategies[s];
+           ++it) {
+        const double b = ols_slope(it->second.x, it->second.y);
+        if (std::isfinite(b))
+          out.slopes[c * strategies.size() + s].push_back(b);
+        else
+          ++out.left_out[c * strategies.size() + s];
+      }
+    }
+  return out;
+}
+
+// Stage 2: one strategy's mean slope in one condition.
+ExposureSlope mean_slope(const std::string& strategy, const std::string& condition,
+                         const std::vector<double>& b, std::size_t left_out,
+                         const stats::TestOptions& options) {
+  ExposureSlope sl;
+  sl.strategy = strategy;
+  sl.condition = condition;
+  sl.participants = b.size();
+  sl.left_out = left_out;
+  const std::string lo = left_out_text(left_out);
+  if (b.size() < 2) {
+    sl.test = stats::TestResult::not_computable(
+        "one_sample_t", kSlopeMethod,
+        fmt::format(
+            "fewer than 2 participants with an exposure slope of strategy '{}' in condition '{}' "
+            "(n = {}){}",
+            strategy, condition, b.size(), lo.empty() ? "" : "; " + lo));
+  } else {
+    sl.test = stats::t_test_one_sample(b, 0.0, options);
+    sl.test.method = kSlopeMethod;
+    if (sl.test.computed && sl.test.sd1)
+      sl.std_error = *sl.test.sd1 / std::sqrt(static_cast<double>(b.size()));
+    if (!lo.empty()) sl.test.note = sl.test.note.empty() ? lo : sl.test.note + "; " + lo;
+  }
+  return sl;
+}
+
+// The difference of strategy s between the first two conditions: Welch on the participants' slopes.
+ExposureSlope slope_difference(std::size_t s, const std::vector<std::string>& strategies,
+                               const std::vector<std::string>& conditions,
+                               const ParticipantSlopes& ps, const stats::TestOptions& options,
+                               double bf_prior_r) {
+  const auto& slopes = ps.slopes;
+  const std::size_t ka = s, kb = strategies.size() + s;
+  ExposureSlope dif;
+  dif.strategy = strategies[s];
+  dif.condition = conditions[0] + "-" + conditions[1];
+  dif.participants = slopes[ka].size() + slopes[kb].size();
+  dif.left_out = ps.left_out[ka] + ps.left_out[kb];
+  if (slopes[ka].size() < 2 || slopes[kb].size() < 2) {
+    dif.test = stats::TestResult::not_computable(
+        "welch_t", kDifferenceMethod,
+        fmt::format(
+            "fewer than 2 participants with an exposure slope of strategy '{}' in condition '{}' "
+            "(n = {})",
+            strategies[s], slopes[ka].size() < 2 ? conditions[0] : conditions[1],
+            std::min(slopes[ka].size(), slopes[kb].size())));
+    return dif;
+  }
+  // As every Welch row of the report (report/table1.cpp): d with its interval, and the BF.
+  dif.test = stats::t_test_welch(slopes[ka], slopes[kb], options);
+  stats::add_effect_size_intervals(dif.test);
+  stats::add_bayes_factor(dif.test, bf_prior_r);
+  dif.test.method = kDifferenceMethod;
+  if (dif.test.computed && dif.test.sd1 && dif.test.sd2) {
+    const double va = *dif.test.sd1 * *dif.test.sd1 / static_cast<double>(slopes[ka].size());
+    const double vb = *dif.test.sd2 * *dif.test.sd2 / static_cast<double>(slopes[kb].size());
+    dif.std_error = std::sqrt(va + vb);
+  }
+  const std::string lo = left_out_text(dif.left_out);
+  if (!lo.empty()) dif.test.note = dif.test.note.empty() ? lo : dif.test.note + "; " + lo;
+  return dif;
+}
+
 }  // namespace
 
 ExposureByCondition exposure_slopes_by_condition(std::span<const std::string> participant,
@@ -114,94 +221,18 @@ ExposureByCondition exposure_slopes_by_condition(std::span<const std::string> pa
   stats::TestOptions options;
   options.conf_level = conf_level;
 
-  // Stage 1: each participant's trials of each strategy (condition, strategy, participant).
-  struct Trials {
-    std::vector<double> x, y;
-  };
-  std::map<std::tuple<std::string, std::string, std::string>, Trials> cells;
-  for (std::size_t i = 0; i < n; ++i) {
-    Trials& c = cells[{condition[i], strategy[i], participant[i]}];  // seen, even without a value
-    if (!std::isfinite(y[i]) || !std::isfinite(exposure[i])) continue;
-    c.x.push_back(exposure[i]);
-    c.y.push_back(y[i]);
-  }
-  // participant slopes per (condition, strategy), and how many participants had none.
-  std::vector<std::vector<double>> slopes(conditions.size() * strategies.size());
-  std::vector<std::size_t> left_out(slopes.size(), 0);
-  for (std::size_t c = 0; c < conditions.size(); ++c)
-    for (std::size_t s = 0; s < strategies.size(); ++s) {
-      auto it = cells.lower_bound({conditions[c], strategies[s], std::string()});
-      for (; it != cells.end() && std::get<0>(it->first) == conditions[c] && std::get<1>(it->first) == strategies[s];
-           ++it) {
-        const double b = ols_slope(it->second.x, it->second.y);
-        if (std::isfinite(b))
-          slopes[c * strategies.size() + s].push_back(b);
-        else
-          ++left_out[c * strategies.size() + s];
-      }
-    }
-
-  // Stage 2: per condition, each strategy's mean slope.
+  const ParticipantSlopes ps =
+      participant_slopes(participant, condition, strategy, exposure, y, conditions, strategies);
   ExposureByCondition out;
   for (std::size_t c = 0; c < conditions.size(); ++c)
     for (std::size_t s = 0; s < strategies.size(); ++s) {
       const std::size_t k = c * strategies.size() + s;
-      const auto& b = slopes[k];
-      ExposureSlope sl;
-      sl.strategy = strategies[s];
-      sl.condition = conditions[c];
-      sl.participants = b.size();
-      sl.left_out = left_out[k];
-      const std::string lo = left_out_text(left_out[k]);
-      if (b.size() < 2) {
-        sl.test = stats::TestResult::not_computable(
-            "one_sample_t", kSlopeMethod,
-            fmt::format("fewer than 2 participants with an exposure slope of strategy '{}' in condition '{}' "
-                        "(n = {}){}",
-                        strategies[s], conditions[c], b.size(), lo.empty() ? "" : "; " + lo));
-      } else {
-        sl.test = stats::t_test_one_sample(b, 0.0, options);
-        sl.test.method = kSlopeMethod;
-        if (sl.test.computed && sl.test.sd1)
-          sl.std_error = *sl.test.sd1 / std::sqrt(static_cast<double>(b.size()));
-        if (!lo.empty()) sl.test.note = sl.test.note.empty() ? lo : sl.test.note + "; " + lo;
-      }
-      out.slopes.push_back(std::move(sl));
+      out.slopes.push_back(
+          mean_slope(strategies[s], conditions[c], ps.slopes[k], ps.left_out[k], options));
     }
   if (conditions.size() < 2) return out;
-
-  // The difference between the first two conditions: Welch on the participants' slopes.
-  for (std::size_t s = 0; s < strategies.size(); ++s) {
-    const std::size_t ka = s, kb = strategies.size() + s;
-    ExposureSlope dif;
-    dif.strategy = strategies[s];
-    dif.condition = conditions[0] + "-" + conditions[1];
-    dif.participants = slopes[ka].size() + slopes[kb].size();
-    dif.left_out = left_out[ka] + left_out[kb];
-    if (slopes[ka].size() < 2 || slopes[kb].size() < 2) {
-      dif.test = stats::TestResult::not_computable(
-          "welch_t", kDifferenceMethod,
-          fmt::format("fewer than 2 participants with an exposure slope of strategy '{}' in condition '{}' "
-                      "(n = {})",
-                      strategies[s], slopes[ka].size() < 2 ? conditions[0] : conditions[1],
-                      std::min(slopes[ka].size(), slopes[kb].size())));
-      out.differences.push_back(std::move(dif));
-      continue;
-    }
-    // As every Welch row of the report (report/table1.cpp): d with its interval, and the BF.
-    dif.test = stats::t_test_welch(slopes[ka], slopes[kb], options);
-    stats::add_effect_size_intervals(dif.test);
-    stats::add_bayes_factor(dif.test, bf_prior_r);
-    dif.test.method = kDifferenceMethod;
-    if (dif.test.computed && dif.test.sd1 && dif.test.sd2) {
-      const double va = *dif.test.sd1 * *dif.test.sd1 / static_cast<double>(slopes[ka].size());
-      const double vb = *dif.test.sd2 * *dif.test.sd2 / static_cast<double>(slopes[kb].size());
-      dif.std_error = std::sqrt(va + vb);
-    }
-    const std::string lo = left_out_text(dif.left_out);
-    if (!lo.empty()) dif.test.note = dif.test.note.empty() ? lo : dif.test.note + "; " + lo;
-    out.differences.push_back(std::move(dif));
-  }
+  for (std::size_t s = 0; s < strategies.size(); ++s)
+    out.differences.push_back(slope_difference(s, strategies, conditions, ps, options, bf_prior_r));
   return out;
 }
 

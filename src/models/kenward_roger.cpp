@@ -15,28 +15,42 @@ namespace feint::models {
 
 namespace detail {
 
-KenwardRogerParts kenward_roger_parts(const Problem& problem, const Eigen::MatrixXd& D,
-                                      double sigma2, const Eigen::MatrixXd& Phi) {
-  const Eigen::Index q = problem.Z.cols();
-  const Eigen::Index p = problem.X.cols();
-  // The unit matrices E_r of the random-effect covariance (lower triangle, column-wise) and the
-  // residual (marked by an empty E).
+namespace {
+
+using Index = Eigen::Index;
+
+// The unit matrices E_r of the random-effect covariance (lower triangle, column-wise); the
+// residual's (the identity) is implied after them.
+std::vector<Eigen::MatrixXd> unit_matrices(Index q) {
   std::vector<Eigen::MatrixXd> E;
-  for (Eigen::Index j = 0; j < q; ++j)
-    for (Eigen::Index i = j; i < q; ++i) {
+  for (Index j = 0; j < q; ++j)
+    for (Index i = j; i < q; ++i) {
       Eigen::MatrixXd e = Eigen::MatrixXd::Zero(q, q);
       e(i, j) = e(j, i) = 1;
       E.push_back(e);
     }
+  return E;
+}
+
+/// pbkrtest's P_r, Q_rs (r <= s, at r * ng + s) and tr(H_r H_s) (upper triangle of K), summed over
+/// participants.
+struct KrSums {
+  std::vector<Eigen::MatrixXd> P, Q;
+  Eigen::MatrixXd K;
+};
+
+// S is block diagonal by participant, so every product is a sum of per-participant blocks.
+KrSums participant_sums(const Problem& problem, const Eigen::MatrixXd& D, double sigma2,
+                        const std::vector<Eigen::MatrixXd>& E) {
+  const Index p = problem.X.cols();
   const std::size_t ng = E.size() + 1;  // + residual
   const std::size_t m = problem.start.size() - 1;
-  std::vector<Eigen::MatrixXd> P(ng, Eigen::MatrixXd::Zero(p, p));
-  std::vector<Eigen::MatrixXd> Q(ng * ng, Eigen::MatrixXd::Zero(p, p));
-  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(ng),
-                                            static_cast<Eigen::Index>(ng));
+  KrSums sums{std::vector<Eigen::MatrixXd>(ng, Eigen::MatrixXd::Zero(p, p)),
+              std::vector<Eigen::MatrixXd>(ng * ng, Eigen::MatrixXd::Zero(p, p)),
+              Eigen::MatrixXd::Zero(static_cast<Index>(ng), static_cast<Index>(ng))};
   for (std::size_t i = 0; i < m; ++i) {
-    const auto r0 = static_cast<Eigen::Index>(problem.start[i]);
-    const auto ni = static_cast<Eigen::Index>(problem.start[i + 1] - problem.start[i]);
+    const auto r0 = static_cast<Index>(problem.start[i]);
+    const auto ni = static_cast<Index>(problem.start[i + 1] - problem.start[i]);
     const Eigen::MatrixXd Zi = problem.Z.middleRows(r0, ni);
     const Eigen::MatrixXd Xi = problem.X.middleRows(r0, ni);
     const Eigen::MatrixXd S =
@@ -51,54 +65,79 @@ KenwardRogerParts kenward_roger_parts(const Problem& problem, const Eigen::Matri
       O[r] = H[r] * Xi;
     }
     for (std::size_t r = 0; r < ng; ++r) {
-      P[r] -= O[r].transpose() * T;
+      sums.P[r] -= O[r].transpose() * T;
       const Eigen::MatrixXd OrSi = O[r].transpose() * Si;
       for (std::size_t s = r; s < ng; ++s) {
-        Q[r * ng + s] += OrSi * O[s];
-        K(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(s)) +=
-            (H[r] * H[s]).trace();
+        sums.Q[r * ng + s] += OrSi * O[s];
+        sums.K(static_cast<Index>(r), static_cast<Index>(s)) += (H[r] * H[s]).trace();
       }
     }
   }
-  for (auto& Pr : P) Pr = (0.5 * (Pr + Pr.transpose())).eval();  // forceSymmetric
-  // IE2 (twice the REML information of the variance parameters).
-  const auto n = static_cast<Eigen::Index>(ng);
+  return sums;
+}
+
+// IE2 (twice the REML information of the variance parameters).
+Eigen::MatrixXd doubled_information(const KrSums& sums, const Eigen::MatrixXd& Phi) {
+  const std::size_t ng = sums.P.size();
+  const auto n = static_cast<Index>(ng);
   Eigen::MatrixXd IE2(n, n);
   for (std::size_t r = 0; r < ng; ++r) {
-    const Eigen::MatrixXd PhiPr = Phi * P[r];
+    const Eigen::MatrixXd PhiPr = Phi * sums.P[r];
     for (std::size_t s = r; s < ng; ++s) {
-      const double v = K(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(s)) -
-                       2 * Phi.cwiseProduct(Q[r * ng + s]).sum() +
-                       PhiPr.cwiseProduct(P[s] * Phi).sum();  // tr(Phi P_r Phi P_s)
-      IE2(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(s)) = v;
-      IE2(static_cast<Eigen::Index>(s), static_cast<Eigen::Index>(r)) = v;
+      const double v = sums.K(static_cast<Index>(r), static_cast<Index>(s)) -
+                       2 * Phi.cwiseProduct(sums.Q[r * ng + s]).sum() +
+                       PhiPr.cwiseProduct(sums.P[s] * Phi).sum();  // tr(Phi P_r Phi P_s)
+      IE2(static_cast<Index>(r), static_cast<Index>(s)) = v;
+      IE2(static_cast<Index>(s), static_cast<Index>(r)) = v;
     }
   }
-  // W = 2 IE2^-1; pbkrtest takes the Moore-Penrose inverse when min |eigenvalue| <= 1e-10.
+  return IE2;
+}
+
+// W = 2 IE2^-1; pbkrtest takes the Moore-Penrose inverse when min |eigenvalue| <= 1e-10.
+Eigen::MatrixXd twice_inverse(const Eigen::MatrixXd& IE2) {
+  const Index n = IE2.rows();
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(IE2);
   const double condi = es.eigenvalues().cwiseAbs().minCoeff();
   Eigen::MatrixXd W = Eigen::MatrixXd::Zero(n, n);
   const double cut = condi > 1e-10 ? 0.0
                                    : std::max(static_cast<double>(n), 1.0) *
                                          es.eigenvalues().cwiseAbs().maxCoeff() * 2.220446e-16;
-  for (Eigen::Index k = 0; k < n; ++k) {
+  for (Index k = 0; k < n; ++k) {
     const double ev = es.eigenvalues()(k);
     if (condi > 1e-10 || std::abs(ev) > cut)
       W += es.eigenvectors().col(k) * es.eigenvectors().col(k).transpose() / ev;
   }
   W *= 2.0;
-  // U = sum_rs W_rs (Q_rs - P_r Phi P_s), symmetric in (r, s).
+  return W;
+}
+
+// U = sum_rs W_rs (Q_rs - P_r Phi P_s), symmetric in (r, s).
+Eigen::MatrixXd adjustment_sum(const KrSums& sums, const Eigen::MatrixXd& W,
+                               const Eigen::MatrixXd& Phi) {
+  const std::size_t ng = sums.P.size();
+  const Index p = Phi.rows();
   Eigen::MatrixXd U = Eigen::MatrixXd::Zero(p, p);
   for (std::size_t r = 0; r < ng; ++r)
     for (std::size_t s = 0; s < ng; ++s) {
-      const Eigen::MatrixXd& Qrs = r <= s ? Q[r * ng + s] : Q[s * ng + r];
+      const Eigen::MatrixXd& Qrs = r <= s ? sums.Q[r * ng + s] : sums.Q[s * ng + r];
       const Eigen::MatrixXd Qx = r <= s ? Qrs : Eigen::MatrixXd(Qrs.transpose());
-      U += W(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(s)) *
-           (Qx - P[r] * Phi * P[s]);
+      U += W(static_cast<Index>(r), static_cast<Index>(s)) * (Qx - sums.P[r] * Phi * sums.P[s]);
     }
+  return U;
+}
+
+}  // namespace
+
+KenwardRogerParts kenward_roger_parts(const Problem& problem, const Eigen::MatrixXd& D,
+                                      double sigma2, const Eigen::MatrixXd& Phi) {
+  KrSums sums = participant_sums(problem, D, sigma2, unit_matrices(problem.Z.cols()));
+  for (auto& Pr : sums.P) Pr = (0.5 * (Pr + Pr.transpose())).eval();  // forceSymmetric
+  const Eigen::MatrixXd W = twice_inverse(doubled_information(sums, Phi));
+  const Eigen::MatrixXd U = adjustment_sum(sums, W, Phi);
   KenwardRogerParts out;
   out.phi_adj = Phi + 2 * Phi * U * Phi;
-  out.P = std::move(P);
+  out.P = std::move(sums.P);
   out.W = W;
   return out;
 }

@@ -61,11 +61,33 @@ std::string_view to_string(SphericityCorrection correction) noexcept {
   return "none";
 }
 
-MixedAnova mixed_anova(const WideDesign& d, SphericityCorrection correction) {
-  const auto n = static_cast<Eigen::Index>(d.n());
-  const auto k = static_cast<Eigen::Index>(d.k());
-  const auto a = static_cast<Eigen::Index>(d.conditions.size());
-  const std::vector<std::size_t> sizes = d.group_sizes();
+namespace {
+
+/// The sums of squares of the three effects and of the two error strata.
+struct SumsOfSquares {
+  double condition = 0, iteration = 0, interaction = 0;
+  double error_between = 0, error_within = 0;
+  Eigen::MatrixXd E;  ///< error SSP of the within effects, in orthonormal contrasts
+};
+
+/// Sphericity of E: the GG and HF epsilons and Mauchly's test (k > 2 and E regular only).
+struct Sphericity {
+  std::optional<double> gg, hf;
+  MauchlyTest mauchly;
+  std::string note;  ///< why the test and corrections are not computable (E singular)
+};
+
+/// What every effect's row needs besides its own sum of squares.
+struct EffectContext {
+  double error_between, error_within, total_error, p, dfe;
+  Eigen::Index k;
+  SphericityCorrection correction;
+  const Sphericity& sphericity;
+};
+
+/// The result's description of the design (everything but the tests).
+MixedAnova describe_design(const WideDesign& d, SphericityCorrection correction,
+                           const std::vector<std::size_t>& sizes) {
   MixedAnova out;
   out.metric = d.metric;
   out.conditions = d.conditions;
@@ -75,14 +97,14 @@ MixedAnova mixed_anova(const WideDesign& d, SphericityCorrection correction) {
   out.excluded = d.excluded;
   out.dropped_conditions = d.dropped_conditions;
   out.correction = correction;
-  const double dfe = static_cast<double>(n - a);
-  if (dfe < 1) {
-    throw InvalidData(fmt::format(
-        "{}: metric '{}': {} complete participant(s) in {} condition(s) leave no error degrees "
-        "of freedom; the ANOVA needs more participants than conditions",
-        d.source, d.metric, n, a));
-  }
+  return out;
+}
 
+SumsOfSquares sums_of_squares(const WideDesign& d, const std::vector<std::size_t>& sizes) {
+  const auto n = static_cast<Eigen::Index>(d.n());
+  const auto k = static_cast<Eigen::Index>(d.k());
+  const auto a = static_cast<Eigen::Index>(d.conditions.size());
+  SumsOfSquares ss;
   Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> y(
       d.y.data(), n, k);
 
@@ -108,109 +130,137 @@ MixedAnova mixed_anova(const WideDesign& d, SphericityCorrection correction) {
   const double kd = static_cast<double>(k);
   // Between stratum: participant sums.
   const Eigen::VectorXd rsum = resid.rowwise().sum();
-  const double error_between = rsum.squaredNorm() / kd;
+  ss.error_between = rsum.squaredNorm() / kd;
   const Eigen::VectorXd prof_sum = profile.rowwise().sum();
   const double mean_sum = weighted.sum();
-  double ss_condition = 0;
-  for (Eigen::Index g = 0; g < a; ++g) ss_condition += ng(g) * std::pow(prof_sum(g) - mean_sum, 2);
-  ss_condition /= kd;
+  for (Eigen::Index g = 0; g < a; ++g) ss.condition += ng(g) * std::pow(prof_sum(g) - mean_sum, 2);
+  ss.condition /= kd;
 
   // Within stratum.
   const Eigen::MatrixXd P = detail::orthonormal_contrasts(k);
-  const Eigen::MatrixXd E = P.transpose() * sspe_full * P;
-  const double error_within = E.trace();
-  const double ss_iteration = (unweighted.array() - unweighted.mean()).square().sum() / c;
-  double ss_interaction = 0;
+  ss.E = P.transpose() * sspe_full * P;
+  ss.error_within = ss.E.trace();
+  ss.iteration = (unweighted.array() - unweighted.mean()).square().sum() / c;
   for (Eigen::Index g = 0; g < a; ++g) {
     const Eigen::RowVectorXd dev = profile.row(g) - weighted;
-    ss_interaction += ng(g) * (dev * P).squaredNorm();
+    ss.interaction += ng(g) * (dev * P).squaredNorm();
   }
-  if (!(error_within > 0)) {
+  return ss;
+}
+
+// Sphericity: eigenvalues of E.
+Sphericity sphericity_of(const Eigen::MatrixXd& E, double dfe, Eigen::Index n, Eigen::Index k,
+                         Eigen::Index a) {
+  const double kd = static_cast<double>(k);
+  const double p = kd - 1;
+  Sphericity out;
+  if (k <= 2) return out;
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(E, Eigen::EigenvaluesOnly);
+  const Eigen::VectorXd lambda = eig.eigenvalues();
+  const bool regular = dfe >= p && lambda.minCoeff() > lambda.maxCoeff() * 1e-12;
+  if (!regular) {
+    out.note = fmt::format(
+        "sphericity test and corrections not computable: the {}x{} error SSP matrix of the "
+        "within effects is singular ({} complete participants give {} error df for {} "
+        "iteration contrasts); the within tests assume sphericity",
+        k - 1, k - 1, n, n - a, k - 1);
+    out.mauchly.note = "error SSP matrix singular";
+    return out;
+  }
+  const double s1 = lambda.sum(), s2 = lambda.squaredNorm();
+  out.gg = (s1 / p) * (s1 / p) / (s2 / p);
+  out.hf = ((dfe + 1) * p * *out.gg - 2) / (p * (dfe - p * *out.gg));
+  // car:::summary.Anova.mlm's mauchly(); `3 * kd` (not 3 * p) as car has it.
+  const double logw = lambda.array().log().sum() - p * std::log(s1 / p);
+  const double rho = 1 - (2 * p * p + p + 2) / (6 * p * dfe);
+  const double w2 = (p + 2) * (p - 1) * (p - 2) * (2 * p * p * p + 6 * p * p + 3 * kd + 2) /
+                    (288 * std::pow(dfe * p * rho, 2));
+  const double z = -dfe * rho * logw;
+  const double f = p * (p + 1) / 2 - 1;
+  const double pr1 = detail::chisq_upper(z, f), pr2 = detail::chisq_upper(z, f + 4);
+  out.mauchly.statistic = std::exp(logw);
+  out.mauchly.p_value = pr1 + w2 * (pr2 - pr1);
+  return out;
+}
+
+/// One effect's row: its F test, with the sphericity corrections for a within effect.
+AnovaEffect make_effect(const EffectContext& c, std::string name, bool within, double ss,
+                        double num_df) {
+  const std::optional<double>& gg = c.sphericity.gg;
+  const std::optional<double>& hf = c.sphericity.hf;
+  AnovaEffect e;
+  e.effect = std::move(name);
+  e.within = within;
+  e.ss = ss;
+  e.error_ss = within ? c.error_within : c.error_between;
+  e.num_df = num_df * (within ? c.p : 1);
+  e.den_df = c.dfe * (within ? c.p : 1);
+  e.f = (e.ss / e.num_df) / (e.error_ss / e.den_df);
+  e.p_value = detail::f_upper(e.f, e.num_df, e.den_df);
+  e.ges = ss / (ss + c.total_error);
+  e.pes = ss / (ss + e.error_ss);
+  if (within && gg) {
+    e.gg_eps = gg;
+    e.hf_eps = hf;
+    e.p_gg = detail::f_upper(e.f, *gg * e.num_df, *gg * e.den_df);
+    const double hfc = std::min(1.0, *hf);
+    e.p_hf = detail::f_upper(e.f, hfc * e.num_df, hfc * e.den_df);
+  }
+  e.report_num_df = e.num_df;
+  e.report_den_df = e.den_df;
+  e.report_p = e.p_value;
+  if (within && c.k > 2 && c.correction != SphericityCorrection::none) {
+    if (gg) {
+      const double eps = c.correction == SphericityCorrection::GG ? *gg : std::min(1.0, *hf);
+      e.report_eps = eps;
+      e.report_num_df = eps * e.num_df;
+      e.report_den_df = eps * e.den_df;
+      e.report_p = c.correction == SphericityCorrection::GG ? *e.p_gg : *e.p_hf;
+    } else {
+      e.correction_note = fmt::format("{} correction not computable (singular error SSP matrix)",
+                                      to_string(c.correction));
+    }
+  }
+  e.mse = e.error_ss / e.report_den_df;
+  return e;
+}
+
+}  // namespace
+
+MixedAnova mixed_anova(const WideDesign& d, SphericityCorrection correction) {
+  const auto n = static_cast<Eigen::Index>(d.n());
+  const auto k = static_cast<Eigen::Index>(d.k());
+  const auto a = static_cast<Eigen::Index>(d.conditions.size());
+  const std::vector<std::size_t> sizes = d.group_sizes();
+  MixedAnova out = describe_design(d, correction, sizes);
+  const double dfe = static_cast<double>(n - a);
+  if (dfe < 1) {
+    throw InvalidData(fmt::format(
+        "{}: metric '{}': {} complete participant(s) in {} condition(s) leave no error degrees "
+        "of freedom; the ANOVA needs more participants than conditions",
+        d.source, d.metric, n, a));
+  }
+  const SumsOfSquares ss = sums_of_squares(d, sizes);
+  if (!(ss.error_within > 0)) {
     throw InvalidData(fmt::format(
         "{}: metric '{}': no within-participant variation left (every participant's profile "
         "equals its condition's mean profile); the F tests are undefined",
         d.source, d.metric));
   }
+  const Sphericity sph = sphericity_of(ss.E, dfe, n, k, a);
+  out.sphericity_note = sph.note;
 
-  // Sphericity: eigenvalues of E.
-  const double p = kd - 1;
-  bool regular = false;
-  std::optional<double> gg, hf;
-  MauchlyTest mauchly;
-  if (k > 2) {
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(E, Eigen::EigenvaluesOnly);
-    const Eigen::VectorXd lambda = eig.eigenvalues();
-    regular = dfe >= p && lambda.minCoeff() > lambda.maxCoeff() * 1e-12;
-    if (regular) {
-      const double s1 = lambda.sum(), s2 = lambda.squaredNorm();
-      gg = (s1 / p) * (s1 / p) / (s2 / p);
-      hf = ((dfe + 1) * p * *gg - 2) / (p * (dfe - p * *gg));
-      // car:::summary.Anova.mlm's mauchly(); `3 * kd` (not 3 * p) as car has it.
-      const double logw = lambda.array().log().sum() - p * std::log(s1 / p);
-      const double rho = 1 - (2 * p * p + p + 2) / (6 * p * dfe);
-      const double w2 = (p + 2) * (p - 1) * (p - 2) * (2 * p * p * p + 6 * p * p + 3 * kd + 2) /
-                        (288 * std::pow(dfe * p * rho, 2));
-      const double z = -dfe * rho * logw;
-      const double f = p * (p + 1) / 2 - 1;
-      const double pr1 = detail::chisq_upper(z, f), pr2 = detail::chisq_upper(z, f + 4);
-      mauchly.statistic = std::exp(logw);
-      mauchly.p_value = pr1 + w2 * (pr2 - pr1);
-    } else {
-      out.sphericity_note = fmt::format(
-          "sphericity test and corrections not computable: the {}x{} error SSP matrix of the "
-          "within effects is singular ({} complete participants give {} error df for {} "
-          "iteration contrasts); the within tests assume sphericity",
-          k - 1, k - 1, n, n - a, k - 1);
-      mauchly.note = "error SSP matrix singular";
-    }
-  }
-
-  const double total_error = error_between + error_within;
-  auto make = [&](std::string name, bool within, double ss, double num_df) {
-    AnovaEffect e;
-    e.effect = std::move(name);
-    e.within = within;
-    e.ss = ss;
-    e.error_ss = within ? error_within : error_between;
-    e.num_df = num_df * (within ? p : 1);
-    e.den_df = dfe * (within ? p : 1);
-    e.f = (e.ss / e.num_df) / (e.error_ss / e.den_df);
-    e.p_value = detail::f_upper(e.f, e.num_df, e.den_df);
-    e.ges = ss / (ss + total_error);
-    e.pes = ss / (ss + e.error_ss);
-    if (within && gg) {
-      e.gg_eps = gg;
-      e.hf_eps = hf;
-      e.p_gg = detail::f_upper(e.f, *gg * e.num_df, *gg * e.den_df);
-      const double hfc = std::min(1.0, *hf);
-      e.p_hf = detail::f_upper(e.f, hfc * e.num_df, hfc * e.den_df);
-    }
-    e.report_num_df = e.num_df;
-    e.report_den_df = e.den_df;
-    e.report_p = e.p_value;
-    if (within && k > 2 && correction != SphericityCorrection::none) {
-      if (gg) {
-        const double eps = correction == SphericityCorrection::GG ? *gg : std::min(1.0, *hf);
-        e.report_eps = eps;
-        e.report_num_df = eps * e.num_df;
-        e.report_den_df = eps * e.den_df;
-        e.report_p = correction == SphericityCorrection::GG ? *e.p_gg : *e.p_hf;
-      } else {
-        e.correction_note = fmt::format("{} correction not computable (singular error SSP matrix)",
-                                        to_string(correction));
-      }
-    }
-    e.mse = e.error_ss / e.report_den_df;
-    return e;
-  };
+  const EffectContext c{ss.error_between, ss.error_within, ss.error_between + ss.error_within,
+                        static_cast<double>(k) - 1, dfe, k, correction, sph};
   const double a1 = static_cast<double>(a - 1);
-  if (a > 1) out.effects.push_back(make("condition", false, ss_condition, a1));
-  out.effects.push_back(make("iteration", true, ss_iteration, 1));
-  if (a > 1) out.effects.push_back(make("condition:iteration", true, ss_interaction, a1));
+  if (a > 1) out.effects.push_back(make_effect(c, "condition", false, ss.condition, a1));
+  out.effects.push_back(make_effect(c, "iteration", true, ss.iteration, 1));
+  if (a > 1) out.effects.push_back(make_effect(c, "condition:iteration", true, ss.interaction, a1));
+  // Both within effects share E, hence the one Mauchly test (as car reports it).
   if (k > 2) {
     for (const auto& e : out.effects) {
       if (!e.within) continue;
-      MauchlyTest m = mauchly;
+      MauchlyTest m = sph.mauchly;
       m.effect = e.effect;
       out.sphericity.push_back(m);
     }

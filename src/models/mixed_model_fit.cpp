@@ -274,76 +274,56 @@ Contrast contrast(const MixedModelFit& fit, const Eigen::VectorXd& L, double con
   return out;
 }
 
-AnovaTerm contrast_md(const MixedModelFit& fit, const Eigen::MatrixXd& L) {
+namespace {
+
+/// A row of the ANOVA table from its F and df (the Satterthwaite table: Mean Sq = F sigma^2).
+AnovaTerm f_table_row(const MixedModelFit& fit, double F, double ndf, double ddf) {
   AnovaTerm out;
   const double s2 = fit.sigma * fit.sigma;
-  auto table = [&](double F, double ndf, double ddf) {
-    if (!(std::isfinite(F) && std::isfinite(ddf) && ddf > 0)) {
-      out.computed = false;
-      out.note = "Satterthwaite's df not positive and finite";
-      out.num_df = ndf;
-      return out;
-    }
-    out.f = F;
+  if (!(std::isfinite(F) && std::isfinite(ddf) && ddf > 0)) {
+    out.computed = false;
+    out.note = "Satterthwaite's df not positive and finite";
     out.num_df = ndf;
-    out.den_df = ddf;
-    out.mean_sq = F * s2;
-    out.sum_sq = F * s2 * ndf;
-    boost::math::fisher_f dist(ndf, ddf);
-    out.p = boost::math::cdf(boost::math::complement(dist, F));
-    return out;
-  };
-  if (fit.spec.ddf == DdfMethod::kenward_roger) {
-    // lmerTest's contestMD with ddf = "Kenward-Roger": pbkrtest::KRmodcomp(model, L)$test; the
-    // table's Mean Sq is the unscaled Wald F (with Phi_A) times sigma^2, F is it times the scaling.
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(L);
-    const double q = static_cast<double>(lu.rank());
-    const Eigen::VectorXd Lb = L * fit.beta;
-    const Eigen::MatrixXd LAL = L * fit.vcov_beta_adj * L.transpose();
-    const double wald = Lb.dot(LAL.ldlt().solve(Lb));
-    const KenwardRogerDf kr = kenward_roger_df(fit, L);
-    const double fu = wald / q;
-    table(fu * kr.f_scaling, q, kr.ddf);
-    if (out.computed) {
-      out.mean_sq = fu * s2;
-      out.sum_sq = fu * s2 * q;
-    }
     return out;
   }
-  if (L.rows() == 1) {
-    const stats::TestResult c = contrast(fit, L.row(0).transpose()).test;
-    if (!c.computed) return table(std::nan(""), 1, std::nan(""));
-    return table(*c.statistic * *c.statistic, 1, *c.df);
+  out.f = F;
+  out.num_df = ndf;
+  out.den_df = ddf;
+  out.mean_sq = F * s2;
+  out.sum_sq = F * s2 * ndf;
+  boost::math::fisher_f dist(ndf, ddf);
+  out.p = boost::math::cdf(boost::math::complement(dist, F));
+  return out;
+}
+
+// lmerTest's contestMD with ddf = "Kenward-Roger": pbkrtest::KRmodcomp(model, L)$test; the
+// table's Mean Sq is the unscaled Wald F (with Phi_A) times sigma^2, F is it times the scaling.
+AnovaTerm kenward_roger_md(const MixedModelFit& fit, const Eigen::MatrixXd& L) {
+  const double s2 = fit.sigma * fit.sigma;
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(L);
+  const double q = static_cast<double>(lu.rank());
+  const Eigen::VectorXd Lb = L * fit.beta;
+  const Eigen::MatrixXd LAL = L * fit.vcov_beta_adj * L.transpose();
+  const double wald = Lb.dot(LAL.ldlt().solve(Lb));
+  const KenwardRogerDf kr = kenward_roger_df(fit, L);
+  const double fu = wald / q;
+  AnovaTerm out = f_table_row(fit, fu * kr.f_scaling, q, kr.ddf);
+  if (out.computed) {
+    out.mean_sq = fu * s2;
+    out.sum_sq = fu * s2 * q;
   }
-  const Eigen::MatrixXd VL = L * fit.vcov_beta * L.transpose();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(VL);
-  // R's eigen(): decreasing eigenvalues.
-  const Eigen::Index m = VL.rows();
-  Eigen::VectorXd d = es.eigenvalues().reverse();
-  Eigen::MatrixXd P = es.eigenvectors().rowwise().reverse();
-  const double tol = std::max(std::sqrt(std::numeric_limits<double>::epsilon()) * d(0), 0.0);
-  Eigen::Index q = 0;
-  for (Eigen::Index i = 0; i < m; ++i)
-    if (d(i) > tol) ++q;
-  const Eigen::MatrixXd PtL = (P.transpose() * L).topRows(q);
-  if (q == 1) {
-    const stats::TestResult c = contrast(fit, PtL.row(0).transpose()).test;
-    if (!c.computed) return table(std::nan(""), 1, std::nan(""));
-    return table(*c.statistic * *c.statistic, 1, *c.df);
-  }
-  double F = 0;
-  std::vector<double> nu(static_cast<std::size_t>(q));
-  for (Eigen::Index i = 0; i < q; ++i) {
-    const Eigen::VectorXd l = PtL.row(i).transpose();
-    const double lb = l.dot(fit.beta);
-    F += lb * lb / d(i);
-    Eigen::VectorXd g(static_cast<Eigen::Index>(fit.jac_vcov_beta.size()));
-    for (std::size_t k = 0; k < fit.jac_vcov_beta.size(); ++k)
-      g(static_cast<Eigen::Index>(k)) = l.dot(fit.jac_vcov_beta[k] * l);
-    nu[static_cast<std::size_t>(i)] = 2 * d(i) * d(i) / g.dot(fit.vcov_varpar * g);
-  }
-  F /= static_cast<double>(q);
-  // lmerTest's get_Fstat_ddf.
+  return out;
+}
+
+/// A one-df hypothesis: the square of the contrast's t, with its df.
+AnovaTerm one_df_md(const MixedModelFit& fit, const Eigen::VectorXd& l) {
+  const stats::TestResult c = contrast(fit, l).test;
+  if (!c.computed) return f_table_row(fit, std::nan(""), 1, std::nan(""));
+  return f_table_row(fit, *c.statistic * *c.statistic, 1, *c.df);
+}
+
+// lmerTest's get_Fstat_ddf: the denominator df of an F from the df `nu` of its q components.
+double fstat_ddf(const std::vector<double>& nu, Eigen::Index q) {
   double ddf;
   bool all_equal = true;
   for (std::size_t i = 1; i < nu.size(); ++i)
@@ -359,24 +339,72 @@ AnovaTerm contrast_md(const MixedModelFit& fit, const Eigen::MatrixXd& L) {
     for (double v : nu) E += v / (v - 2);
     ddf = 2 * E / (E - static_cast<double>(q));
   }
-  return table(F, static_cast<double>(q), ddf);
+  return ddf;
 }
 
-MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool group_between) {
+}  // namespace
+
+AnovaTerm contrast_md(const MixedModelFit& fit, const Eigen::MatrixXd& L) {
+  if (fit.spec.ddf == DdfMethod::kenward_roger) return kenward_roger_md(fit, L);
+  if (L.rows() == 1) return one_df_md(fit, L.row(0).transpose());
+  const Eigen::MatrixXd VL = L * fit.vcov_beta * L.transpose();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(VL);
+  // R's eigen(): decreasing eigenvalues.
+  const Eigen::Index m = VL.rows();
+  Eigen::VectorXd d = es.eigenvalues().reverse();
+  Eigen::MatrixXd P = es.eigenvectors().rowwise().reverse();
+  const double tol = std::max(std::sqrt(std::numeric_limits<double>::epsilon()) * d(0), 0.0);
+  Eigen::Index q = 0;
+  for (Eigen::Index i = 0; i < m; ++i)
+    if (d(i) > tol) ++q;
+  const Eigen::MatrixXd PtL = (P.transpose() * L).topRows(q);
+  if (q == 1) return one_df_md(fit, PtL.row(0).transpose());
+  double F = 0;
+  std::vector<double> nu(static_cast<std::size_t>(q));
+  for (Eigen::Index i = 0; i < q; ++i) {
+    const Eigen::VectorXd l = PtL.row(i).transpose();
+    const double lb = l.dot(fit.beta);
+    F += lb * lb / d(i);
+    Eigen::VectorXd g(static_cast<Eigen::Index>(fit.jac_vcov_beta.size()));
+    for (std::size_t k = 0; k < fit.jac_vcov_beta.size(); ++k)
+      g(static_cast<Eigen::Index>(k)) = l.dot(fit.jac_vcov_beta[k] * l);
+    nu[static_cast<std::size_t>(i)] = 2 * d(i) * d(i) / g.dot(fit.vcov_varpar * g);
+  }
+  F /= static_cast<double>(q);
+  return f_table_row(fit, F, static_cast<double>(q), fstat_ddf(nu, q));
+}
+
+namespace {
+
+/// Each observation's group and time level (indices into fit.group_levels, fit.time_levels).
+struct LevelIndex {
+  std::vector<std::size_t> group, time;
+};
+
+/// The model's matrices, rows grouped by participant (stable: file order within a participant).
+struct Design {
+  Eigen::MatrixXd X, Z;
+  Eigen::VectorXd y, time;
+  std::vector<std::size_t> group, time_level;  ///< LevelIndex in the order of the rows
+  std::vector<std::size_t> start;              ///< first row of each participant, then n
+};
+
+void check_columns(const LongData& data, const ModelSpec& spec) {
   const std::size_t n = data.y.size();
   if (data.participant.size() != n || data.group.size() != n || data.time.size() != n)
     throw std::invalid_argument("fit_mixed_model: columns of different lengths");
   if (spec.random_slope && spec.time_scale != TimeScale::linear)
     throw UsageError("a random slope needs a linear trend in " + spec.time + " (--trend)");
-  MixedModelFit fit;
-  fit.spec = spec;
-  fit.n_obs = n;
   for (std::size_t i = 0; i < n; ++i)
     if (!std::isfinite(data.y[i]) || !std::isfinite(data.time[i]))
       throw InvalidData(fmt::format("{}: a value is not finite (participant {})", spec.response,
                                     data.participant[i]));
+}
 
-  // Levels.
+/// Fills fit.participants (first-appearance order) and returns each one's index in it.
+std::map<std::string, std::size_t> index_participants(const LongData& data, const ModelSpec& spec,
+                                                      bool group_between, MixedModelFit& fit) {
+  const std::size_t n = data.y.size();
   std::map<std::string, std::size_t> pidx;
   std::map<std::string, std::string> group_of;
   for (std::size_t i = 0; i < n; ++i) {
@@ -395,6 +423,12 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
         "metric '{}': {} participant ({}): the mixed model needs at least 2 participants (the "
         "variance between participants cannot be estimated from one)",
         spec.response, fit.participants.size(), fit.participants.empty() ? "" : fit.participants[0]));
+  return pidx;
+}
+
+/// fit.group_levels (as given, or sorted) and fit.time_levels (ascending), and each observation's.
+LevelIndex index_levels(const LongData& data, const ModelSpec& spec, MixedModelFit& fit) {
+  const std::size_t n = data.y.size();
   if (!spec.group_levels.empty()) {
     fit.group_levels = spec.group_levels;
   } else {
@@ -405,17 +439,23 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
     std::set<double> s(data.time.begin(), data.time.end());
     fit.time_levels.assign(s.begin(), s.end());
   }
-  std::vector<std::size_t> gi(n), ti(n);
+  LevelIndex li{std::vector<std::size_t>(n), std::vector<std::size_t>(n)};
   for (std::size_t i = 0; i < n; ++i) {
     const auto it = std::find(fit.group_levels.begin(), fit.group_levels.end(), data.group[i]);
     if (it == fit.group_levels.end())
       throw InvalidData(
           fmt::format("{} '{}' is not one of the levels given", spec.group, data.group[i]));
-    gi[i] = static_cast<std::size_t>(it - fit.group_levels.begin());
-    ti[i] = static_cast<std::size_t>(
+    li.group[i] = static_cast<std::size_t>(it - fit.group_levels.begin());
+    li.time[i] = static_cast<std::size_t>(
         std::lower_bound(fit.time_levels.begin(), fit.time_levels.end(), data.time[i]) -
         fit.time_levels.begin());
   }
+  return li;
+}
+
+/// Refuses responses whose variance the model cannot split between participant and residual.
+void check_variation(const LongData& data, const ModelSpec& spec, const MixedModelFit& fit) {
+  const std::size_t n = data.y.size();
   {
     const double y0 = data.y[0];
     if (std::all_of(data.y.begin(), data.y.end(), [&](double v) { return v == y0; }))
@@ -439,24 +479,27 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
         fit.time_levels.size() == 1 && spec.time == "iteration"
             ? " (for a single iteration, compare the conditions with `feint table`)"
             : ""));
-  {
-    // No variation within any participant: the residual variance is 0 and REML drives theta to
-    // infinity (lme4 converges to a boundary with meaningless df); refuse, as the ANOVA does.
-    std::map<std::string, std::pair<double, double>> range;
-    for (std::size_t i = 0; i < n; ++i) {
-      auto [it, fresh] = range.try_emplace(data.participant[i], data.y[i], data.y[i]);
-      if (!fresh) {
-        it->second.first = std::min(it->second.first, data.y[i]);
-        it->second.second = std::max(it->second.second, data.y[i]);
-      }
+  // No variation within any participant: the residual variance is 0 and REML drives theta to
+  // infinity (lme4 converges to a boundary with meaningless df); refuse, as the ANOVA does.
+  std::map<std::string, std::pair<double, double>> range;
+  for (std::size_t i = 0; i < n; ++i) {
+    auto [it, fresh] = range.try_emplace(data.participant[i], data.y[i], data.y[i]);
+    if (!fresh) {
+      it->second.first = std::min(it->second.first, data.y[i]);
+      it->second.second = std::max(it->second.second, data.y[i]);
     }
-    if (std::all_of(range.begin(), range.end(),
-                    [](const auto& r) { return r.second.first == r.second.second; }))
-      throw InvalidData(fmt::format(
-          "metric '{}': no variation within any participant (each participant's trials all "
-          "have the same value): the residual variance is 0 and the mixed model is degenerate",
-          spec.response));
   }
+  if (std::all_of(range.begin(), range.end(),
+                  [](const auto& r) { return r.second.first == r.second.second; }))
+    throw InvalidData(fmt::format(
+        "metric '{}': no variation within any participant (each participant's trials all "
+        "have the same value): the residual variance is 0 and the mixed model is degenerate",
+        spec.response));
+}
+
+/// Refuses random slopes, groups or a time factor that the numbers of trials cannot identify.
+void check_identifiable(const ModelSpec& spec, bool group_between, const MixedModelFit& fit,
+                        std::size_t n) {
   if (spec.random_slope && n <= 2 * fit.participants.size())
     throw InvalidData(fmt::format(
         "metric '{}': {} trials of {} participants are not more than the {} random effects of "
@@ -476,10 +519,15 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
     throw InvalidData(fmt::format(
         "metric '{}': one {} ({}): the model of {} as a factor needs at least two", spec.response,
         spec.time, level_text(fit.time_levels[0]), spec.time));
-  const Layout lay = make_layout(fit);
+}
+
+/// Refuses an empty group x time cell (time as a factor) and a trend through one time value.
+void check_cells(const ModelSpec& spec, const MixedModelFit& fit, const Layout& lay,
+                 const LevelIndex& li) {
+  const std::size_t n = li.group.size();
   if (spec.time_scale == TimeScale::factor && lay.has_group) {
     std::vector<std::size_t> count(lay.n_group * fit.time_levels.size(), 0);
-    for (std::size_t i = 0; i < n; ++i) ++count[ti[i] * lay.n_group + gi[i]];
+    for (std::size_t i = 0; i < n; ++i) ++count[li.time[i] * lay.n_group + li.group[i]];
     for (std::size_t j = 0; j < fit.time_levels.size(); ++j)
       for (std::size_t k = 0; k < lay.n_group; ++k)
         if (count[j * lay.n_group + k] == 0)
@@ -494,8 +542,13 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
   if (spec.time_scale == TimeScale::linear && fit.time_levels.size() < 2)
     throw InvalidData(fmt::format("metric '{}': a trend in {} needs at least two distinct values",
                                   spec.response, spec.time));
+}
 
-  // Design, rows grouped by participant (stable: file order within a participant).
+/// The design, rows grouped by participant; fills fit.trials_per_participant.
+Design build_design(const LongData& data, const ModelSpec& spec, MixedModelFit& fit,
+                    const Layout& lay, std::map<std::string, std::size_t>& pidx,
+                    const LevelIndex& li) {
+  const std::size_t n = data.y.size();
   std::vector<std::size_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
@@ -503,75 +556,87 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
   });
   const auto p = static_cast<Eigen::Index>(lay.coef_names.size());
   const Eigen::Index q = spec.random_slope ? 2 : 1;
-  Eigen::MatrixXd X = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), p);
-  Eigen::MatrixXd Z(static_cast<Eigen::Index>(n), q);
-  Eigen::VectorXd y(static_cast<Eigen::Index>(n)), time(static_cast<Eigen::Index>(n));
-  std::vector<std::size_t> sgi(n), sti(n);
-  std::vector<std::size_t> start{0};
+  Design des;
+  des.X = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), p);
+  des.Z.resize(static_cast<Eigen::Index>(n), q);
+  des.y.resize(static_cast<Eigen::Index>(n));
+  des.time.resize(static_cast<Eigen::Index>(n));
+  des.group.resize(n);
+  des.time_level.resize(n);
+  des.start = {0};
   fit.trials_per_participant.assign(fit.participants.size(), 0);
   for (std::size_t r = 0; r < n; ++r) {
     const std::size_t i = order[r];
     const auto row = static_cast<Eigen::Index>(r);
-    X.row(row) = cell_row_of(fit, lay, gi[i], data.time[i]).transpose();
-    Z(row, 0) = 1;
-    if (q == 2) Z(row, 1) = data.time[i];
-    y(row) = data.y[i];
-    time(row) = data.time[i];
-    sgi[r] = gi[i];
-    sti[r] = ti[i];
+    des.X.row(row) = cell_row_of(fit, lay, li.group[i], data.time[i]).transpose();
+    des.Z(row, 0) = 1;
+    if (q == 2) des.Z(row, 1) = data.time[i];
+    des.y(row) = data.y[i];
+    des.time(row) = data.time[i];
+    des.group[r] = li.group[i];
+    des.time_level[r] = li.time[i];
     const std::size_t pi = pidx[data.participant[i]];
     ++fit.trials_per_participant[pi];
-    if (r + 1 == n || pidx[data.participant[order[r + 1]]] != pi) start.push_back(r + 1);
+    if (r + 1 == n || pidx[data.participant[order[r + 1]]] != pi) des.start.push_back(r + 1);
   }
+  return des;
+}
+
+void check_full_rank(const Eigen::MatrixXd& X, const ModelSpec& spec, std::size_t n) {
+  const Eigen::Index p = X.cols();
   if (static_cast<Eigen::Index>(n) <= p)
     throw InvalidData(fmt::format(
         "metric '{}': {} trials cannot estimate {} fixed effects (and the residual variance)",
         spec.response, n, p));
-  {
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(X);
-    qr.setThreshold(1e-9);
-    if (qr.rank() < p)
-      throw InvalidData(fmt::format(
-          "metric '{}': the fixed-effects design is rank deficient (a {} x {} combination is "
-          "confounded with another)",
-          spec.response, spec.group, spec.time));
-  }
-  fit.coef_names = lay.coef_names;
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(X);
+  qr.setThreshold(1e-9);
+  if (qr.rank() < p)
+    throw InvalidData(fmt::format(
+        "metric '{}': the fixed-effects design is rank deficient (a {} x {} combination is "
+        "confounded with another)",
+        spec.response, spec.group, spec.time));
+}
 
-  // Scale invariance: the response is divided by a power of two near its spread, so that every
-  // step below (optimiser, its tolerances, the eigenvalue cut) sees numbers of order 1 whatever the
-  // unit of the response, and multiplying back is exact. y * 2^k gives bit-identical F, df and p.
-  const int scale_exp = detail::response_scale_exponent(y);
-  const Eigen::VectorXd ys = y.unaryExpr([&](double v) { return std::ldexp(v, -scale_exp); });
-  detail::Problem problem(X, Z, ys, start);
-  fit.theta = detail::optimise_theta(problem);
-  const detail::Evaluation ev = problem.evaluate(fit.theta);
-  const double nn = static_cast<double>(n), pp = static_cast<double>(p);
+/// v * 2^(power * scale_exp): from the units of y / 2^scale_exp back to those of y (exact).
+double up(double v, int power, int scale_exp) { return std::ldexp(v, power * scale_exp); }
+
+/// sigma, beta, the REML criterion and vcov(beta) in the units of y, from the fit in those of
+/// y / 2^scale_exp; returns sigma in the fit's units.
+double store_estimates(MixedModelFit& fit, const detail::Problem& problem,
+                       const detail::Evaluation& ev, int scale_exp) {
+  const Eigen::Index p = problem.X.cols();
+  const double nn = static_cast<double>(problem.X.rows()), pp = static_cast<double>(p);
   const double sigma_s = std::sqrt(ev.r2 / (nn - pp));  // in the units of ys
-  auto up = [&](double v, int power) { return std::ldexp(v, power * scale_exp); };
-  fit.sigma = up(sigma_s, 1);
-  fit.beta = ev.beta.unaryExpr([&](double v) { return up(v, 1); });
+  fit.sigma = up(sigma_s, 1, scale_exp);
+  fit.beta = ev.beta.unaryExpr([&](double v) { return up(v, 1, scale_exp); });
   // REMLcrit of y: (n - p) log(r2) gains (n - p) log(2^(2k)).
   fit.reml_criterion = problem.profiled_reml(fit.theta) +
                        (nn - pp) * 2.0 * static_cast<double>(scale_exp) * std::log(2.0);
   fit.vcov_beta = fit.sigma * fit.sigma * ev.xthx_chol.solve(Eigen::MatrixXd::Identity(p, p));
-  const Eigen::MatrixXd Lam = problem.lambda(fit.theta);
+  return sigma_s;
+}
+
+/// lme4's VarCorr and isSingular from the relative covariance factor Lam.
+void store_variance_components(MixedModelFit& fit, const Eigen::MatrixXd& Lam) {
   const Eigen::MatrixXd Sb = fit.sigma * fit.sigma * Lam * Lam.transpose();
   fit.variance.residual = fit.sigma * fit.sigma;
   fit.variance.participant = Sb(0, 0);
   fit.singular = Lam.diagonal().minCoeff() < 1e-4;  // lme4's isSingular(tol = 1e-4)
-  if (q == 2) {
+  if (fit.spec.random_slope) {
     fit.variance.slope = Sb(1, 1);
     if (Sb(0, 0) > 0 && Sb(1, 1) > 0)
       fit.variance.correlation = Sb(0, 1) / std::sqrt(Sb(0, 0) * Sb(1, 1));
   } else {
     fit.variance.icc = Sb(0, 0) / (Sb(0, 0) + fit.variance.residual);
   }
+}
 
-  // Satterthwaite (lmerTest's as_lmerModLT) with exact derivatives (lmerTest takes numDeriv's
-  // Richardson differences, whose absolute step ruins its df in small units), in a scale-free
-  // parametrisation: varpar = (theta, sigma) with sigma = u * sigma_hat at u = 1, where the
-  // positive-eigenvalue cut of the Hessian is made; then carried back to (theta, sigma).
+// Satterthwaite (lmerTest's as_lmerModLT) with exact derivatives (lmerTest takes numDeriv's
+// Richardson differences, whose absolute step ruins its df in small units), in a scale-free
+// parametrisation: varpar = (theta, sigma) with sigma = u * sigma_hat at u = 1, where the
+// positive-eigenvalue cut of the Hessian is made; then carried back to (theta, sigma).
+void store_satterthwaite(MixedModelFit& fit, const detail::Problem& problem, double sigma_s,
+                         int scale_exp) {
   const Eigen::Index nv = fit.theta.size() + 1;
   Eigen::VectorXd vp_s(nv);
   vp_s << fit.theta, sigma_s;
@@ -597,29 +662,70 @@ MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool 
   fit.jac_vcov_beta.clear();
   for (Eigen::Index k = 0; k < nv; ++k)
     fit.jac_vcov_beta.push_back(J_u[static_cast<std::size_t>(k)].unaryExpr([&](double v) {
-      return up(v, 2);
+      return up(v, 2, scale_exp);
     }) / D(k));
+}
 
-  if (spec.ddf == DdfMethod::kenward_roger) {
-    // In the units of ys (scale-free), then back: Phi_A scales by 2^(2k), P_r by 2^(-4k) and W by
-    // 2^(4k) (exact).
-    const Eigen::MatrixXd Phi_s =
-        sigma_s * sigma_s * ev.xthx_chol.solve(Eigen::MatrixXd::Identity(p, p));
-    const detail::KenwardRogerParts kr = detail::kenward_roger_parts(
-        problem, sigma_s * sigma_s * Lam * Lam.transpose(), sigma_s * sigma_s, Phi_s);
-    fit.vcov_beta_adj = kr.phi_adj.unaryExpr([&](double v) { return up(v, 2); });
-    for (const auto& P : kr.P) fit.kr_P.push_back(P.unaryExpr([&](double v) { return up(v, -4); }));
-    fit.kr_W = kr.W.unaryExpr([&](double v) { return up(v, 4); });
-  }
+// In the units of ys (scale-free), then back: Phi_A scales by 2^(2k), P_r by 2^(-4k) and W by
+// 2^(4k) (exact).
+void store_kenward_roger(MixedModelFit& fit, const detail::Problem& problem,
+                         const detail::Evaluation& ev, const Eigen::MatrixXd& Lam, double sigma_s,
+                         int scale_exp) {
+  const Eigen::Index p = problem.X.cols();
+  const Eigen::MatrixXd Phi_s =
+      sigma_s * sigma_s * ev.xthx_chol.solve(Eigen::MatrixXd::Identity(p, p));
+  const detail::KenwardRogerParts kr = detail::kenward_roger_parts(
+      problem, sigma_s * sigma_s * Lam * Lam.transpose(), sigma_s * sigma_s, Phi_s);
+  fit.vcov_beta_adj = kr.phi_adj.unaryExpr([&](double v) { return up(v, 2, scale_exp); });
+  for (const auto& P : kr.P)
+    fit.kr_P.push_back(P.unaryExpr([&](double v) { return up(v, -4, scale_exp); }));
+  fit.kr_W = kr.W.unaryExpr([&](double v) { return up(v, 4, scale_exp); });
+}
 
-  // Type-III ANOVA.
-  const CompleteDesign cd = complete_design(fit, lay, sgi, sti, time);
-  const std::vector<Eigen::MatrixXd> hyp = type3_hypotheses(lay, X, cd);
+// Type-III ANOVA.
+void store_type3_anova(MixedModelFit& fit, const Layout& lay, const Design& des) {
+  const CompleteDesign cd = complete_design(fit, lay, des.group, des.time_level, des.time);
+  const std::vector<Eigen::MatrixXd> hyp = type3_hypotheses(lay, des.X, cd);
   for (std::size_t t = 0; t < lay.terms.size(); ++t) {
     AnovaTerm row = contrast_md(fit, hyp[t]);
     row.term = lay.terms[t].name;
     fit.anova.push_back(row);
   }
+}
+
+}  // namespace
+
+MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool group_between) {
+  const std::size_t n = data.y.size();
+  check_columns(data, spec);
+  MixedModelFit fit;
+  fit.spec = spec;
+  fit.n_obs = n;
+  std::map<std::string, std::size_t> pidx = index_participants(data, spec, group_between, fit);
+  const LevelIndex li = index_levels(data, spec, fit);
+  check_variation(data, spec, fit);
+  check_identifiable(spec, group_between, fit, n);
+  const Layout lay = make_layout(fit);
+  check_cells(spec, fit, lay, li);
+  const Design des = build_design(data, spec, fit, lay, pidx, li);
+  check_full_rank(des.X, spec, n);
+  fit.coef_names = lay.coef_names;
+
+  // Scale invariance: the response is divided by a power of two near its spread, so that every
+  // step below (optimiser, its tolerances, the eigenvalue cut) sees numbers of order 1 whatever the
+  // unit of the response, and multiplying back is exact. y * 2^k gives bit-identical F, df and p.
+  const int scale_exp = detail::response_scale_exponent(des.y);
+  const Eigen::VectorXd ys = des.y.unaryExpr([&](double v) { return std::ldexp(v, -scale_exp); });
+  detail::Problem problem(des.X, des.Z, ys, des.start);
+  fit.theta = detail::optimise_theta(problem);
+  const detail::Evaluation ev = problem.evaluate(fit.theta);
+  const double sigma_s = store_estimates(fit, problem, ev, scale_exp);
+  const Eigen::MatrixXd Lam = problem.lambda(fit.theta);
+  store_variance_components(fit, Lam);
+  store_satterthwaite(fit, problem, sigma_s, scale_exp);
+  if (spec.ddf == DdfMethod::kenward_roger)
+    store_kenward_roger(fit, problem, ev, Lam, sigma_s, scale_exp);
+  store_type3_anova(fit, lay, des);
   return fit;
 }
 

@@ -257,21 +257,30 @@ Statistics statistics(FactorModel& factor, TrendModel& trend, const std::vector<
   return s;
 }
 
-}  // namespace
-
-RelabelledConditionTests relabel_condition_tests(const LongData& data, const std::vector<std::string>& group_levels,
-                                                 const RelabellingOptions& options) {
+void check_arguments(const LongData& data, const std::vector<std::string>& group_levels,
+                     const RelabellingOptions& options) {
   if (group_levels.size() != 2)
     throw UsageError(fmt::format("relabel_condition_tests: needs two conditions, got {}", group_levels.size()));
   if (options.permutations == 0) throw UsageError("relabel_condition_tests: permutations must be >= 1");
   const std::size_t n = data.y.size();
   if (data.participant.size() != n || data.group.size() != n || data.time.size() != n)
     throw UsageError("relabel_condition_tests: participant, group, time and y differ in length");
+}
 
-  // Participants in first-appearance order, each in one condition.
-  std::map<std::string, std::size_t> index;
+/// Participants in first-appearance order: each one's condition (1 = the second level), each
+/// row's participant, and the participants of the second condition.
+struct Membership {
   std::vector<char> in_b;
-  std::vector<std::size_t> row_person(n);
+  std::vector<std::size_t> row_person;
+  std::vector<std::size_t> members;
+};
+
+// Each participant must stay in one condition: relabelling moves whole participants.
+Membership assign_participants(const LongData& data, const std::vector<std::string>& group_levels) {
+  const std::size_t n = data.y.size();
+  std::map<std::string, std::size_t> index;
+  Membership m;
+  m.row_person.resize(n);
   for (std::size_t r = 0; r < n; ++r) {
     int g = -1;
     if (data.group[r] == group_levels[0]) g = 0;
@@ -279,22 +288,26 @@ RelabelledConditionTests relabel_condition_tests(const LongData& data, const std
     if (g < 0)
       throw InvalidData(fmt::format("participant {}: condition '{}' is neither '{}' nor '{}'", data.participant[r],
                                     data.group[r], group_levels[0], group_levels[1]));
-    auto [it, added] = index.emplace(data.participant[r], in_b.size());
-    if (added) in_b.push_back(static_cast<char>(g));
-    else if (in_b[it->second] != g)
+    auto [it, added] = index.emplace(data.participant[r], m.in_b.size());
+    if (added)
+      m.in_b.push_back(static_cast<char>(g));
+    else if (m.in_b[it->second] != g)
       throw InvalidData(fmt::format("participant {} has trials in both conditions ('{}' and '{}'): whole "
                                     "participants cannot be relabelled",
                                     data.participant[r], group_levels[0], group_levels[1]));
-    row_person[r] = it->second;
+    m.row_person[r] = it->second;
   }
-  std::vector<std::size_t> members;
-  for (std::size_t i = 0; i < in_b.size(); ++i)
-    if (in_b[i]) members.push_back(i);
-  if (members.empty() || members.size() == in_b.size())
+  for (std::size_t i = 0; i < m.in_b.size(); ++i)
+    if (m.in_b[i]) m.members.push_back(i);
+  if (m.members.empty() || m.members.size() == m.in_b.size())
     throw UsageError("relabel_condition_tests: both conditions need at least one participant");
+  return m;
+}
 
-  // Centred time and y (the statistics do not depend on either origin; sums of squares keep
-  // their digits).
+// Each participant's sums of centred time and y (the statistics do not depend on either origin;
+// sums of squares keep their digits).
+Data summarise(const LongData& data, const Membership& m) {
+  const std::size_t n = data.y.size();
   const std::set<double> level_set(data.time.begin(), data.time.end());
   const std::vector<double> levels(level_set.begin(), level_set.end());
   double ybar = 0, tbar = 0;
@@ -307,14 +320,14 @@ RelabelledConditionTests relabel_condition_tests(const LongData& data, const std
   Data d;
   d.levels = levels.size();
   d.N = static_cast<double>(n);
-  d.people.resize(in_b.size());
+  d.people.resize(m.in_b.size());
   const auto L = static_cast<Eigen::Index>(d.levels);
   for (auto& p : d.people) {
     p.count = Eigen::VectorXd::Zero(L);
     p.sum = Eigen::VectorXd::Zero(L);
   }
   for (std::size_t r = 0; r < n; ++r) {
-    Person& p = d.people[row_person[r]];
+    Person& p = d.people[m.row_person[r]];
     const double y = data.y[r] - ybar, t = data.time[r] - tbar;
     const auto j = static_cast<Eigen::Index>(std::lower_bound(levels.begin(), levels.end(), data.time[r]) - levels.begin());
     p.n += 1;
@@ -332,26 +345,34 @@ RelabelledConditionTests relabel_condition_tests(const LongData& data, const std
     d.sizes[p.n] += 1;
     d.sy2_by_person.push_back(p.sy * p.sy);
   }
+  return d;
+}
 
-  FactorModel factor(d);
-  TrendModel trend(d);
-  RelabelledConditionTests out;
-  const Statistics observed = statistics(factor, trend, in_b, d.levels);
-  out.interaction_f = observed.interaction_f;
-  out.condition_f = observed.condition_f;
-  out.slope_difference_t = observed.slope_t;
-  auto threshold = [](const std::optional<double>& s) {
-    return s ? *s - 1e-9 * std::max(1.0, std::fabs(*s)) : kInf;
-  };
+// Just below the observed statistic, so that a relabelling equal to it up to rounding reaches it;
+// none (infinite) when the observed one is missing.
+double threshold(const std::optional<double>& s) {
+  return s ? *s - 1e-9 * std::max(1.0, std::fabs(*s)) : kInf;
+}
+
+std::optional<double> magnitude(const std::optional<double>& t) {
+  return t ? std::optional<double>(std::fabs(*t)) : std::nullopt;
+}
+
+// Every relabelling's statistics against the observed ones; a relabelling whose statistic cannot
+// be computed counts as reaching it (and as not computable).
+void relabelling_p_values(FactorModel& factor, TrendModel& trend, const Membership& m,
+                          std::size_t levels, const RelabellingOptions& options,
+                          const Statistics& observed, RelabelledConditionTests& out) {
   const double th_int = threshold(observed.interaction_f), th_cond = threshold(observed.condition_f);
-  const double th_slope = threshold(observed.slope_t ? std::optional<double>(std::fabs(*observed.slope_t)) : std::nullopt);
+  const double th_slope = threshold(magnitude(observed.slope_t));
   std::uint64_t reach_int = 0, reach_cond = 0, reach_slope = 0;
-  std::vector<char> labels(in_b.size());
+  std::vector<char> labels(m.in_b.size());
   const stats::Labellings l = stats::for_each_labelling(
-      in_b.size(), members, options.permutations, options.seed, [&](std::span<const std::size_t> b) {
+      m.in_b.size(), m.members, options.permutations, options.seed,
+      [&](std::span<const std::size_t> b) {
         std::fill(labels.begin(), labels.end(), 0);
         for (const std::size_t i : b) labels[i] = 1;
-        const Statistics s = statistics(factor, trend, labels, d.levels);
+        const Statistics s = statistics(factor, trend, labels, levels);
         bool missing = false;
         auto reach = [&](const std::optional<double>& v, double th, std::uint64_t& count) {
           if (!std::isfinite(th)) return;
@@ -364,7 +385,7 @@ RelabelledConditionTests relabel_condition_tests(const LongData& data, const std
         };
         reach(s.interaction_f, th_int, reach_int);
         reach(s.condition_f, th_cond, reach_cond);
-        reach(s.slope_t ? std::optional<double>(std::fabs(*s.slope_t)) : std::nullopt, th_slope, reach_slope);
+        reach(magnitude(s.slope_t), th_slope, reach_slope);
         if (missing) ++out.not_computable;
       });
   out.labellings = l.total;
@@ -373,6 +394,24 @@ RelabelledConditionTests relabel_condition_tests(const LongData& data, const std
   if (observed.interaction_f) out.p_interaction = static_cast<double>(reach_int) / total;
   if (observed.condition_f) out.p_condition = static_cast<double>(reach_cond) / total;
   if (observed.slope_t) out.p_slope_difference = static_cast<double>(reach_slope) / total;
+}
+
+}  // namespace
+
+RelabelledConditionTests relabel_condition_tests(const LongData& data,
+                                                 const std::vector<std::string>& group_levels,
+                                                 const RelabellingOptions& options) {
+  check_arguments(data, group_levels, options);
+  const Membership m = assign_participants(data, group_levels);
+  const Data d = summarise(data, m);
+  FactorModel factor(d);
+  TrendModel trend(d);
+  RelabelledConditionTests out;
+  const Statistics observed = statistics(factor, trend, m.in_b, d.levels);
+  out.interaction_f = observed.interaction_f;
+  out.condition_f = observed.condition_f;
+  out.slope_difference_t = observed.slope_t;
+  relabelling_p_values(factor, trend, m, d.levels, options, observed, out);
   return out;
 }
 

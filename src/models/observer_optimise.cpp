@@ -221,6 +221,161 @@ StandardErrors standard_errors(const Objective& f, const Box& box, const Theta& 
 /// Grid steps of SE/4 that a rough profile is scanned beyond an end (up to 100 SE, or the bound).
 constexpr int kHullScanSteps = 400;
 
+namespace {
+
+/// One end of a profile interval (side -1: low, +1: high) of parameter j. Each end solves
+/// s(v) = z for s(v) = side * r(v), the signed root deviance r(v) = sign(v - th_j) sqrt(2 (lmax -
+/// l_p(v))) seen outward; the secant search, the probes beyond an end and the hull scan share the
+/// warm start of the re-maximisations and whether the end reached the parameter's bound.
+class ProfileEnd {
+ public:
+  ProfileEnd(const Objective& f, const Box& box, const Theta& th, double lmax, std::size_t j,
+             int side, double z, double se, const Theta& step, const StandardErrors& ses)
+      : f_(f),
+        box_(box),
+        th_(th),
+        lmax_(lmax),
+        j_(j),
+        side_(side),
+        z_(z),
+        se_(se),
+        step_(step),
+        ses_(ses),
+        bound_(side < 0 ? box.lo[j] : box.hi[j]),
+        warm_(th) {}
+
+  /// The end; `hull` (shared by both ends of the interval) is set when the profile came back below
+  /// the cut-off beyond a first crossing, and then makes either end scan on to its bound.
+  double locate(bool& hull) {
+    double end = hull_of_probes(hull);
+    // A rough profile (it came back below the cut-off beyond an end): the probes reach only 2 SE
+    // further, so scan on to the bound on a grid of SE/4, re-maximised at each point, and search on
+    // from every point found below the cut-off: the hull then covers every region the grid meets.
+    if (hull && !at_bound_) end = scan_to_bound(end);
+    return end;
+  }
+
+  bool at_bound() const { return at_bound_; }
+
+ private:
+  // s(v): 0 at the maximum, increasing outward; the end is s = z.
+  double s_of(double v) {
+    Theta x = warm_;
+    x[j_] = v;
+    // Start the re-maximisation on the ridge: the others moved as the quadratic approximation
+    // predicts from the last point (at most 3 conditional SEs), so that it needs fewer steps.
+    for (std::size_t k = 0; k < kParams; ++k) {
+      if (k == j_ || ses_.ridge[j_][k] == 0) continue;
+      const double move =
+          std::clamp(ses_.ridge[j_][k] * (v - warm_[j_]), -3 * step_[k], 3 * step_[k]);
+      x[k] = std::clamp(warm_[k] + move, box_.lo[k], box_.hi[k]);
+    }
+    const auto r = maximise(f_, box_, x, j_, true, step_);
+    if (r.second > lmax_) return 0.0;  // a higher maximum along the profile: inside the interval
+    warm_ = r.first;
+    return std::sqrt(2 * (lmax_ - r.second));
+  }
+
+  // One search outward from a point inside (s < z) to the crossing s = z: secant steps, kept inside
+  // a bracket once one is known (bisection otherwise), to |s - z| < 1e-3.
+  double search(double from, double s_from) {
+    const double lo_j = box_.lo[j_], hi_j = box_.hi[j_];
+    double v_in = from;           // inside: s < z
+    double v_out = std::nan("");  // outside: s >= z (once known)
+    double v_prev = from, s_prev = s_from;
+    double v = std::clamp(from + side_ * std::max(z_ - s_from, 0.1) * se_, lo_j, hi_j);
+    for (int iter = 0; iter < 40; ++iter) {
+      const double sv = s_of(v);
+      if (sv < z_)
+        v_in = v;
+      else
+        v_out = v;
+      if (std::abs(sv - z_) < 1e-3) return v;
+      if (std::isnan(v_out) && v == bound_) {
+        at_bound_ = true;
+        return bound_;
+      }
+      // Secant on (v_prev, s_prev), (v, sv); fall back to bisection of the bracket.
+      double next = sv != s_prev ? v + (z_ - sv) * (v - v_prev) / (sv - s_prev) : std::nan("");
+      v_prev = v;
+      s_prev = sv;
+      if (!std::isnan(v_out)) {
+        const double lo = std::min(v_in, v_out), hi = std::max(v_in, v_out);
+        if (!(next > lo && next < hi)) next = (v_in + v_out) / 2;
+        if (hi - lo < 1e-9 * box_.scale[j_]) return (v_in + v_out) / 2;
+      } else if (!(side_ * (next - v_in) > 0)) {
+        next = v_in + side_ * 2 * std::max(std::abs(v_in - th_[j_]), se_);  // keep going outward
+      }
+      v = std::clamp(next, lo_j, hi_j);
+    }
+    return std::isnan(v_out) ? v_in : (v_in + v_out) / 2;
+  }
+
+  // The profile need not be unimodal (over tau it can be rough: the pad moves in steps). Probe
+  // 0.5, 1 and 2 SE beyond each end; where the profile comes back below the cut-off, search on
+  // from there: the interval reported is the hull of the region below the cut-off that was found.
+  double hull_of_probes(bool& hull) {
+    double from = th_[j_], s_from = 0, end = from;
+    for (int round = 0; round < 6; ++round) {
+      end = search(from, s_from);
+      if (at_bound_) break;
+      if (!probe_beyond(end, from, s_from)) break;
+      hull = true;
+    }
+    return end;
+  }
+
+  // The first probe beyond `end` below the cut-off, as the next search's start (from, s_from).
+  bool probe_beyond(double end, double& from, double& s_from) {
+    for (double k : {0.5, 1.0, 2.0}) {
+      const double v = std::clamp(end + side_ * k * se_, box_.lo[j_], box_.hi[j_]);
+      if (v == end) break;
+      // One evaluation at the other parameters' last values bounds the profile from below (s is
+      // at most this); only a near miss pays for the re-maximisation.
+      Theta x = warm_;
+      x[j_] = v;
+      const double l_fixed = f_(x);
+      const double s_fixed = l_fixed > lmax_ ? 0.0 : std::sqrt(2 * (lmax_ - l_fixed));
+      const double sv = s_fixed < z_ || s_fixed > z_ + 1 ? s_fixed : s_of(v);
+      if (sv < z_) {
+        from = v;
+        s_from = sv;
+        return true;
+      }
+    }
+    return false;
+  }
+
+  double scan_to_bound(double end) {
+    double v = end;
+    for (int k = 0; k < kHullScanSteps && v != bound_; ++k) {
+      v = std::clamp(v + side_ * se_ / 4, box_.lo[j_], box_.hi[j_]);
+      const double sv = s_of(v);
+      if (sv < z_) {
+        end = search(v, sv);
+        if (at_bound_) break;
+        v = end;
+      }
+    }
+    return end;
+  }
+
+  const Objective& f_;
+  const Box& box_;
+  const Theta& th_;
+  const double lmax_;
+  const std::size_t j_;
+  const int side_;
+  const double z_, se_;
+  const Theta& step_;
+  const StandardErrors& ses_;
+  const double bound_;
+  Theta warm_;
+  bool at_bound_ = false;
+};
+
+}  // namespace
+
 /// Profile-likelihood interval of parameter j around the maximum (th, lmax). Each end solves
 /// r(v) = +-z for the signed root deviance r(v) = sign(v - th_j) sqrt(2 (lmax - l_p(v))), which is
 /// close to linear in v: secant steps from the Wald end, kept inside a bracket once one is known
@@ -238,97 +393,14 @@ Interval profile_interval(const Objective& f, const Box& box, const Theta& th, d
     const double bound = side < 0 ? box.lo[j] : box.hi[j];
     double& end = side < 0 ? out.low : out.high;
     bool& at_bound = side < 0 ? out.low_at_bound : out.high_at_bound;
-    Theta warm = th;
-    // s(v) = side * r(v): 0 at the maximum, increasing outward; the end is s = z.
-    auto s_of = [&](double v) {
-      Theta x = warm;
-      x[j] = v;
-      // Start the re-maximisation on the ridge: the others moved as the quadratic approximation
-      // predicts from the last point (at most 3 conditional SEs), so that it needs fewer steps.
-      for (std::size_t k = 0; k < kParams; ++k) {
-        if (k == j || ses.ridge[j][k] == 0) continue;
-        const double move = std::clamp(ses.ridge[j][k] * (v - warm[j]), -3 * step[k], 3 * step[k]);
-        x[k] = std::clamp(warm[k] + move, box.lo[k], box.hi[k]);
-      }
-      const auto r = maximise(f, box, x, j, true, step);
-      if (r.second > lmax) return 0.0;  // a higher maximum along the profile: inside the interval
-      warm = r.first;
-      return std::sqrt(2 * (lmax - r.second));
-    };
     if (th[j] == bound) {
       end = bound;
       at_bound = true;
       continue;
     }
-    // One search outward from a point inside (s < z) to the crossing s = z.
-    auto search = [&](double from, double s_from) {
-      double v_in = from;            // inside: s < z
-      double v_out = std::nan("");   // outside: s >= z (once known)
-      double v_prev = from, s_prev = s_from;
-      double v = std::clamp(from + side * std::max(z - s_from, 0.1) * se, box.lo[j], box.hi[j]);
-      for (int iter = 0; iter < 40; ++iter) {
-        const double sv = s_of(v);
-        if (sv < z) v_in = v; else v_out = v;
-        if (std::abs(sv - z) < 1e-3) return v;
-        if (std::isnan(v_out) && v == bound) { at_bound = true; return bound; }
-        // Secant on (v_prev, s_prev), (v, sv); fall back to bisection of the bracket.
-        double next = sv != s_prev ? v + (z - sv) * (v - v_prev) / (sv - s_prev) : std::nan("");
-        v_prev = v;
-        s_prev = sv;
-        if (!std::isnan(v_out)) {
-          const double lo = std::min(v_in, v_out), hi = std::max(v_in, v_out);
-          if (!(next > lo && next < hi)) next = (v_in + v_out) / 2;
-          if (hi - lo < 1e-9 * box.scale[j]) return (v_in + v_out) / 2;
-        } else if (!(side * (next - v_in) > 0)) {
-          next = v_in + side * 2 * std::max(std::abs(v_in - th[j]), se);  // keep going outward
-        }
-        v = std::clamp(next, box.lo[j], box.hi[j]);
-      }
-      return std::isnan(v_out) ? v_in : (v_in + v_out) / 2;
-    };
-    // The profile need not be unimodal (over tau it can be rough: the pad moves in steps). Probe
-    // 0.5, 1 and 2 SE beyond each end; where the profile comes back below the cut-off, search on
-    // from there: the interval reported is the hull of the region below the cut-off that was found.
-    double from = th[j], s_from = 0;
-    for (int round = 0; round < 6; ++round) {
-      end = search(from, s_from);
-      if (at_bound) break;
-      bool reentry = false;
-      for (double k : {0.5, 1.0, 2.0}) {
-        const double v = std::clamp(end + side * k * se, box.lo[j], box.hi[j]);
-        if (v == end) break;
-        // One evaluation at the other parameters' last values bounds the profile from below (s is
-        // at most this); only a near miss pays for the re-maximisation.
-        Theta x = warm;
-        x[j] = v;
-        const double l_fixed = f(x);
-        const double s_fixed = l_fixed > lmax ? 0.0 : std::sqrt(2 * (lmax - l_fixed));
-        const double sv = s_fixed < z || s_fixed > z + 1 ? s_fixed : s_of(v);
-        if (sv < z) {
-          from = v;
-          s_from = sv;
-          reentry = true;
-          out.hull = true;
-          break;
-        }
-      }
-      if (!reentry) break;
-    }
-    // A rough profile (it came back below the cut-off beyond an end): the probes reach only 2 SE
-    // further, so scan on to the bound on a grid of SE/4, re-maximised at each point, and search on
-    // from every point found below the cut-off: the hull then covers every region the grid meets.
-    if (out.hull && !at_bound) {
-      double v = end;
-      for (int k = 0; k < kHullScanSteps && v != bound; ++k) {
-        v = std::clamp(v + side * se / 4, box.lo[j], box.hi[j]);
-        const double sv = s_of(v);
-        if (sv < z) {
-          end = search(v, sv);
-          if (at_bound) break;
-          v = end;
-        }
-      }
-    }
+    ProfileEnd pe(f, box, th, lmax, j, side, z, se, step, ses);
+    end = pe.locate(out.hull);
+    at_bound = pe.at_bound();
   }
   return out;
 }

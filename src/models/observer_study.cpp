@@ -37,12 +37,17 @@ std::string without_unit(const std::string& note, const std::string& unit) {
   const std::string prefix = unit + ": ";
   return note.rfind(prefix, 0) == 0 ? note.substr(prefix.size()) : note;
 }
-}  // namespace
 
-StudyObserverFit fit_study(std::vector<ObservedTrial> trials, const ObserverFitSettings& settings) {
-  settings.validate();
-  StudyObserverFit out;
-  // 1. Check every trial; a bad one is named and left out.
+/// Each participant's fitted observer, by (condition, participant).
+using FittedObservers = std::map<std::pair<std::string, std::string>, GoalObserver>;
+
+/// The agreement sums of a (condition, strategy, iteration) cell: errors, confusions, traces.
+using AgreementSums =
+    std::map<std::tuple<std::string, std::string, long long>, std::array<Sums, 3>>;
+
+/// Labels every trial; returns the usable ones, naming each bad one in out.issues.
+std::vector<ObservedTrial> usable_trials(std::vector<ObservedTrial>& trials,
+                                         StudyObserverFit& out) {
   std::vector<ObservedTrial> good;
   good.reserve(trials.size());
   for (auto& tr : trials) {
@@ -56,17 +61,23 @@ StudyObserverFit fit_study(std::vector<ObservedTrial> trials, const ObserverFitS
     }
     good.push_back(std::move(tr));
   }
-  // 2. Exposure: earlier trials of the same strategy by the same participant (by iteration).
+  return good;
+}
+
+/// Sorts by condition, participant and iteration, and counts each trial's exposure: earlier trials
+/// of the same strategy by the same participant.
+void count_exposure(std::vector<ObservedTrial>& good) {
   std::stable_sort(good.begin(), good.end(), [](const ObservedTrial& a, const ObservedTrial& b) {
     return std::tie(a.condition, a.participant, a.iteration) < std::tie(b.condition, b.participant, b.iteration);
   });
-  {
-    std::map<std::tuple<std::string, std::string, std::string>, int> seen;
-    for (auto& tr : good) tr.exposure = seen[{tr.condition, tr.participant, tr.strategy}]++;
-  }
-  out.trials_used = good.size();
-  // 3. Per participant.
-  std::map<std::pair<std::string, std::string>, GoalObserver> fitted;
+  std::map<std::tuple<std::string, std::string, std::string>, int> seen;
+  for (auto& tr : good) tr.exposure = seen[{tr.condition, tr.participant, tr.strategy}]++;
+}
+
+/// Fits each participant (in each condition).
+FittedObservers fit_participants(const std::vector<ObservedTrial>& good,
+                                 const ObserverFitSettings& settings, StudyObserverFit& out) {
+  FittedObservers fitted;
   for (std::size_t i = 0; i < good.size();) {
     std::size_t j = i;
     while (j < good.size() && good[j].participant == good[i].participant && good[j].condition == good[i].condition) ++j;
@@ -81,28 +92,36 @@ StudyObserverFit fit_study(std::vector<ObservedTrial> trials, const ObserverFitS
     }
     i = j;
   }
-  // 4. Pooled per condition (and the learning test).
+  return fitted;
+}
+
+// The pooled maximum lies near the participants' fits: their mean, weighted by samples, is a
+// start besides the grid.
+std::optional<GoalObserver> pooled_start(const std::vector<ObserverFit>& participants,
+                                         const std::string& condition) {
+  double w = 0, beta = 0, tau = 0, logit = 0;
+  for (const auto& f : participants) {
+    if (f.condition != condition) continue;
+    const auto n = static_cast<double>(f.samples);
+    const GoalObserver o = f.observer();
+    w += n;
+    beta += n * o.beta;
+    tau += n * o.tau;
+    logit += n * (std::log(o.prior_right) - std::log1p(-o.prior_right));
+  }
+  if (w > 0) return GoalObserver{beta / w, tau / w, 1.0 / (1.0 + std::exp(-logit / w))};
+  return std::nullopt;
+}
+
+/// The pooled fit of each condition, and its learning test.
+void fit_conditions(const std::vector<ObservedTrial>& good, const ObserverFitSettings& settings,
+                    StudyObserverFit& out) {
   for (std::size_t i = 0; i < good.size();) {
     std::size_t j = i;
     while (j < good.size() && good[j].condition == good[i].condition) ++j;
     const std::span<const ObservedTrial> cond(good.data() + i, j - i);
     const std::string name = good[i].condition.empty() ? "all" : good[i].condition;
-    // The pooled maximum lies near the participants' fits: their mean, weighted by samples, is a
-    // start besides the grid.
-    std::optional<GoalObserver> start;
-    {
-      double w = 0, beta = 0, tau = 0, logit = 0;
-      for (const auto& f : out.participants) {
-        if (f.condition != good[i].condition) continue;
-        const auto n = static_cast<double>(f.samples);
-        const GoalObserver o = f.observer();
-        w += n;
-        beta += n * o.beta;
-        tau += n * o.tau;
-        logit += n * (std::log(o.prior_right) - std::log1p(-o.prior_right));
-      }
-      if (w > 0) start = GoalObserver{beta / w, tau / w, 1.0 / (1.0 + std::exp(-logit / w))};
-    }
+    const std::optional<GoalObserver> start = pooled_start(out.participants, good[i].condition);
     try {
       auto fit = fit_observer(cond, settings, name, start);
       fit.condition = good[i].condition;
@@ -117,8 +136,12 @@ StudyObserverFit fit_study(std::vector<ObservedTrial> trials, const ObserverFitS
     }
     i = j;
   }
-  // 5. Agreement: the model's trace at each participant's fitted parameters against the pad.
-  std::map<std::tuple<std::string, std::string, long long>, std::array<Sums, 3>> groups;
+}
+
+// The model's trace at each participant's fitted parameters against the pad, summed per cell.
+AgreementSums agreement_sums(const std::vector<ObservedTrial>& good, const FittedObservers& fitted,
+                             const ObserverFitSettings& settings, StudyObserverFit& out) {
+  AgreementSums groups;
   for (const auto& tr : good) {
     const auto it = fitted.find({tr.condition, tr.participant});
     if (it == fitted.end()) continue;
@@ -152,22 +175,43 @@ StudyObserverFit fit_study(std::vector<ObservedTrial> trials, const ObserverFitS
       }
     }
   }
-  for (const auto& [key, g] : groups) {
-    AgreementRow r;
-    std::tie(r.condition, r.strategy, r.iteration) = key;
-    r.trials = static_cast<std::size_t>(g[0].n);
-    r.human_error = g[0].mean_x();
-    r.model_error = g[0].mean_y();
-    r.error_r = g[0].r();
-    r.error_rmse = g[0].rmse();
-    r.human_confusion = g[1].mean_x();
-    r.model_confusion = g[1].mean_y();
-    r.confusion_r = g[1].r();
-    r.confusion_rmse = g[1].rmse();
-    r.trace_r = g[2].r();
-    r.trace_rmse = g[2].rmse();
-    out.agreement.push_back(r);
-  }
+  return groups;
+}
+
+AgreementRow agreement_row(const AgreementSums::key_type& key, const std::array<Sums, 3>& g) {
+  AgreementRow r;
+  std::tie(r.condition, r.strategy, r.iteration) = key;
+  r.trials = static_cast<std::size_t>(g[0].n);
+  r.human_error = g[0].mean_x();
+  r.model_error = g[0].mean_y();
+  r.error_r = g[0].r();
+  r.error_rmse = g[0].rmse();
+  r.human_confusion = g[1].mean_x();
+  r.model_confusion = g[1].mean_y();
+  r.confusion_r = g[1].r();
+  r.confusion_rmse = g[1].rmse();
+  r.trace_r = g[2].r();
+  r.trace_rmse = g[2].rmse();
+  return r;
+}
+
+}  // namespace
+
+StudyObserverFit fit_study(std::vector<ObservedTrial> trials, const ObserverFitSettings& settings) {
+  settings.validate();
+  StudyObserverFit out;
+  // 1. Check every trial; a bad one is named and left out.
+  std::vector<ObservedTrial> good = usable_trials(trials, out);
+  // 2. Exposure: earlier trials of the same strategy by the same participant (by iteration).
+  count_exposure(good);
+  out.trials_used = good.size();
+  // 3. Per participant.
+  const auto fitted = fit_participants(good, settings, out);
+  // 4. Pooled per condition (and the learning test).
+  fit_conditions(good, settings, out);
+  // 5. Agreement: the model's trace at each participant's fitted parameters against the pad.
+  for (const auto& [key, g] : agreement_sums(good, fitted, settings, out))
+    out.agreement.push_back(agreement_row(key, g));
   return out;
 }
 

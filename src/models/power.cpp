@@ -121,7 +121,10 @@ double t_test_power(const TTestPowerSpec& s) {
   return detail::power_at(s, *s.n, *s.delta);
 }
 
-TTestPowerResult solve_t_test_power(const TTestPowerSpec& spec) {
+namespace {
+
+/// The options that do not depend on the one solved for.
+void check_options(const TTestPowerSpec& spec) {
   const int missing = !spec.n + !spec.delta + !spec.power;
   if (missing != 1) {
     throw UsageError(
@@ -142,8 +145,10 @@ TTestPowerResult solve_t_test_power(const TTestPowerSpec& spec) {
   if ((spec.welch || spec.ratio != 1.0) && spec.design != TTestDesign::two_sample) {
     throw UsageError("--welch and --ratio apply to --type two-sample only");
   }
-  const double a = spec.alpha / spec.tests;
-  const double nmin = detail::n_minimum(spec);
+}
+
+/// The two of n, delta and power that are given (`a`: alpha per test).
+void check_given(const TTestPowerSpec& spec, double a, double nmin) {
   if (spec.n && !(*spec.n >= nmin && std::isfinite(*spec.n))) {
     throw UsageError(fmt::format("--n {}: expected at least {} per group", *spec.n, nmin));
   }
@@ -156,11 +161,10 @@ TTestPowerResult solve_t_test_power(const TTestPowerSpec& spec) {
     throw UsageError(
         fmt::format("--power {}: expected a number in (alpha per test = {}, 1)", *spec.power, a));
   }
+}
 
-  TTestPowerResult r;
-  r.spec = spec;
-  r.alpha_per_test = a;
-  TTestPowerSpec& s = r.spec;
+/// Fills in the one of n, delta and power that `s` lacks.
+void solve_missing(TTestPowerSpec& s, double nmin) {
   if (!s.power) {
     s.power = detail::power_at(s, *s.n, *s.delta);
   } else if (!s.n) {
@@ -175,34 +179,55 @@ TTestPowerResult solve_t_test_power(const TTestPowerSpec& spec) {
         detail::increasing_root([&](double d) { return detail::power_at(s, *s.n, d) - target; },
                                 1e-9 * hi0, hi0, 1e9 * hi0, "difference");
   }
+}
+
+/// A solved n rounded up to whole participants, and the power there.
+void round_up_participants(TTestPowerResult& r) {
+  const TTestPowerSpec& s = r.spec;
+  r.n1_ceiling = std::ceil(r.n1);
+  if (s.design == TTestDesign::two_sample) {
+    r.n2_ceiling = std::ceil(s.ratio * *r.n1_ceiling);
+  }
+  // Power at whole participants: group 2 rounded up on its own (never below the target).
+  TTestPowerSpec whole = s;
+  whole.n = *r.n1_ceiling;
+  if (r.n2_ceiling) whole.ratio = *r.n2_ceiling / *r.n1_ceiling;
+  r.power_at_ceiling = detail::power_at(whole, *whole.n, *s.delta);
+}
+
+const char* method_name(const TTestPowerSpec& s) {
+  switch (s.design) {
+    case TTestDesign::one_sample:
+      return "One-sample t test power calculation";
+    case TTestDesign::paired:
+      return "Paired t test power calculation";
+    case TTestDesign::two_sample:
+      return s.welch ? "Two-sample t test power calculation (Welch, approximate)"
+                     : "Two-sample t test power calculation (Student)";
+  }
+  return "";
+}
+
+}  // namespace
+
+TTestPowerResult solve_t_test_power(const TTestPowerSpec& spec) {
+  check_options(spec);
+  const double a = spec.alpha / spec.tests;
+  const double nmin = detail::n_minimum(spec);
+  check_given(spec, a, nmin);
+
+  TTestPowerResult r;
+  r.spec = spec;
+  r.alpha_per_test = a;
+  TTestPowerSpec& s = r.spec;
+  solve_missing(s, nmin);
   r.n1 = *s.n;
   r.n2 = s.design == TTestDesign::two_sample ? s.ratio * r.n1 : 0;
   const auto nc = detail::noncentral(s, r.n1, *s.delta);
   r.df = nc.df;
   r.ncp = nc.ncp;
-  if (!spec.n) {
-    r.n1_ceiling = std::ceil(r.n1);
-    if (s.design == TTestDesign::two_sample) {
-      r.n2_ceiling = std::ceil(s.ratio * *r.n1_ceiling);
-    }
-    // Power at whole participants: group 2 rounded up on its own (never below the target).
-    TTestPowerSpec whole = s;
-    whole.n = *r.n1_ceiling;
-    if (r.n2_ceiling) whole.ratio = *r.n2_ceiling / *r.n1_ceiling;
-    r.power_at_ceiling = detail::power_at(whole, *whole.n, *s.delta);
-  }
-  switch (s.design) {
-    case TTestDesign::one_sample:
-      r.method = "One-sample t test power calculation";
-      break;
-    case TTestDesign::paired:
-      r.method = "Paired t test power calculation";
-      break;
-    case TTestDesign::two_sample:
-      r.method = s.welch ? "Two-sample t test power calculation (Welch, approximate)"
-                         : "Two-sample t test power calculation (Student)";
-      break;
-  }
+  if (!spec.n) round_up_participants(r);
+  r.method = method_name(s);
   return r;
 }
 

@@ -88,6 +88,30 @@ struct Study {
         p(k) {}
 
   void run(std::uint64_t index, Tally& t) {
+    draw(index);
+    const double between_error = residuals();
+    const Centred c = double_centre();
+    const double kd = static_cast<double>(k), pdim = kd - 1, dfe = static_cast<double>(n) - 2;
+    const double gg = c.tr * c.tr / (pdim * c.frob);
+    t.eps_sum += gg;
+    const double eps = epsilon(gg, pdim, dfe);
+    const double f_int = (interaction_ss() / pdim) / (c.tr / (dfe * pdim));
+    last.f_interaction = f_int;
+    last.gg_eps = gg;
+    last.p_interaction = f_upper(f_int, eps * pdim, eps * dfe * pdim);
+    if (last.p_interaction < o.alpha) ++t.interaction;
+    test_condition(between_error, dfe, t);
+    test_iterations(t);
+  }
+
+ private:
+  /// Trace and squared Frobenius norm of the doubly centred residual SSP C E C.
+  struct Centred {
+    double tr = 0, frob = 0;
+  };
+
+  /// The study's data: participant i's row is mu + u_i + residuals.
+  void draw(std::uint64_t index) {
     Normals normal(o.seed, index);
     for (std::size_t i = 0; i < n; ++i) {
       const auto& mu = i < d.n_a ? d.means_a : d.means_b;
@@ -95,7 +119,11 @@ struct Study {
       double* row = &y[i * k];
       for (std::size_t j = 0; j < k; ++j) row[j] = mu[j] + u + d.sd_residual * normal.next();
     }
-    // Condition profiles (two-pass: means, then residual SSP and variances).
+  }
+
+  // Condition profiles (two-pass: means, then residual SSP and variances); returns the sum of
+  // squared participant-sum residuals.
+  double residuals() {
     const double na = static_cast<double>(d.n_a), nb = static_cast<double>(d.n_b);
     std::fill(mean_a.begin(), mean_a.end(), 0.0);
     std::fill(mean_b.begin(), mean_b.end(), 0.0);
@@ -132,7 +160,11 @@ struct Study {
     for (std::size_t j = 0; j < k; ++j) {
       for (std::size_t l = 0; l < j; ++l) e[l * k + j] = e[j * k + l];
     }
-    // Double centring: CEC.
+    return between_error;
+  }
+
+  // Double centring: CEC.
+  Centred double_centre() {
     double grand = 0;
     std::fill(rm.begin(), rm.end(), 0.0);
     for (std::size_t j = 0; j < k; ++j) {
@@ -141,47 +173,54 @@ struct Study {
       grand += rm[j];
     }
     grand /= static_cast<double>(k);
-    double tr = 0, frob = 0;
+    Centred c;
     for (std::size_t j = 0; j < k; ++j) {
       for (std::size_t l = 0; l < k; ++l) {
-        const double c = e[j * k + l] - rm[j] - rm[l] + grand;
-        frob += c * c;
-        if (j == l) tr += c;
+        const double v = e[j * k + l] - rm[j] - rm[l] + grand;
+        c.frob += v * v;
+        if (j == l) c.tr += v;
       }
     }
-    const double kd = static_cast<double>(k), pdim = kd - 1, dfe = static_cast<double>(n) - 2;
-    const double gg = tr * tr / (pdim * frob);
-    t.eps_sum += gg;
+    return c;
+  }
+
+  /// The sphericity correction's epsilon (1: none, or k = 2).
+  double epsilon(double gg, double pdim, double dfe) const {
     double eps = 1;
     if (o.correction == SphericityCorrection::GG) eps = gg;
     if (o.correction == SphericityCorrection::HF) {
       eps = std::min(1.0, ((dfe + 1) * pdim * gg - 2) / (pdim * (dfe - pdim * gg)));
     }
     if (k == 2) eps = 1;
-    // Interaction SS: n_g || C (profile_g - weighted profile) ||^2.
+    return eps;
+  }
+
+  // Interaction SS: n_g || C (profile_g - weighted profile) ||^2.
+  double interaction_ss() {
+    const double na = static_cast<double>(d.n_a), nb = static_cast<double>(d.n_b);
+    const double kd = static_cast<double>(k);
     double ss_int = 0;
-    {
-      double ca = 0, cb = 0;
-      std::vector<double>& da = rm;  // scratch: A's deviation from the weighted profile
-      for (std::size_t j = 0; j < k; ++j) {
-        const double w = (na * mean_a[j] + nb * mean_b[j]) / (na + nb);
-        da[j] = mean_a[j] - w;
-        ca += da[j];
-        cb += mean_b[j] - w;
-      }
-      ca /= kd;
-      cb /= kd;
-      for (std::size_t j = 0; j < k; ++j) {
-        const double w = (na * mean_a[j] + nb * mean_b[j]) / (na + nb);
-        ss_int += na * std::pow(da[j] - ca, 2) + nb * std::pow(mean_b[j] - w - cb, 2);
-      }
+    double ca = 0, cb = 0;
+    std::vector<double>& da = rm;  // scratch: A's deviation from the weighted profile
+    for (std::size_t j = 0; j < k; ++j) {
+      const double w = (na * mean_a[j] + nb * mean_b[j]) / (na + nb);
+      da[j] = mean_a[j] - w;
+      ca += da[j];
+      cb += mean_b[j] - w;
     }
-    const double f_int = (ss_int / pdim) / (tr / (dfe * pdim));
-    last.f_interaction = f_int;
-    last.gg_eps = gg;
-    last.p_interaction = f_upper(f_int, eps * pdim, eps * dfe * pdim);
-    if (last.p_interaction < o.alpha) ++t.interaction;
-    // Condition: participant sums.
+    ca /= kd;
+    cb /= kd;
+    for (std::size_t j = 0; j < k; ++j) {
+      const double w = (na * mean_a[j] + nb * mean_b[j]) / (na + nb);
+      ss_int += na * std::pow(da[j] - ca, 2) + nb * std::pow(mean_b[j] - w - cb, 2);
+    }
+    return ss_int;
+  }
+
+  // Condition: participant sums.
+  void test_condition(double between_error, double dfe, Tally& t) {
+    const double na = static_cast<double>(d.n_a), nb = static_cast<double>(d.n_b);
+    const double kd = static_cast<double>(k);
     double sa = 0, sb = 0;
     for (std::size_t j = 0; j < k; ++j) {
       sa += mean_a[j];
@@ -192,7 +231,11 @@ struct Study {
     const double f_cond = ss_cond / (between_error / kd / dfe);
     last.f_condition = f_cond;
     if (f_upper(f_cond, 1, dfe) < o.alpha) ++t.condition;
-    // Per-iteration Welch t.
+  }
+
+  // Per-iteration Welch t, adjusted for multiplicity.
+  void test_iterations(Tally& t) {
+    const double na = static_cast<double>(d.n_a), nb = static_cast<double>(d.n_b);
     for (std::size_t j = 0; j < k; ++j) {
       const double va = var_a[j] / (na - 1) / na, vb = var_b[j] / (nb - 1) / nb;
       const double se2 = va + vb;

@@ -582,59 +582,64 @@ void draw_legend(cairo_t* cr, const Figure& f, const Layout& L) {
   }
 }
 
-void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, double px, double oy,
-                const Layout& L, bool ylabel, bool xlabel, double ylabel_x) {
-  const double py = oy + L.top, pw = L.plot_width, ph = L.plot_height;
-  auto X = [&](double v) { return px + (v - xs.min) / (xs.max - xs.min) * pw; };
-  auto Y = [&](double v) { return py + ph - (v - ys.min) / (ys.max - ys.min) * ph; };
+// A panel's plot area on the page and its scales: maps data values to points.
+struct PlotArea {
+  const Scale& xs;
+  const Scale& ys;
+  double px = 0, py = 0, pw = 0, ph = 0;  // left, top, width, height
+  double X(double v) const { return px + (v - xs.min) / (xs.max - xs.min) * pw; }
+  double Y(double v) const { return py + ph - (v - ys.min) / (ys.max - ys.min) * ph; }
+  // Interval ends just beyond the plot area: a one-sided interval reaches infinity.
+  double clamped_x(double v) const { return std::clamp(X(v), px - 10, px + pw + 10); }
+  double clamped_y(double v) const { return std::clamp(Y(v), py - 10, py + ph + 10); }
+};
 
-  // Data, clipped to the plot area (a one-sided interval reaches infinity).
-  cairo_save(cr);
-  cairo_rectangle(cr, px - 3, py - 3, pw + 6, ph + 6);
-  cairo_clip(cr);
-  auto clampx = [&](double v) { return std::clamp(X(v), px - 10, px + pw + 10); };
-  auto clampy = [&](double v) { return std::clamp(Y(v), py - 10, py + ph + 10); };
-
-  if (p.bars) {
-    const Bars& b = *p.bars;
-    for (std::size_t k = 0; k < b.positions.size() && k < b.segments.size(); ++k) {
-      double v = k < b.start.size() ? b.start[k] : 0.0;
-      const double c0 = b.positions[k] - b.thickness / 2, c1 = b.positions[k] + b.thickness / 2;
-      for (std::size_t s = 0; s < b.segments[k].size(); ++s) {
-        const double len = b.segments[k][s];
-        if (!(len > 0)) continue;
-        if (b.horizontal) {
-          cairo_rectangle(cr, X(v), Y(c1), X(v + len) - X(v), Y(c0) - Y(c1));
-        } else {
-          cairo_rectangle(cr, X(c0), Y(v + len), X(c1) - X(c0), Y(v) - Y(v + len));
-        }
-        set_colour(cr, s < b.colours.size() ? b.colours[s] : okabe_ito(s));
-        cairo_fill_preserve(cr);
-        cairo_set_source_rgb(cr, 1, 1, 1);
-        cairo_set_line_width(cr, 0.4);
-        set_dash(cr, Dash::solid, 1);
-        cairo_stroke(cr);
-        v += len;
+// Stacked bars: each segment filled in its colour, with a thin white outline between segments.
+void draw_bars(cairo_t* cr, const Bars& b, const PlotArea& a) {
+  for (std::size_t k = 0; k < b.positions.size() && k < b.segments.size(); ++k) {
+    double v = k < b.start.size() ? b.start[k] : 0.0;
+    const double c0 = b.positions[k] - b.thickness / 2, c1 = b.positions[k] + b.thickness / 2;
+    for (std::size_t s = 0; s < b.segments[k].size(); ++s) {
+      const double len = b.segments[k][s];
+      if (!(len > 0)) continue;
+      if (b.horizontal) {
+        cairo_rectangle(cr, a.X(v), a.Y(c1), a.X(v + len) - a.X(v), a.Y(c0) - a.Y(c1));
+      } else {
+        cairo_rectangle(cr, a.X(c0), a.Y(v + len), a.X(c1) - a.X(c0), a.Y(v) - a.Y(v + len));
       }
+      set_colour(cr, s < b.colours.size() ? b.colours[s] : okabe_ito(s));
+      cairo_fill_preserve(cr);
+      cairo_set_source_rgb(cr, 1, 1, 1);
+      cairo_set_line_width(cr, 0.4);
+      set_dash(cr, Dash::solid, 1);
+      cairo_stroke(cr);
+      v += len;
     }
   }
+}
 
+// The references on the axes as grey dashed lines (those beyond get an arrow, with the labels).
+void draw_reference_lines(cairo_t* cr, const Panel& p, const PlotArea& a) {
   for (const auto& ref : p.refs) {
-    if (outside(ref.vertical ? xs : ys, ref.value)) continue;  // an arrow at the edge, below
+    if (outside(ref.vertical ? a.xs : a.ys, ref.value)) continue;  // an arrow at the edge, later
     cairo_set_source_rgb(cr, 0.4, 0.4, 0.4);
     cairo_set_line_width(cr, 0.7);
     const double d[] = {2.0, 2.0};
     cairo_set_dash(cr, d, 2, 0);
     if (ref.vertical) {
-      cairo_move_to(cr, X(ref.value), py);
-      cairo_line_to(cr, X(ref.value), py + ph);
+      cairo_move_to(cr, a.X(ref.value), a.py);
+      cairo_line_to(cr, a.X(ref.value), a.py + a.ph);
     } else {
-      cairo_move_to(cr, px, Y(ref.value));
-      cairo_line_to(cr, px + pw, Y(ref.value));
+      cairo_move_to(cr, a.px, a.Y(ref.value));
+      cairo_line_to(cr, a.px + a.pw, a.Y(ref.value));
     }
     cairo_stroke(cr);
   }
+}
 
+// The lines' confidence bands, under every line: one filled polygon per run of points with both
+// bounds (a missing bound breaks the band).
+void draw_bands(cairo_t* cr, const Panel& p, const PlotArea& a) {
   for (const auto& l : p.lines) {
     if (!l.band) continue;
     set_colour(cr, l.style.colour, 0.18 * l.opacity);
@@ -647,124 +652,153 @@ void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, d
       if (j > i) {
         cairo_new_path(cr);
         for (std::size_t k = i; k < j; ++k) {
-          cairo_line_to(cr, X(l.x[k]), clampy(clip(p.y, l.hi[k])));
+          cairo_line_to(cr, a.X(l.x[k]), a.clamped_y(clip(p.y, l.hi[k])));
         }
-        for (std::size_t k = j; k-- > i;) cairo_line_to(cr, X(l.x[k]), clampy(clip(p.y, l.lo[k])));
+        for (std::size_t k = j; k-- > i;) {
+          cairo_line_to(cr, a.X(l.x[k]), a.clamped_y(clip(p.y, l.lo[k])));
+        }
         cairo_close_path(cr);
         cairo_fill(cr);
       }
       i = j + 1;
     }
   }
+}
 
-  for (const auto& l : p.lines) {
-    set_colour(cr, l.style.colour, l.opacity);
-    if (l.connect) {
-      cairo_set_line_width(cr, l.line_width);
-      set_dash(cr, l.style.dash, l.line_width);
-      cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
-      cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
-      cairo_new_path(cr);
-      bool open = false;
-      for (std::size_t i = 0; i < l.x.size() && i < l.y.size(); ++i) {
-        if (!std::isfinite(l.y[i]) || !std::isfinite(l.x[i])) {
-          open = false;
-          continue;
-        }
-        if (open) {
-          cairo_line_to(cr, X(l.x[i]), Y(l.y[i]));
-        } else {
-          cairo_move_to(cr, X(l.x[i]), Y(l.y[i]));
-        }
-        open = true;
-      }
-      if (l.halo) {
-        cairo_save(cr);
-        cairo_set_source_rgb(cr, 1, 1, 1);
-        cairo_set_dash(cr, nullptr, 0, 0);
-        cairo_set_line_width(cr, l.line_width + 2.0);
-        cairo_stroke_preserve(cr);
-        cairo_restore(cr);
-      }
-      cairo_stroke(cr);
-      cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
+// A line through its finite points (a missing point breaks it), over a white halo if it asks.
+void stroke_line(cairo_t* cr, const Line& l, const PlotArea& a) {
+  cairo_set_line_width(cr, l.line_width);
+  set_dash(cr, l.style.dash, l.line_width);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  cairo_new_path(cr);
+  bool open = false;
+  for (std::size_t i = 0; i < l.x.size() && i < l.y.size(); ++i) {
+    if (!std::isfinite(l.y[i]) || !std::isfinite(l.x[i])) {
+      open = false;
+      continue;
     }
-    if (l.error_bars != ErrorBars::none) {
-      cairo_set_line_width(cr, 0.8);
-      set_dash(cr, Dash::solid, 1);
-      for (std::size_t i = 0; i < l.x.size() && i < l.lo.size() && i < l.hi.size(); ++i) {
-        if (std::isnan(l.lo[i]) || std::isnan(l.hi[i]) || !std::isfinite(l.y[i])) continue;
-        if (l.error_bars == ErrorBars::vertical) {
-          const double x = X(l.x[i]), y0 = clampy(clip(p.y, l.lo[i])),
-                       y1 = clampy(clip(p.y, l.hi[i]));
-          cairo_move_to(cr, x, y0);
-          cairo_line_to(cr, x, y1);
-          for (double yy : {y0, y1}) {
-            cairo_move_to(cr, x - 1.8, yy);
-            cairo_line_to(cr, x + 1.8, yy);
-          }
-        } else {
-          const double y = Y(l.y[i]), x0 = clampx(clip(p.x, l.lo[i])),
-                       x1 = clampx(clip(p.x, l.hi[i]));
-          cairo_move_to(cr, x0, y);
-          cairo_line_to(cr, x1, y);
-          for (double xx : {x0, x1}) {
-            cairo_move_to(cr, xx, y - 1.8);
-            cairo_line_to(cr, xx, y + 1.8);
-          }
-        }
-      }
-      cairo_stroke(cr);
+    if (open) {
+      cairo_line_to(cr, a.X(l.x[i]), a.Y(l.y[i]));
+    } else {
+      cairo_move_to(cr, a.X(l.x[i]), a.Y(l.y[i]));
     }
-    for (std::size_t i = 0; i < l.x.size() && i < l.y.size(); ++i) {
-      if (!std::isfinite(l.y[i]) || !std::isfinite(l.x[i])) continue;
-      const bool filled = i < l.filled.size() ? l.filled[i] : true;
-      draw_marker(cr, l.style.marker, X(l.x[i]), Y(l.y[i]), l.style.colour, filled, l.opacity);
+    open = true;
+  }
+  if (l.halo) {
+    cairo_save(cr);
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_set_dash(cr, nullptr, 0, 0);
+    cairo_set_line_width(cr, l.line_width + 2.0);
+    cairo_stroke_preserve(cr);
+    cairo_restore(cr);
+  }
+  cairo_stroke(cr);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_BUTT);
+}
+
+// A line's error bars with short caps, all in one stroke; the ends clipped to the axis' bounds.
+void stroke_error_bars(cairo_t* cr, const Line& l, const Panel& p, const PlotArea& a) {
+  cairo_set_line_width(cr, 0.8);
+  set_dash(cr, Dash::solid, 1);
+  for (std::size_t i = 0; i < l.x.size() && i < l.lo.size() && i < l.hi.size(); ++i) {
+    if (std::isnan(l.lo[i]) || std::isnan(l.hi[i]) || !std::isfinite(l.y[i])) continue;
+    if (l.error_bars == ErrorBars::vertical) {
+      const double x = a.X(l.x[i]), y0 = a.clamped_y(clip(p.y, l.lo[i])),
+                   y1 = a.clamped_y(clip(p.y, l.hi[i]));
+      cairo_move_to(cr, x, y0);
+      cairo_line_to(cr, x, y1);
+      for (double yy : {y0, y1}) {
+        cairo_move_to(cr, x - 1.8, yy);
+        cairo_line_to(cr, x + 1.8, yy);
+      }
+    } else {
+      const double y = a.Y(l.y[i]), x0 = a.clamped_x(clip(p.x, l.lo[i])),
+                   x1 = a.clamped_x(clip(p.x, l.hi[i]));
+      cairo_move_to(cr, x0, y);
+      cairo_line_to(cr, x1, y);
+      for (double xx : {x0, x1}) {
+        cairo_move_to(cr, xx, y - 1.8);
+        cairo_line_to(cr, xx, y + 1.8);
+      }
     }
   }
-  cairo_restore(cr);
+  cairo_stroke(cr);
+}
 
-  // Reference labels, at the right end of the line, above it.
+// One line of a panel: the line, its error bars, then its markers on top.
+void draw_line(cairo_t* cr, const Line& l, const Panel& p, const PlotArea& a) {
+  set_colour(cr, l.style.colour, l.opacity);
+  if (l.connect) stroke_line(cr, l, a);
+  if (l.error_bars != ErrorBars::none) stroke_error_bars(cr, l, p, a);
+  for (std::size_t i = 0; i < l.x.size() && i < l.y.size(); ++i) {
+    if (!std::isfinite(l.y[i]) || !std::isfinite(l.x[i])) continue;
+    const bool filled = i < l.filled.size() ? l.filled[i] : true;
+    draw_marker(cr, l.style.marker, a.X(l.x[i]), a.Y(l.y[i]), l.style.colour, filled, l.opacity);
+  }
+}
+
+// The data, clipped to the plot area, from the back: bars, reference lines, bands, lines.
+void draw_data(cairo_t* cr, const Panel& p, const PlotArea& a) {
+  cairo_save(cr);
+  cairo_rectangle(cr, a.px - 3, a.py - 3, a.pw + 6, a.ph + 6);
+  cairo_clip(cr);
+  if (p.bars) draw_bars(cr, *p.bars, a);
+  draw_reference_lines(cr, p, a);
+  draw_bands(cr, p, a);
+  for (const auto& l : p.lines) draw_line(cr, l, p, a);
+  cairo_restore(cr);
+}
+
+// A reference beyond the data: an arrow at the edge pointing towards it, with its label.
+void draw_off_axis_reference(cairo_t* cr, const RefLine& ref, const PlotArea& a) {
+  const bool high = ref.value > (ref.vertical ? a.xs.max : a.ys.max);
+  const double s = 3.2;  // arrow half-width, pt
+  cairo_new_path(cr);
+  if (ref.vertical) {
+    const double x = high ? a.px + a.pw - 1 : a.px + 1, y = a.py + 5, d = high ? 1 : -1;
+    cairo_move_to(cr, x, y);
+    cairo_line_to(cr, x - d * 2 * s, y - s);
+    cairo_line_to(cr, x - d * 2 * s, y + s);
+    cairo_close_path(cr);
+    cairo_fill(cr);
+    if (!ref.label.empty()) {
+      draw_text_halo(cr, ref.label, x - d * (2 * s + 2), y, high ? 1 : 0);
+    }
+  } else {
+    const double x = a.px + a.pw - s - 1, y = high ? a.py + 4 : a.py + a.ph - 4, d = high ? 1 : -1;
+    cairo_move_to(cr, x, y);
+    cairo_line_to(cr, x - s, y + d * 2 * s);
+    cairo_line_to(cr, x + s, y + d * 2 * s);
+    cairo_close_path(cr);
+    cairo_fill(cr);
+    if (!ref.label.empty()) {
+      draw_text_halo(cr, ref.label + (high ? " (above)" : " (below)"), x - s - 2, y + d * s, 1);
+    }
+  }
+}
+
+// Reference labels, at the right end of the line, above it (unclipped, over the data).
+void draw_reference_labels(cairo_t* cr, const Panel& p, const PlotArea& a) {
   set_font(cr, kTickFontSize);
   cairo_set_source_rgb(cr, 0.35, 0.35, 0.35);
   for (const auto& ref : p.refs) {
-    if (outside(ref.vertical ? xs : ys, ref.value)) {
-      // Beyond the data: an arrow at the edge pointing towards it, with its label.
-      const bool high = ref.value > (ref.vertical ? xs.max : ys.max);
-      const double a = 3.2;  // arrow half-width, pt
-      cairo_new_path(cr);
-      if (ref.vertical) {
-        const double x = high ? px + pw - 1 : px + 1, y = py + 5, d = high ? 1 : -1;
-        cairo_move_to(cr, x, y);
-        cairo_line_to(cr, x - d * 2 * a, y - a);
-        cairo_line_to(cr, x - d * 2 * a, y + a);
-        cairo_close_path(cr);
-        cairo_fill(cr);
-        if (!ref.label.empty()) {
-          draw_text_halo(cr, ref.label, x - d * (2 * a + 2), y, high ? 1 : 0);
-        }
-      } else {
-        const double x = px + pw - a - 1, y = high ? py + 4 : py + ph - 4, d = high ? 1 : -1;
-        cairo_move_to(cr, x, y);
-        cairo_line_to(cr, x - a, y + d * 2 * a);
-        cairo_line_to(cr, x + a, y + d * 2 * a);
-        cairo_close_path(cr);
-        cairo_fill(cr);
-        if (!ref.label.empty()) {
-          draw_text_halo(cr, ref.label + (high ? " (above)" : " (below)"), x - a - 2, y + d * a, 1);
-        }
-      }
+    if (outside(ref.vertical ? a.xs : a.ys, ref.value)) {
+      draw_off_axis_reference(cr, ref, a);
       continue;
     }
     if (ref.label.empty()) continue;
     if (ref.vertical) {
-      draw_text_halo(cr, ref.label, X(ref.value) + 2, py + 4, 0);
+      draw_text_halo(cr, ref.label, a.X(ref.value) + 2, a.py + 4, 0);
     } else {
-      draw_text_halo(cr, ref.label, px + pw - 1, Y(ref.value) - 4.5, 1);
+      draw_text_halo(cr, ref.label, a.px + a.pw - 1, a.Y(ref.value) - 4.5, 1);
     }
   }
+}
 
-  // Axes: the left and bottom spines with outward ticks (no box, no grid).
+// Axes: the left and bottom spines with outward ticks (no box, no grid).
+void draw_axes(cairo_t* cr, const PlotArea& a) {
+  const double px = a.px, py = a.py, pw = a.pw, ph = a.ph;
   cairo_set_source_rgb(cr, 0, 0, 0);
   cairo_set_line_width(cr, 0.6);
   set_dash(cr, Dash::solid, 1);
@@ -772,23 +806,28 @@ void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, d
   cairo_line_to(cr, px, py + ph);
   cairo_line_to(cr, px + pw, py + ph);
   cairo_stroke(cr);
-  for (std::size_t i = 0; i < xs.ticks.size(); ++i) {
-    const double x = X(xs.ticks[i]);
+  for (std::size_t i = 0; i < a.xs.ticks.size(); ++i) {
+    const double x = a.X(a.xs.ticks[i]);
     if (x < px - 0.5 || x > px + pw + 0.5) continue;
     cairo_move_to(cr, x, py + ph);
     cairo_line_to(cr, x, py + ph + kTick);
     cairo_stroke(cr);
-    draw_text(cr, xs.labels[i], x, py + ph + kTick + 2 + kTickFontSize * 0.5, 0.5);
+    draw_text(cr, a.xs.labels[i], x, py + ph + kTick + 2 + kTickFontSize * 0.5, 0.5);
   }
-  for (std::size_t i = 0; i < ys.ticks.size(); ++i) {
-    const double y = Y(ys.ticks[i]);
+  for (std::size_t i = 0; i < a.ys.ticks.size(); ++i) {
+    const double y = a.Y(a.ys.ticks[i]);
     if (y < py - 0.5 || y > py + ph + 0.5) continue;
     cairo_move_to(cr, px, y);
     cairo_line_to(cr, px - kTick, y);
     cairo_stroke(cr);
-    draw_text(cr, ys.labels[i], px - kTick - 2, y, 1);
+    draw_text(cr, a.ys.labels[i], px - kTick - 2, y, 1);
   }
+}
 
+// The panel's words around the plot area: note, axis labels, significance marks, title.
+void draw_panel_labels(cairo_t* cr, const Panel& p, const PlotArea& a, const Layout& L, bool ylabel,
+                       bool xlabel, double ylabel_x) {
+  const double px = a.px, py = a.py, pw = a.pw, ph = a.ph;
   set_font(cr, kFontSize);
   const double note_room = L.note_line ? kTickFontSize + 3 : 0;
   if (!p.note.empty()) {  // beside the title, right-aligned, or under it
@@ -813,8 +852,8 @@ void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, d
   if (!p.marks.empty()) {
     set_font(cr, kFontSize + 2, true);
     for (double m : p.marks) {
-      if (m < xs.min || m > xs.max) continue;
-      draw_text(cr, "*", X(m), py - kFontSize * 0.3, 0.5);
+      if (m < a.xs.min || m > a.xs.max) continue;
+      draw_text(cr, "*", a.X(m), py - kFontSize * 0.3, 0.5);
     }
   }
   if (!p.title.empty()) {
@@ -822,6 +861,17 @@ void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, d
     const double marks_room = p.marks.empty() ? 0 : kFontSize + 1;
     draw_text(cr, p.title, px, py - marks_room - note_room - kFontSize * 0.75, 0);
   }
+}
+
+// One panel, back to front: the clipped data, the references' labels over them, the axes, and
+// the words around the plot area.
+void draw_panel(cairo_t* cr, const Panel& p, const Scale& xs, const Scale& ys, double px, double oy,
+                const Layout& L, bool ylabel, bool xlabel, double ylabel_x) {
+  const PlotArea a{xs, ys, px, oy + L.top, L.plot_width, L.plot_height};
+  draw_data(cr, p, a);
+  draw_reference_labels(cr, p, a);
+  draw_axes(cr, a);
+  draw_panel_labels(cr, p, a, L, ylabel, xlabel, ylabel_x);
 }
 
 void draw(cairo_t* cr, const Figure& f, const Layout& L,

@@ -20,7 +20,7 @@ inline constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 inline double value(const std::optional<double>& v) { return v ? *v : kNaN; }
 
 // A label says the test found a difference: M>R, M<R, A>B, A<B.
-inline bool differs(const report::TidyRow& row) {
+inline bool differs(const tables::TidyRow& row) {
   return row.label.find('>') != std::string::npos || row.label.find('<') != std::string::npos;
 }
 

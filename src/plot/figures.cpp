@@ -11,7 +11,7 @@
 #include <set>
 
 #include "feint/error.hpp"
-#include "feint/report/writers.hpp"
+#include "feint/tables/writers.hpp"
 #include "figure_detail.hpp"
 
 namespace feint::plot {
@@ -68,13 +68,13 @@ Style style_of_condition(const std::vector<std::string>& conditions, const std::
 
 // ---------------------------------------------------------------------------------------------
 
-MetricFigureData metric_figure_data(const report::Table1& one_sample,
-                                    const report::Table1* comparison, const std::string& metric) {
+MetricFigureData metric_figure_data(const tables::Table1& one_sample,
+                                    const tables::Table1* comparison, const std::string& metric) {
   return metric_figure_data(one_sample, comparison, metric, metric_range(metric));
 }
 
-MetricFigureData metric_figure_data(const report::Table1& one_sample,
-                                    const report::Table1* comparison, const std::string& metric,
+MetricFigureData metric_figure_data(const tables::Table1& one_sample,
+                                    const tables::Table1* comparison, const std::string& metric,
                                     MetricRange range) {
   MetricFigureData d;
   d.metric = metric;
@@ -94,7 +94,7 @@ MetricFigureData metric_figure_data(const report::Table1& one_sample,
     MetricSeries s;
     s.condition = block.group1;
     for (std::size_t i = 0; i < block.iterations.size(); ++i) {
-      const report::TidyRow& row = one_sample.rows[block.cells[i][m].difference_row];
+      const tables::TidyRow& row = one_sample.rows[block.cells[i][m].difference_row];
       MetricPoint p;
       p.iteration = block.iterations[i];
       p.mean = value(row.result.mean1);
@@ -210,12 +210,12 @@ std::string alt_text(const MetricFigureData& d) {
 // ---------------------------------------------------------------------------------------------
 
 ParticipantsData participants_data(const io::ScoresTable& scores, const std::string& metric,
-                                   const report::Table1* one_sample) {
+                                   const tables::Table1* one_sample) {
   return participants_data(scores, metric, one_sample, metric_range(metric));
 }
 
 ParticipantsData participants_data(const io::ScoresTable& scores, const std::string& metric,
-                                   const report::Table1* one_sample, MetricRange range) {
+                                   const tables::Table1* one_sample, MetricRange range) {
   const int m = scores.metric_index(metric);
   if (m < 0) throw InvalidData(fmt::format("figure participants: metric '{}' not loaded", metric));
   ParticipantsData d;
@@ -260,7 +260,7 @@ ParticipantsData participants_data(const io::ScoresTable& scores, const std::str
 }
 
 Figure participants_figure(const io::ScoresTable& scores, const std::string& metric,
-                           const report::Table1* one_sample) {
+                           const tables::Table1* one_sample) {
   return participants_figure(participants_data(scores, metric, one_sample));
 }
 

@@ -10,14 +10,14 @@
 #include "feint/error.hpp"
 #include "feint/io/questionnaire.hpp"
 #include "feint/plot/figures.hpp"
-#include "feint/report/writers.hpp"
+#include "feint/tables/writers.hpp"
 #include "figure_detail.hpp"
 
 namespace feint::plot {
 
 using namespace figure_detail;
 
-LikertMeansData likert_means_data(const report::LikertAnalysis& a) {
+LikertMeansData likert_means_data(const tables::LikertAnalysis& a) {
   if (a.two_sample) {
     throw InvalidData("Likert means: a two-sample analysis has no reference to plot against");
   }
@@ -44,7 +44,7 @@ LikertMeansData likert_means_data(const report::LikertAnalysis& a) {
   return d;
 }
 
-Figure likert_means_figure(const report::LikertAnalysis& a) {
+Figure likert_means_figure(const tables::LikertAnalysis& a) {
   return likert_means_figure(likert_means_data(a));
 }
 
@@ -122,7 +122,7 @@ std::string alt_text(const LikertMeansData& d) {
 namespace {
 
 // The label of each scale point: the user's label map, else the built-in agree/disagree map.
-std::vector<std::string> answer_labels(const report::LikertAnalysis& a) {
+std::vector<std::string> answer_labels(const tables::LikertAnalysis& a) {
   std::vector<io::LabelEntry> map = a.settings.load.labels;
   if (map.empty()) map = io::builtin_agree_labels(a.scale_min, a.scale_max);
   std::vector<std::string> out;
@@ -160,7 +160,7 @@ std::vector<Colour> diverging_colours(int lo, int hi, double neutral) {
 
 }  // namespace
 
-LikertDistribution likert_distribution_data(const report::LikertAnalysis& a) {
+LikertDistribution likert_distribution_data(const tables::LikertAnalysis& a) {
   LikertDistribution d;
   d.scale_min = a.scale_min;
   d.scale_max = a.scale_max;
@@ -188,7 +188,7 @@ LikertDistribution likert_distribution_data(const report::LikertAnalysis& a) {
   return d;
 }
 
-Figure likert_distribution_figure(const report::LikertAnalysis& a) {
+Figure likert_distribution_figure(const tables::LikertAnalysis& a) {
   return likert_distribution_figure(likert_distribution_data(a));
 }
 

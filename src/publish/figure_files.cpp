@@ -8,8 +8,8 @@
 #include "feint/io/scores.hpp"
 #include "feint/io/trace.hpp"
 #include "feint/plot/figures.hpp"
-#include "feint/report/likert.hpp"
-#include "feint/report/table1.hpp"
+#include "feint/tables/likert.hpp"
+#include "feint/tables/table1.hpp"
 
 namespace feint::publish {
 
@@ -23,7 +23,7 @@ constexpr std::string_view kFigures =
 
 plot::Figure figure_from_files(const FigureRequest& a, const analysis::ResolvedReportOptions& r) {
   if (a.figure == "likert" || a.figure == "likert-means") {
-    report::LikertSettings l;
+    tables::LikertSettings l;
     const auto [lo, hi] = io::parse_scale(a.scale);
     l.load.scale_min = lo;
     l.load.scale_max = hi;
@@ -32,7 +32,7 @@ plot::Figure figure_from_files(const FigureRequest& a, const analysis::ResolvedR
     l.test = r.test;
     l.alpha = r.alpha;
     l.p_adjust = r.p_adjust;
-    const report::LikertAnalysis analysis = report::analyze_likert_file(a.input, l);
+    const tables::LikertAnalysis analysis = tables::analyze_likert_file(a.input, l);
     return a.figure == "likert" ? plot::likert_distribution_figure(analysis)
                                 : plot::likert_means_figure(analysis);
   }
@@ -49,7 +49,7 @@ plot::Figure figure_from_files(const FigureRequest& a, const analysis::ResolvedR
     return plot::traces_figure(curves, r.test.conf_level);
   }
 
-  report::Table1Options t;
+  tables::Table1Options t;
   t.metrics = analysis::parse_metric_specs(a.metrics);
   t.alpha = r.alpha;
   t.test = r.test;
@@ -63,7 +63,7 @@ plot::Figure figure_from_files(const FigureRequest& a, const analysis::ResolvedR
       throw UsageError(fmt::format("--figure '{}': not a metric given with --metric, nor one of {}",
                                    a.figure, kFigures));
     }
-    t.metrics = {report::parse_metric_spec(metric)};
+    t.metrics = {tables::parse_metric_spec(metric)};
   }
   io::ScoresOptions so;
   so.metrics.clear();
@@ -81,15 +81,15 @@ plot::Figure figure_from_files(const FigureRequest& a, const analysis::ResolvedR
     throw UsageError(
         fmt::format("--figure '{}': expected one of {} ({})", a.figure, kFigures, e.what()));
   }
-  const report::Table1 one_sample = report::build_table1(scores, t);
+  const tables::Table1 one_sample = tables::build_table1(scores, t);
   if (a.figure == "participants") return plot::participants_figure(scores, metric, &one_sample);
-  std::optional<report::Table1> two_sample;
+  std::optional<tables::Table1> two_sample;
   if (!a.compare.empty()) {
-    report::Table1Options c = t;
+    tables::Table1Options c = t;
     c.compare = analysis::parse_compare(a.compare);
     c.var_equal = a.var_equal;
     c.paired = a.paired;
-    two_sample = report::build_table1(scores, c);
+    two_sample = tables::build_table1(scores, c);
   }
   return plot::metric_figure(
       plot::metric_figure_data(one_sample, two_sample ? &*two_sample : nullptr, metric));

@@ -66,15 +66,16 @@ std::string adjustment_words(stats::PAdjustMethod m) {
              : fmt::format("adjusted with {} within each metric", stats::to_string(m));
 }
 
-}  // namespace
+// The comparison's table (the iterations where the conditions differ), if the study has one.
+const tables::Table1* comparison_of(const analysis::StudyResults& r) {
+  return r.comparison ? &*r.comparison : nullptr;
+}
 
-DrawnFigures draw_figures(const analysis::StudyResults& r, const std::vector<std::string>& formats,
-                          const std::string& folder) {
-  for (const auto& f : formats) plot::parse_file_format(f);  // UsageError before any work
-  FigureWriter w(formats, folder);
-  const report::Table1& t = r.table1;
-  const report::Table1* comparison = r.comparison ? &*r.comparison : nullptr;
-  const std::string level = fmt::format("{:g}%", t.options.test.conf_level * 100);
+// Per metric: the means per iteration against the reference (Table 1's tests).
+void add_metric_figures(FigureWriter& w, const analysis::StudyResults& r,
+                        const std::string& level) {
+  const tables::Table1& t = r.table1;
+  const tables::Table1* comparison = comparison_of(r);
   for (const auto& m : t.options.metrics) {
     const plot::MetricFigureData d = plot::metric_figure_data(t, comparison, m.column);
     std::string caption = fmt::format(
@@ -93,6 +94,11 @@ DrawnFigures draw_figures(const analysis::StudyResults& r, const std::vector<std
     w.add(m.column, fmt::format("Mean {} per iteration", m.column), plot::alt_text(d), caption,
           plot::metric_figure(d));
   }
+}
+
+// Per metric: every participant's line under their condition's mean.
+void add_participant_figures(FigureWriter& w, const analysis::StudyResults& r) {
+  const tables::Table1& t = r.table1;
   for (const auto& m : t.options.metrics) {
     const plot::ParticipantsData pd = plot::participants_data(r.scores, m.column, &t);
     w.add("participants-" + m.column, capitalised(m.column) + " of each participant",
@@ -103,10 +109,14 @@ DrawnFigures draw_figures(const analysis::StudyResults& r, const std::vector<std
                       m.column),
           plot::participants_figure(pd));
   }
-  // The mixed model's fitted trend over the per-iteration means (the trend F-test's line).
+}
+
+// The mixed model's fitted trend over the per-iteration means (the trend F-test's line).
+void add_model_trend_figures(FigureWriter& w, const analysis::StudyResults& r,
+                             const std::string& level) {
   for (const auto& mt : r.figures.model_trends) {
-    plot::ModelFitFigureData md{plot::metric_figure_data(t, comparison, mt.metric), mt.trend,
-                                mt.model};
+    plot::ModelFitFigureData md{plot::metric_figure_data(r.table1, comparison_of(r), mt.metric),
+                                mt.trend, mt.model};
     w.add("model-" + mt.metric, fmt::format("Mixed model's fitted trend of {}", mt.metric),
           plot::alt_text(md),
           fmt::format("The mixed model's fitted {} per condition and iteration (lines, {} "
@@ -118,68 +128,92 @@ DrawnFigures draw_figures(const analysis::StudyResults& r, const std::vector<std
                       mt.metric, level, level, mt.metric, mt.model),
           plot::model_fit_figure(md));
   }
+}
+
+// The exposure figure's caption, with the scored trials it left out for want of a label.
+std::string exposure_caption(const metrics::ExposureTrend& e, const std::string& level) {
+  const std::string unmatched =
+      e.unmatched > 0 ? fmt::format(" {} without a strategy label left out.",
+                                    e.unmatched == 1 ? std::string("1 scored trial")
+                                                     : fmt::format("{} scored trials", e.unmatched))
+                      : std::string();
+  return fmt::format(
+      "Mean {} against the exposure (1 = the participant's first trial with that "
+      "strategy, 2 = the second, ...), one panel per strategy, per condition, with "
+      "{} t intervals (at exposures with at least 5 trials), and each condition's "
+      "least-squares line with its {} band from participant-clustered (CR1) standard "
+      "errors. A strategy that wears off rises (error) as it is seen again; the "
+      "paper's claim is that it wears off under the random algorithm and not under "
+      "the adaptive one. Descriptive: the mixed model is the inference.{}",
+      e.metric, level, level, unmatched);
+}
+
+// The figures of the trials' strategy labels: which strategies were shown, each metric against
+// the exposure, and the pad traces (or a note why there are none).
+void add_strategy_figures(FigureWriter& w, const analysis::StudyResults& r,
+                          const std::string& level) {
+  const double conf_level = r.table1.options.test.conf_level;
+  const plot::Occurrence occurrence = plot::strategy_occurrence(r.figures.labels);
+  w.add("strategies", "Strategies shown", plot::alt_text(occurrence),
+        "Share of participants who saw each strategy, per iteration and condition (the logs' "
+        "strategy column, as scored). The paper's Fig. 5/7 show the selection algorithms' "
+        "expectation; this is what the study's participants actually saw.",
+        plot::occurrence_figure(occurrence));
+  for (const auto& e : r.figures.exposure) {
+    w.add("exposure-" + e.metric,
+          fmt::format("{} by exposure to the strategy, per condition", capitalised(e.metric)),
+          plot::alt_text(e), exposure_caption(e, level), plot::exposure_figure(e));
+  }
+  if (r.figures.traces.empty()) {
+    w.out.notes.push_back("No trace figure: no scored trial was found again in the logs.");
+    return;
+  }
+  w.add("traces", "Pad traces per strategy",
+        plot::alt_text(plot::TracesFigureData{r.figures.traces, conf_level}),
+        fmt::format("Mean pad position over normalised time (0 = first sample, 1 = last) "
+                    "per strategy and version, mirrored so that the true target is at 1 "
+                    "(1 - |pad - target|), with {} t intervals; first exposure of a "
+                    "participant to that strategy and version against later exposures (n = "
+                    "trials, first / later). 0.5 is the undecided middle.",
+                    level),
+        plot::traces_figure(r.figures.traces, conf_level));
+}
+
+// The questionnaire: the answers' distribution and the means against the reference.
+void add_likert_figures(FigureWriter& w, const tables::LikertAnalysis& l) {
+  const plot::LikertDistribution ld = plot::likert_distribution_data(l);
+  w.add("likert", "Questionnaire answers", plot::alt_text(ld),
+        fmt::format("Answers per item and condition as diverging stacked bars centred on the "
+                    "neutral point {:g}: disagreement to the left, agreement to the right; "
+                    "bar lengths are percentages of the respondents (n).",
+                    l.neutral),
+        plot::likert_distribution_figure(ld));
+  const plot::LikertMeansData lm = plot::likert_means_data(l);
+  w.add("likert-means", "Questionnaire means", plot::alt_text(lm),
+        fmt::format("Mean rating per item and condition with its {:g}% t interval, against "
+                    "the reference R = {:g} (the paper's Fig. 11). Filled markers: the "
+                    "one-sample t-test differs from R (p < {:g}, {}); the Wilcoxon "
+                    "signed-rank test is the primary analysis (table below).",
+                    l.settings.test.conf_level * 100, l.reference, l.settings.alpha,
+                    adjustment_words(l.settings.p_adjust)),
+        plot::likert_means_figure(lm));
+}
+
+}  // namespace
+
+DrawnFigures draw_figures(const analysis::StudyResults& r, const std::vector<std::string>& formats,
+                          const std::string& folder) {
+  for (const auto& f : formats) plot::parse_file_format(f);  // UsageError before any work
+  FigureWriter w(formats, folder);
+  const std::string level = fmt::format("{:g}%", r.table1.options.test.conf_level * 100);
+  add_metric_figures(w, r, level);
+  add_participant_figures(w, r);
+  add_model_trend_figures(w, r, level);
   if (!r.figures.labels_note.empty()) {
     w.out.notes.push_back(fmt::format("No strategy figures: {}", r.figures.labels_note));
   }
-  if (!r.figures.labels.empty()) {
-    const plot::Occurrence occurrence = plot::strategy_occurrence(r.figures.labels);
-    w.add("strategies", "Strategies shown", plot::alt_text(occurrence),
-          "Share of participants who saw each strategy, per iteration and condition (the logs' "
-          "strategy column, as scored). The paper's Fig. 5/7 show the selection algorithms' "
-          "expectation; this is what the study's participants actually saw.",
-          plot::occurrence_figure(occurrence));
-    for (const auto& e : r.figures.exposure) {
-      w.add("exposure-" + e.metric,
-            fmt::format("{} by exposure to the strategy, per condition", capitalised(e.metric)),
-            plot::alt_text(e),
-            fmt::format(
-                "Mean {} against the exposure (1 = the participant's first trial with that "
-                "strategy, 2 = the second, ...), one panel per strategy, per condition, with "
-                "{} t intervals (at exposures with at least 5 trials), and each condition's "
-                "least-squares line with its {} band from participant-clustered (CR1) standard "
-                "errors. A strategy that wears off rises (error) as it is seen again; the "
-                "paper's claim is that it wears off under the random algorithm and not under "
-                "the adaptive one. Descriptive: the mixed model is the inference.{}",
-                e.metric, level, level,
-                e.unmatched > 0 ? fmt::format(" {} without a strategy label left out.",
-                                              e.unmatched == 1 ? std::string("1 scored trial")
-                                                               : fmt::format("{} scored trials", e.unmatched))
-                                : std::string()),
-            plot::exposure_figure(e));
-    }
-    if (r.figures.traces.empty()) {
-      w.out.notes.push_back("No trace figure: no scored trial was found again in the logs.");
-    } else {
-      w.add("traces", "Pad traces per strategy",
-            plot::alt_text(plot::TracesFigureData{r.figures.traces, t.options.test.conf_level}),
-            fmt::format("Mean pad position over normalised time (0 = first sample, 1 = last) "
-                        "per strategy and version, mirrored so that the true target is at 1 "
-                        "(1 - |pad - target|), with {} t intervals; first exposure of a "
-                        "participant to that strategy and version against later exposures (n = "
-                        "trials, first / later). 0.5 is the undecided middle.",
-                        level),
-            plot::traces_figure(r.figures.traces, t.options.test.conf_level));
-    }
-  }
-  if (r.likert) {
-    const report::LikertAnalysis& l = *r.likert;
-    const plot::LikertDistribution ld = plot::likert_distribution_data(l);
-    w.add("likert", "Questionnaire answers", plot::alt_text(ld),
-          fmt::format("Answers per item and condition as diverging stacked bars centred on the "
-                      "neutral point {:g}: disagreement to the left, agreement to the right; "
-                      "bar lengths are percentages of the respondents (n).",
-                      l.neutral),
-          plot::likert_distribution_figure(ld));
-    const plot::LikertMeansData lm = plot::likert_means_data(l);
-    w.add("likert-means", "Questionnaire means", plot::alt_text(lm),
-          fmt::format("Mean rating per item and condition with its {:g}% t interval, against "
-                      "the reference R = {:g} (the paper's Fig. 11). Filled markers: the "
-                      "one-sample t-test differs from R (p < {:g}, {}); the Wilcoxon "
-                      "signed-rank test is the primary analysis (table below).",
-                      l.settings.test.conf_level * 100, l.reference, l.settings.alpha,
-                      adjustment_words(l.settings.p_adjust)),
-          plot::likert_means_figure(lm));
-  }
+  if (!r.figures.labels.empty()) add_strategy_figures(w, r, level);
+  if (r.likert) add_likert_figures(w, *r.likert);
   return std::move(w.out);
 }
 

@@ -9,7 +9,7 @@
 #include "feint/io/number.hpp"
 #include "feint/io/output.hpp"
 #include "feint/plot/html.hpp"
-#include "feint/report/writers.hpp"
+#include "feint/tables/writers.hpp"
 
 namespace feint::publish {
 
@@ -17,7 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using io::html_escape;
-using report::OutputFormat;
+using tables::OutputFormat;
 
 // A table of the report: its anchor, heading, Markdown and CSV renderings, and its files' stem.
 struct ReportTable {
@@ -31,35 +31,35 @@ std::vector<ReportTable> tables(const analysis::StudyResults& r) {
                  render(OutputFormat::csv)});
   };
   add("table1", "Table 1 per condition", "table1",
-      [&](OutputFormat f) { return report::render_table1(r.table1, f); });
+      [&](OutputFormat f) { return tables::render_table1(r.table1, f); });
   if (r.comparison) {
     add("comparison", "Comparison", "table1_compare",
-        [&](OutputFormat f) { return report::render_table1(*r.comparison, f); });
+        [&](OutputFormat f) { return tables::render_table1(*r.comparison, f); });
   }
   if (r.anova) {
     add("anova", "Mixed ANOVA", "anova", [&](OutputFormat f) {
-      return report::render_anova(*r.anova, f, r.table1.options.apa);
+      return tables::render_anova(*r.anova, f, r.table1.options.apa);
     });
   }
   if (r.model) {
     add("model", "Mixed model (condition x iteration)", "model",
-        [&](OutputFormat f) { return report::render_model(*r.model, f); });
+        [&](OutputFormat f) { return tables::render_model(*r.model, f); });
   }
   if (r.trend_model) {
     add("model-trend", "Mixed model (linear trend over the iterations)", "model_trend",
-        [&](OutputFormat f) { return report::render_model(*r.trend_model, f); });
+        [&](OutputFormat f) { return tables::render_model(*r.trend_model, f); });
   }
   if (!r.exposure.empty()) {
     add("exposure", "Condition \u00d7 exposure per strategy", "exposure_by_condition",
-        [&](OutputFormat f) { return report::render_exposure(r.exposure, f); });
+        [&](OutputFormat f) { return tables::render_exposure(r.exposure, f); });
   }
   if (r.likert) {
     add("questionnaire", "Questionnaire", "likert",
-        [&](OutputFormat f) { return report::render_likert(*r.likert, f); });
+        [&](OutputFormat f) { return tables::render_likert(*r.likert, f); });
   }
   if (r.likert_compare) {
     add("questionnaire-compare", "Questionnaire between the conditions", "likert_compare",
-        [&](OutputFormat f) { return report::render_likert(*r.likert_compare, f); });
+        [&](OutputFormat f) { return tables::render_likert(*r.likert_compare, f); });
   }
   return t;
 }
@@ -176,6 +176,94 @@ std::vector<std::string> diagnostics_lines(const analysis::Diagnostics& d) {
   return lines;
 }
 
+namespace {
+
+// The Accounting section: what was read, scored and rejected, and every exclusion and warning.
+std::string accounting_html(const analysis::StudyResults& r) {
+  const auto& s = r.diagnostics.scoring;
+  std::vector<std::pair<std::string, std::string>> rows = {
+      {"Log files read", std::to_string(s.files)},
+      {"Rows read", std::to_string(s.rows_read)},
+      {"Rows scored", std::to_string(s.rows_scored)},
+      {"Rows rejected", std::to_string(s.rows_rejected)},
+      {"Trials scored", std::to_string(s.trials_scored)},
+      {"Trials rejected", std::to_string(s.trials_rejected)},
+      {"Trials with an overspeed segment", std::to_string(s.overspeed_trials)},
+      {"Participants", std::to_string(r.diagnostics.participants)},
+      // Named relative to this page, which the output folder carries along when it is moved.
+      {"Scores", "scores.csv (beside this report)"},
+  };
+  if (!s.rejects_path.empty()) {
+    rows.emplace_back("Rejected trials listed in", s.rejects_path + " (beside this report)");
+  }
+  if (r.diagnostics.questionnaire_rows > 0) {
+    rows.emplace_back("Questionnaire rows read", std::to_string(r.diagnostics.questionnaire_rows));
+    rows.emplace_back("Respondents analysed", std::to_string(r.diagnostics.respondents));
+  }
+  std::string html = facts(rows);
+  html += fmt::format("<p>rows read = rows scored + rows rejected: {} = {} + {}.</p>\n",
+                      s.rows_read, s.rows_scored, s.rows_rejected);
+  html += "<h3>Excluded and warned about</h3>\n<ul class=\"diagnostics\">\n";
+  for (const auto& l : diagnostics_lines(r.diagnostics)) {
+    html += "<li>" + html_escape(l) + "</li>\n";
+  }
+  html += "</ul>\n";
+  return html;
+}
+
+// The Figures section: each figure inline (its SVG's ids prefixed, as several share a page) with
+// its caption and links to its files, then the notes on figures not drawn.
+std::string figures_html(const std::vector<RenderedFigure>& figures,
+                         const std::vector<std::string>& notes) {
+  std::string html;
+  for (std::size_t i = 0; i < figures.size(); ++i) {
+    const RenderedFigure& d = figures[i];
+    std::string links;
+    for (const auto& f : d.files) {
+      if (!links.empty()) links += ", ";
+      links += fmt::format("<a href=\"{0}\">{1}</a>", html_escape(f),
+                           html_escape(fs::path(f).filename().string()));
+    }
+    html += fmt::format(
+        "<figure id=\"fig-{0}\">\n{1}\n<figcaption><strong>Figure {2}. {3}.</strong> {4}{5}"
+        "</figcaption>\n</figure>\n",
+        html_escape(d.name), plot::inline_svg(d.svg, fmt::format("f{}-", i + 1), d.alt), i + 1,
+        html_escape(d.title), html_escape(d.caption),
+        links.empty() ? "" : "<br><span class=\"files\">Files: " + links + "</span>");
+  }
+  for (const auto& n : notes) html += "<p>" + html_escape(n) + "</p>\n";
+  return html;
+}
+
+// The Settings section: the run's feint.toml, and the scoring settings the scores were made with.
+std::string settings_html(const analysis::StudyResults& r) {
+  std::string settings;
+  std::vector<std::pair<std::string, std::string>> scoring;
+  for (const auto& [k, v] : r.table1.provenance.settings) {
+    if (k.rfind("settings.", 0) == 0) scoring.emplace_back(k.substr(9), v);
+  }
+  settings +=
+      "<p>Every setting of this run as a feint.toml (also written beside this report as "
+      "<a href=\"settings.toml\">settings.toml</a>): <code>feint analyze --config "
+      "settings.toml STUDY</code> reproduces it.</p>\n<pre class=\"settings\">" +
+      html_escape(r.settings_toml) + "</pre>\n";
+  if (!scoring.empty())
+    settings += "<h3>Scoring (from the scores' sidecar)</h3>\n" + facts(scoring);
+  return settings;
+}
+
+// The Reproduce section: the command line that made this report.
+std::string reproduce_html(const analysis::StudyResults& r, const ReportContext& c) {
+  return fmt::format(
+      "<p>This report was made by feint {} with the command</p>\n<pre>{}</pre>\n"
+      "<p>Every table is also in the output folder as text, Markdown, LaTeX, CSV "
+      "and JSON (as the formats setting asks); the figures one-column (3.5 in) and "
+      "two-column (7.16 in) wide.</p>\n",
+      html_escape(r.tool_version), html_escape(c.command_line));
+}
+
+}  // namespace
+
 std::string study_report_html(const analysis::StudyResults& r,
                               const std::vector<RenderedFigure>& figures,
                               const std::vector<std::string>& notes, const ReportContext& c) {
@@ -187,78 +275,16 @@ std::string study_report_html(const analysis::StudyResults& r,
     page.sections.push_back({"findings", "Findings", analysis::findings_html(r.findings)});
   }
   page.sections.push_back({"design", "Design", facts(design_rows(r, c))});
-  {
-    const auto& s = r.diagnostics.scoring;
-    std::vector<std::pair<std::string, std::string>> rows = {
-        {"Log files read", std::to_string(s.files)},
-        {"Rows read", std::to_string(s.rows_read)},
-        {"Rows scored", std::to_string(s.rows_scored)},
-        {"Rows rejected", std::to_string(s.rows_rejected)},
-        {"Trials scored", std::to_string(s.trials_scored)},
-        {"Trials rejected", std::to_string(s.trials_rejected)},
-        {"Trials with an overspeed segment", std::to_string(s.overspeed_trials)},
-        {"Participants", std::to_string(r.diagnostics.participants)},
-        // Named relative to this page, which the output folder carries along when it is moved.
-        {"Scores", "scores.csv (beside this report)"},
-    };
-    if (!s.rejects_path.empty()) {
-      rows.emplace_back("Rejected trials listed in", s.rejects_path + " (beside this report)");
-    }
-    if (r.diagnostics.questionnaire_rows > 0) {
-      rows.emplace_back("Questionnaire rows read", std::to_string(r.diagnostics.questionnaire_rows));
-      rows.emplace_back("Respondents analysed", std::to_string(r.diagnostics.respondents));
-    }
-    std::string html = facts(rows);
-    html += fmt::format("<p>rows read = rows scored + rows rejected: {} = {} + {}.</p>\n",
-                        s.rows_read, s.rows_scored, s.rows_rejected);
-    html += "<h3>Excluded and warned about</h3>\n<ul class=\"diagnostics\">\n";
-    for (const auto& l : diagnostics_lines(r.diagnostics)) {
-      html += "<li>" + html_escape(l) + "</li>\n";
-    }
-    html += "</ul>\n";
-    page.sections.push_back({"accounting", "Accounting", html});
-  }
+  page.sections.push_back({"accounting", "Accounting", accounting_html(r)});
   if (!figures.empty() || !notes.empty()) {
-    std::string html;
-    for (std::size_t i = 0; i < figures.size(); ++i) {
-      const RenderedFigure& d = figures[i];
-      std::string links;
-      for (const auto& f : d.files) {
-        if (!links.empty()) links += ", ";
-        links += fmt::format("<a href=\"{0}\">{1}</a>", html_escape(f),
-                             html_escape(fs::path(f).filename().string()));
-      }
-      html += fmt::format(
-          "<figure id=\"fig-{0}\">\n{1}\n<figcaption><strong>Figure {2}. {3}.</strong> {4}{5}"
-          "</figcaption>\n</figure>\n",
-          html_escape(d.name), plot::inline_svg(d.svg, fmt::format("f{}-", i + 1), d.alt), i + 1,
-          html_escape(d.title), html_escape(d.caption),
-          links.empty() ? "" : "<br><span class=\"files\">Files: " + links + "</span>");
-    }
-    for (const auto& n : notes) html += "<p>" + html_escape(n) + "</p>\n";
-    page.sections.push_back({"figures", "Figures", html});
+    page.sections.push_back({"figures", "Figures", figures_html(figures, notes)});
   }
   for (const auto& t : tables(r)) {
-    page.sections.push_back({t.id, t.heading, plot::markdown_to_html(t.markdown) + csv_link(t, c.csv_beside)});
+    page.sections.push_back(
+        {t.id, t.heading, plot::markdown_to_html(t.markdown) + csv_link(t, c.csv_beside)});
   }
-  std::string settings;
-  std::vector<std::pair<std::string, std::string>> scoring;
-  for (const auto& [k, v] : r.table1.provenance.settings) {
-    if (k.rfind("settings.", 0) == 0) scoring.emplace_back(k.substr(9), v);
-  }
-  settings += "<p>Every setting of this run as a feint.toml (also written beside this report as "
-              "<a href=\"settings.toml\">settings.toml</a>): <code>feint analyze --config "
-              "settings.toml STUDY</code> reproduces it.</p>\n<pre class=\"settings\">" +
-              html_escape(r.settings_toml) + "</pre>\n";
-  if (!scoring.empty()) settings += "<h3>Scoring (from the scores' sidecar)</h3>\n" + facts(scoring);
-  page.sections.push_back({"settings", "Settings", settings});
-  page.sections.push_back(
-      {"reproduce", "Reproduce",
-       fmt::format("<p>This report was made by feint {} with the command</p>\n<pre>{}</pre>\n"
-                   "<p>Every table is also in the output folder as text, Markdown, LaTeX, CSV "
-                   "and JSON (as the formats setting asks); the figures one-column (3.5 in) and "
-                   "two-column (7.16 in) wide.</p>\n",
-                   html_escape(r.tool_version), html_escape(c.command_line))});
+  page.sections.push_back({"settings", "Settings", settings_html(r)});
+  page.sections.push_back({"reproduce", "Reproduce", reproduce_html(r, c)});
   page.footer = fmt::format("feint {}: {}", r.tool_version, c.command_line);
   return plot::render_html(page);
 }
@@ -355,14 +381,14 @@ std::string study_results_json(const analysis::StudyResults& r) {
   o += "]";
   for (const auto& t : tables(r)) {
     std::string json;
-    if (t.stem == "table1") json = report::render_table1(r.table1, OutputFormat::json);
-    else if (t.stem == "table1_compare") json = report::render_table1(*r.comparison, OutputFormat::json);
-    else if (t.stem == "anova") json = report::render_anova(*r.anova, OutputFormat::json, r.table1.options.apa);
-    else if (t.stem == "model") json = report::render_model(*r.model, OutputFormat::json);
-    else if (t.stem == "model_trend") json = report::render_model(*r.trend_model, OutputFormat::json);
-    else if (t.stem == "exposure_by_condition") json = report::render_exposure(r.exposure, OutputFormat::json);
-    else if (t.stem == "likert") json = report::render_likert(*r.likert, OutputFormat::json);
-    else if (t.stem == "likert_compare") json = report::render_likert(*r.likert_compare, OutputFormat::json);
+    if (t.stem == "table1") json = tables::render_table1(r.table1, OutputFormat::json);
+    else if (t.stem == "table1_compare") json = tables::render_table1(*r.comparison, OutputFormat::json);
+    else if (t.stem == "anova") json = tables::render_anova(*r.anova, OutputFormat::json, r.table1.options.apa);
+    else if (t.stem == "model") json = tables::render_model(*r.model, OutputFormat::json);
+    else if (t.stem == "model_trend") json = tables::render_model(*r.trend_model, OutputFormat::json);
+    else if (t.stem == "exposure_by_condition") json = tables::render_exposure(r.exposure, OutputFormat::json);
+    else if (t.stem == "likert") json = tables::render_likert(*r.likert, OutputFormat::json);
+    else if (t.stem == "likert_compare") json = tables::render_likert(*r.likert_compare, OutputFormat::json);
     o += fmt::format(",\n  {}: {}", q(t.stem), trimmed(json));
   }
   o += fmt::format(",\n  \"settings_toml\": {}\n}}\n", q(r.settings_toml));

@@ -8,7 +8,7 @@
 #include "feint/plot/canvas.hpp"
 #include "feint/publish/output_folder.hpp"
 #include "feint/publish/study_report.hpp"
-#include "feint/report/writers.hpp"
+#include "feint/tables/writers.hpp"
 
 namespace feint::publish {
 
@@ -16,13 +16,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string extension(report::OutputFormat format) {
+std::string extension(tables::OutputFormat format) {
   switch (format) {
-    case report::OutputFormat::text: return "txt";
-    case report::OutputFormat::markdown: return "md";
-    case report::OutputFormat::latex: return "tex";
-    case report::OutputFormat::csv: return "csv";
-    case report::OutputFormat::json: return "json";
+    case tables::OutputFormat::text: return "txt";
+    case tables::OutputFormat::markdown: return "md";
+    case tables::OutputFormat::latex: return "tex";
+    case tables::OutputFormat::csv: return "csv";
+    case tables::OutputFormat::json: return "json";
   }
   return "txt";
 }
@@ -47,42 +47,42 @@ WrittenStudy write_study(const analysis::Study& study, const analysis::StudyResu
   if (!r.diagnostics.scoring.rejects_path.empty() && !r.rejects_csv.empty()) {
     write(r.diagnostics.scoring.rejects_path, r.rejects_csv);
   }
-  const report::TablePresentation& presentation = study.tests.presentation;
-  write_all("table1", [&](report::OutputFormat f) {
-    return report::render_table1(r.table1, f, presentation);
+  const tables::TablePresentation& presentation = study.tests.presentation;
+  write_all("table1", [&](tables::OutputFormat f) {
+    return tables::render_table1(r.table1, f, presentation);
   });
   if (r.comparison) {
-    write_all("table1_compare", [&](report::OutputFormat f) {
-      return report::render_table1(*r.comparison, f, presentation);
+    write_all("table1_compare", [&](tables::OutputFormat f) {
+      return tables::render_table1(*r.comparison, f, presentation);
     });
   }
   if (r.anova) {
-    report::TablePresentation wide;  // analyze has no --label/--caption; table* applies to all
+    tables::TablePresentation wide;  // analyze has no --label/--caption; table* applies to all
     wide.wide = presentation.wide;
-    write_all("anova", [&](report::OutputFormat f) {
-      return report::render_anova(*r.anova, f, r.table1.options.apa, wide);
+    write_all("anova", [&](tables::OutputFormat f) {
+      return tables::render_anova(*r.anova, f, r.table1.options.apa, wide);
     });
   }
   if (r.model) {
-    write_all("model", [&](report::OutputFormat f) { return report::render_model(*r.model, f); });
+    write_all("model", [&](tables::OutputFormat f) { return tables::render_model(*r.model, f); });
   }
   if (r.trend_model) {
     write_all("model_trend",
-              [&](report::OutputFormat f) { return report::render_model(*r.trend_model, f); });
+              [&](tables::OutputFormat f) { return tables::render_model(*r.trend_model, f); });
   }
   if (!r.exposure.empty()) {
     write_all("exposure_by_condition",
-              [&](report::OutputFormat f) { return report::render_exposure(r.exposure, f); });
+              [&](tables::OutputFormat f) { return tables::render_exposure(r.exposure, f); });
   }
   if (r.likert) {
-    write_all("likert", [&](report::OutputFormat f) {
-      return report::render_likert(*r.likert, f, presentation);
+    write_all("likert", [&](tables::OutputFormat f) {
+      return tables::render_likert(*r.likert, f, presentation);
     });
-    write("likert_summary.csv", report::likert_summary_csv(*r.likert));
+    write("likert_summary.csv", tables::likert_summary_csv(*r.likert));
   }
   if (r.likert_compare) {
-    write_all("likert_compare", [&](report::OutputFormat f) {
-      return report::render_likert(*r.likert_compare, f, presentation);
+    write_all("likert_compare", [&](tables::OutputFormat f) {
+      return tables::render_likert(*r.likert_compare, f, presentation);
     });
   }
   write("settings.toml", r.settings_toml);
@@ -98,7 +98,7 @@ WrittenStudy write_study(const analysis::Study& study, const analysis::StudyResu
     c.config = analysis::display_path(study.config, study.folder);
     c.command_line = command_line;
     c.csv_beside = std::find(study.formats.begin(), study.formats.end(),
-                             report::OutputFormat::csv) != study.formats.end();
+                             tables::OutputFormat::csv) != study.formats.end();
     write("report.html", study_report_html(r, drawn.figures, drawn.notes, c));
     write("report.md", study_report_markdown(r, drawn.figures, c));
   }

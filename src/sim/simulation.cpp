@@ -188,100 +188,129 @@ double quantile7(std::vector<double>& values, double prob) {
   return values[lo] + (h - static_cast<double>(lo)) * (values[hi] - values[lo]);
 }
 
-SimulationSummary simulate_selection(const SimulationSettings& settings) {
-  validate(settings);
-  const int n = settings.run.iterations;
-  const int k = settings.run.states;
-  const std::uint64_t runs = settings.runs;
-  const std::uint64_t batch = settings.batch;
-  // Chunks: a fixed partition of the runs (independent of the thread count), whole batches each.
-  const std::uint64_t chunk = batch > 0 ? batch * std::max<std::uint64_t>(1, 4096 / batch) : 4096;
-  const std::uint64_t n_chunks = (runs + chunk - 1) / chunk;
-  const std::uint64_t n_batches = batch > 0 ? runs / batch : 0;
+namespace {
 
-  std::vector<ChunkResult> chunks(n_chunks);
-  std::vector<double> batch_mean(n_batches);
-  std::vector<double> batch_pooled(n_batches);
+/// Chunks: a fixed partition of the runs (independent of the thread count), whole batches each.
+struct ChunkPlan {
+  std::uint64_t runs = 0, batch = 0;
+  std::uint64_t chunk = 0, n_chunks = 0, n_batches = 0;
+};
 
-  unsigned threads = settings.threads;
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-  threads = static_cast<unsigned>(std::min<std::uint64_t>(threads, n_chunks));
+ChunkPlan plan_chunks(const SimulationSettings& settings) {
+  ChunkPlan plan;
+  plan.runs = settings.runs;
+  plan.batch = settings.batch;
+  const std::uint64_t batch = plan.batch;
+  plan.chunk = batch > 0 ? batch * std::max<std::uint64_t>(1, 4096 / batch) : 4096;
+  plan.n_chunks = (plan.runs + plan.chunk - 1) / plan.chunk;
+  plan.n_batches = batch > 0 ? plan.runs / batch : 0;
+  return plan;
+}
 
-  struct ThreadOut {
-    std::vector<std::uint64_t> occurrence, pooled;
-  };
-  std::vector<ThreadOut> outs(threads);
+/// A thread's counts: occurrences of each state at each iteration, and of each state.
+struct ThreadOut {
+  std::vector<std::uint64_t> occurrence, pooled;
+};
+
+/// What the threads share: each slot of `chunks` and of the batch figures is written by one
+/// thread (the one that claimed its chunk), so that the results do not depend on the schedule.
+struct SharedRuns {
+  SharedRuns(const SimulationSettings& s, const ChunkPlan& p)
+      : settings(s),
+        plan(p),
+        chunks(p.n_chunks),
+        batch_mean(p.n_batches),
+        batch_pooled(p.n_batches) {}
+  const SimulationSettings& settings;
+  ChunkPlan plan;
+  std::vector<ChunkResult> chunks;
+  std::vector<double> batch_mean, batch_pooled;  // per batch: mean entropy, pooled entropy
   std::atomic<std::uint64_t> next_chunk{0};
+};
 
-  auto worker = [&](unsigned t) {
-    ThreadOut& out = outs[t];
-    out.occurrence.assign(static_cast<std::size_t>(n) * static_cast<std::size_t>(k), 0);
-    out.pooled.assign(static_cast<std::size_t>(k), 0);
-    Selector selector(settings.run.algorithm, k, n, settings.run.lambda);
-    Measurer measurer(n);
-    std::vector<std::uint8_t> seq(static_cast<std::size_t>(n));
-    std::vector<std::uint64_t> batch_counts(static_cast<std::size_t>(k), 0);
-    for (;;) {
-      const std::uint64_t c = next_chunk.fetch_add(1, std::memory_order_relaxed);
-      if (c >= n_chunks) break;
-      ChunkResult res;  // local: neighbouring chunks of other threads share cache lines
-      const std::uint64_t first = c * chunk;
-      const std::uint64_t last = std::min(runs, first + chunk);
-      double batch_sum = 0;
-      for (std::uint64_t r = first; r < last; ++r) {
-        Rng rng = Rng::stream(settings.seed, r);
-        selector.reset(rng);
-        for (int i = 0; i < n; ++i) {
-          const int s = selector.next(rng);
-          seq[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(s);
-          ++out.occurrence[static_cast<std::size_t>(i * k + s)];
-          ++batch_counts[static_cast<std::size_t>(s)];
-        }
-        const RunMeasures m = measurer.measure(seq.data(), n, k);
-        res.entropy.add(m.entropy);
-        res.guess.add(m.guess_accuracy);
-        if (n >= 2) {
-          res.repetition.add(m.repetition);
-          res.conditional.add(m.conditional_entropy);
-        }
-        if (batch > 0) {
-          batch_sum += m.entropy;
-          if ((r + 1) % batch == 0) {
-            const std::uint64_t b = r / batch;
-            batch_mean[b] = batch_sum / static_cast<double>(batch);
-            batch_pooled[b] = entropy_bits(batch_counts);
-          }
-        }
-        if (batch == 0 || (r + 1) % batch == 0 || r + 1 == last) {
-          for (std::size_t j = 0; j < batch_counts.size(); ++j) {
-            out.pooled[j] += batch_counts[j];
-            batch_counts[j] = 0;
-          }
-          batch_sum = 0;
-        }
-      }
-      chunks[c] = res;
+/// A thread's selector, measurer and buffers, reused from run to run.
+struct RunScratch {
+  Selector selector;
+  Measurer measurer;
+  std::vector<std::uint8_t> seq;
+  std::vector<std::uint64_t> batch_counts;
+};
+
+/// The runs of chunk `c`; their states are counted in `out`.
+ChunkResult run_chunk(SharedRuns& sh, std::uint64_t c, RunScratch& scratch, ThreadOut& out) {
+  const int n = sh.settings.run.iterations;
+  const int k = sh.settings.run.states;
+  const std::uint64_t runs = sh.plan.runs, batch = sh.plan.batch;
+  std::vector<std::uint8_t>& seq = scratch.seq;
+  std::vector<std::uint64_t>& batch_counts = scratch.batch_counts;
+  ChunkResult res;  // local: neighbouring chunks of other threads share cache lines
+  const std::uint64_t first = c * sh.plan.chunk;
+  const std::uint64_t last = std::min(runs, first + sh.plan.chunk);
+  double batch_sum = 0;
+  for (std::uint64_t r = first; r < last; ++r) {
+    Rng rng = Rng::stream(sh.settings.seed, r);
+    scratch.selector.reset(rng);
+    for (int i = 0; i < n; ++i) {
+      const int s = scratch.selector.next(rng);
+      seq[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(s);
+      ++out.occurrence[static_cast<std::size_t>(i * k + s)];
+      ++batch_counts[static_cast<std::size_t>(s)];
     }
-  };
-
-  if (threads <= 1) {
-    worker(0);
-  } else {
-    std::vector<std::thread> pool;
-    pool.reserve(threads);
-    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker, t);
-    for (auto& th : pool) th.join();
+    const RunMeasures m = scratch.measurer.measure(seq.data(), n, k);
+    res.entropy.add(m.entropy);
+    res.guess.add(m.guess_accuracy);
+    if (n >= 2) {
+      res.repetition.add(m.repetition);
+      res.conditional.add(m.conditional_entropy);
+    }
+    if (batch > 0) {
+      batch_sum += m.entropy;
+      if ((r + 1) % batch == 0) {
+        const std::uint64_t b = r / batch;
+        sh.batch_mean[b] = batch_sum / static_cast<double>(batch);
+        sh.batch_pooled[b] = entropy_bits(batch_counts);
+      }
+    }
+    if (batch == 0 || (r + 1) % batch == 0 || r + 1 == last) {
+      for (std::size_t j = 0; j < batch_counts.size(); ++j) {
+        out.pooled[j] += batch_counts[j];
+        batch_counts[j] = 0;
+      }
+      batch_sum = 0;
+    }
   }
+  return res;
+}
 
+/// A thread's work: the chunks it claims, one after another, until none is left.
+void run_chunks(SharedRuns& sh, ThreadOut& out) {
+  const int n = sh.settings.run.iterations;
+  const int k = sh.settings.run.states;
+  out.occurrence.assign(static_cast<std::size_t>(n) * static_cast<std::size_t>(k), 0);
+  out.pooled.assign(static_cast<std::size_t>(k), 0);
+  RunScratch scratch{Selector(sh.settings.run.algorithm, k, n, sh.settings.run.lambda),
+                     Measurer(n), std::vector<std::uint8_t>(static_cast<std::size_t>(n)),
+                     std::vector<std::uint64_t>(static_cast<std::size_t>(k), 0)};
+  for (;;) {
+    const std::uint64_t c = sh.next_chunk.fetch_add(1, std::memory_order_relaxed);
+    if (c >= sh.plan.n_chunks) break;
+    sh.chunks[c] = run_chunk(sh, c, scratch, out);
+  }
+}
+
+/// The summary: the chunks' measures merged in chunk order, the threads' counts added up.
+SimulationSummary summarise(SharedRuns& sh, const std::vector<ThreadOut>& outs, unsigned threads) {
+  const int n = sh.settings.run.iterations;
+  const int k = sh.settings.run.states;
   ChunkResult total;
-  for (const auto& c : chunks) {
+  for (const auto& c : sh.chunks) {
     total.entropy.merge(c.entropy);
     total.repetition.merge(c.repetition);
     total.conditional.merge(c.conditional);
     total.guess.merge(c.guess);
   }
   SimulationSummary out;
-  out.settings = settings;
+  out.settings = sh.settings;
   out.settings.threads = threads;
   out.entropy = total.entropy.spread();
   out.repetition = total.repetition.spread();
@@ -294,17 +323,40 @@ SimulationSummary simulate_selection(const SimulationSettings& settings) {
     for (std::size_t i = 0; i < out.pooled.size(); ++i) out.pooled[i] += t.pooled[i];
   }
   out.entropy_pooled = entropy_bits(out.pooled);
-  out.batches = n_batches;
-  if (n_batches >= 2) {
-    out.batch_entropy_mean_q025 = quantile7(batch_mean, 0.025);
-    out.batch_entropy_mean_q975 = quantile7(batch_mean, 0.975);
-    out.batch_entropy_pooled_q025 = quantile7(batch_pooled, 0.025);
-    out.batch_entropy_pooled_q975 = quantile7(batch_pooled, 0.975);
+  out.batches = sh.plan.n_batches;
+  if (sh.plan.n_batches >= 2) {
+    out.batch_entropy_mean_q025 = quantile7(sh.batch_mean, 0.025);
+    out.batch_entropy_mean_q975 = quantile7(sh.batch_mean, 0.975);
+    out.batch_entropy_pooled_q025 = quantile7(sh.batch_pooled, 0.025);
+    out.batch_entropy_pooled_q975 = quantile7(sh.batch_pooled, 0.975);
   } else {
     out.batch_entropy_mean_q025 = out.batch_entropy_mean_q975 = kNaN;
     out.batch_entropy_pooled_q025 = out.batch_entropy_pooled_q975 = kNaN;
   }
   return out;
+}
+
+}  // namespace
+
+SimulationSummary simulate_selection(const SimulationSettings& settings) {
+  validate(settings);
+  SharedRuns sh(settings, plan_chunks(settings));
+
+  unsigned threads = settings.threads;
+  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+  threads = static_cast<unsigned>(std::min<std::uint64_t>(threads, sh.plan.n_chunks));
+
+  std::vector<ThreadOut> outs(threads);
+  if (threads <= 1) {
+    run_chunks(sh, outs[0]);
+  } else {
+    std::vector<std::thread> pool;
+    pool.reserve(threads);
+    for (unsigned t = 0; t < threads; ++t)
+      pool.emplace_back([&sh, &outs, t] { run_chunks(sh, outs[t]); });
+    for (auto& th : pool) th.join();
+  }
+  return summarise(sh, outs, threads);
 }
 
 void for_each_run(const SimulationSettings& settings,

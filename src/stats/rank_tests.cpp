@@ -220,6 +220,159 @@ void append_note(std::string& note, const std::string& text) {
   note += text;
 }
 
+// The fields every one-sample result carries, whatever the outcome: the call and the sample.
+TestResult one_sample_result(const std::string& test, const TestOptions& options, double mu,
+                             const std::vector<double>& x) {
+  TestResult r;
+  r.test = test;
+  r.alternative = options.alternative;
+  r.conf_level = options.conf_level;
+  r.mu = mu;
+  r.n1 = x.size();
+  const SampleDescription desc = describe_sample(x);
+  r.mean1 = desc.mean;
+  r.sd1 = desc.sd;
+  r.median1 = desc.median;
+  r.iqr1 = desc.iqr;
+  r.statistic_name = "V";
+  return r;
+}
+
+// The fields every two-sample result carries, whatever the outcome: the call and both samples.
+TestResult two_sample_result(const std::string& test, const TestOptions& options,
+                             const std::vector<double>& x, const std::vector<double>& y) {
+  TestResult r;
+  r.test = test;
+  r.alternative = options.alternative;
+  r.conf_level = options.conf_level;
+  r.mu = 0.0;
+  r.n1 = x.size();
+  r.n2 = y.size();
+  const SampleDescription dx = describe_sample(x);
+  const SampleDescription dy = describe_sample(y);
+  r.mean1 = dx.mean;
+  r.sd1 = dx.sd;
+  r.median1 = dx.median;
+  r.iqr1 = dx.iqr;
+  r.mean2 = dy.mean;
+  r.sd2 = dy.sd;
+  r.median2 = dy.median;
+  r.iqr2 = dy.iqr;
+  r.statistic_name = "W";
+  return r;
+}
+
+// The exact test: p from the statistic's tabulated null distribution, symmetric about `centre`.
+void exact_test(TestResult& r, const char* method, const std::vector<double>& dist, double stat,
+                double centre, Alternative alternative) {
+  r.method = method;
+  r.exact = true;
+  r.p_value = exact_p(stat, centre, alternative,
+                      [&](double q, bool lower) { return detail::tail(dist, q, lower); });
+}
+
+// Names the normal-approximation method and returns R's continuity correction for the centred
+// statistic z (0 when not asked for).
+double normal_method(TestResult& r, const char* method, double z, bool correct,
+                     Alternative alternative) {
+  r.method = method;
+  r.exact = false;
+  if (!correct) return 0.0;
+  r.method += " with continuity correction";
+  return continuity_correction(z, alternative);
+}
+
+// x - mu without the zero differences, which the signed-rank test drops (R does too).
+std::vector<double> nonzero_differences(const std::vector<double>& x, double mu) {
+  std::vector<double> d;
+  d.reserve(x.size());
+  for (double v : x)
+    if (v - mu != 0.0) d.push_back(v - mu);
+  return d;
+}
+
+// Every difference is zero: V = 0 with no variance. R's normal approximation divides by
+// sigma = 0: two-sided (and without the correction) 0/0 = NaN; one-sided with the continuity
+// correction +-0.5/0 = +-Inf, which R turns into p = 1. Match R where it gives a number, and say
+// what it means.
+void no_nonzero_difference(TestResult& r, std::size_t zeros, double mu, bool correct,
+                           Alternative alternative) {
+  r.method = "Wilcoxon signed rank test";
+  r.exact = false;
+  r.statistic = 0.0;
+  if (correct && alternative != Alternative::two_sided) {
+    r.method += " with continuity correction";
+    r.p_value = 1.0;
+    r.note = fmt::format(
+        "all {} differences from mu = {} are zero: V = 0 has no variance; R's wilcox.test also "
+        "returns p = 1 here (its continuity correction over zero variance gives z = {}Inf), "
+        "which is no evidence either way",
+        zeros, mu, alternative == Alternative::less ? "+" : "-");
+    return;
+  }
+  r.computed = false;
+  r.note = fmt::format(
+      "all {} differences from mu = {} are zero: nothing to rank; R's wilcox.test returns V = 0 "
+      "with p-value NaN (p = 1 only for a one-sided test with the continuity correction)",
+      zeros, mu);
+}
+
+struct SignedRankSum {
+  detail::Ranks ranks;  // of |d|
+  double v = 0.0;       // sum of the ranks of the positive differences
+};
+
+SignedRankSum signed_rank_sum(const std::vector<double>& d) {
+  const std::size_t n = d.size();
+  std::vector<double> absd(n);
+  for (std::size_t i = 0; i < n; ++i) absd[i] = std::fabs(d[i]);
+  SignedRankSum s{average_ranks(absd), 0.0};
+  for (std::size_t i = 0; i < n; ++i)
+    if (d[i] > 0.0) s.v += s.ranks.rank[i];
+  return s;
+}
+
+struct RankSum {
+  detail::Ranks ranks;  // of x then y, pooled
+  double w = 0.0;       // Mann-Whitney W: x's rank sum less its minimum nx (nx + 1) / 2
+};
+
+RankSum rank_sum(const std::vector<double>& x, const std::vector<double>& y) {
+  std::vector<double> pooled(x);
+  pooled.insert(pooled.end(), y.begin(), y.end());
+  RankSum s{average_ranks(pooled), 0.0};
+  const double nx = static_cast<double>(x.size());
+  double x_ranks = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) x_ranks += s.ranks.rank[i];
+  s.w = x_ranks - nx * (nx + 1.0) / 2.0;
+  return s;
+}
+
+// Every value of x and y is tied, so W has no variance. As in the signed-rank test: R gives NaN,
+// except p = 1 one-sided with the correction.
+void all_values_tied(TestResult& r, double w, std::size_t m, std::size_t n, bool correct,
+                     Alternative alternative) {
+  const double nx = static_cast<double>(m);
+  const double ny = static_cast<double>(n);
+  r.statistic = w;
+  if (correct && alternative != Alternative::two_sided) {
+    r.p_value = 1.0;
+    r.note = fmt::format(
+        "all {} values of x and y are tied: W = {} has no variance; R's wilcox.test also "
+        "returns p = 1 here (its continuity correction over zero variance gives z = {}Inf), "
+        "which is no evidence either way",
+        m + n, w, alternative == Alternative::less ? "+" : "-");
+    r.rank_biserial = 2.0 * w / (nx * ny) - 1.0;
+    return;
+  }
+  r.computed = false;
+  r.note = fmt::format(
+      "all {} values of x and y are tied: the rank-sum statistic has no variance; R's "
+      "wilcox.test returns W = {} with p-value NaN (p = 1 only for a one-sided test with the "
+      "continuity correction)",
+      m + n, w);
+}
+
 }  // namespace
 
 TestResult wilcoxon_signed_rank(std::span<const double> x_in, double mu, const TestOptions& options,
@@ -236,57 +389,17 @@ TestResult wilcoxon_signed_rank(std::span<const double> x_in, double mu, const T
         test, "Wilcoxon signed rank test",
         "no non-missing observations (R: \"not enough (non-missing) 'x' observations\")");
 
-  std::vector<double> d;
-  d.reserve(x.size());
-  for (double v : x)
-    if (v - mu != 0.0) d.push_back(v - mu);
+  const std::vector<double> d = nonzero_differences(x, mu);
   const std::size_t zeros = x.size() - d.size();
   const std::size_t n = d.size();
-
-  TestResult r;
-  r.test = test;
-  r.alternative = options.alternative;
-  r.conf_level = options.conf_level;
-  r.mu = mu;
-  r.n1 = x.size();
-  const SampleDescription desc = describe_sample(x);
-  r.mean1 = desc.mean;
-  r.sd1 = desc.sd;
-  r.median1 = desc.median;
-  r.iqr1 = desc.iqr;
-  r.statistic_name = "V";
-
+  TestResult r = one_sample_result(test, options, mu, x);
   if (n == 0) {
-    // V = 0 with no variance. R's normal approximation divides by sigma = 0: two-sided (and
-    // without the correction) 0/0 = NaN; one-sided with the continuity correction +-0.5/0 = +-Inf,
-    // which R turns into p = 1. Match R where it gives a number, and say what it means.
-    r.method = "Wilcoxon signed rank test";
-    r.exact = false;
-    r.statistic = 0.0;
-    if (correct && options.alternative != Alternative::two_sided) {
-      r.method += " with continuity correction";
-      r.p_value = 1.0;
-      r.note = fmt::format(
-          "all {} differences from mu = {} are zero: V = 0 has no variance; R's wilcox.test also "
-          "returns p = 1 here (its continuity correction over zero variance gives z = {}Inf), "
-          "which is no evidence either way",
-          zeros, mu, options.alternative == Alternative::less ? "+" : "-");
-      return r;
-    }
-    r.computed = false;
-    r.note = fmt::format(
-        "all {} differences from mu = {} are zero: nothing to rank; R's wilcox.test returns V = 0 "
-        "with p-value NaN (p = 1 only for a one-sided test with the continuity correction)",
-        zeros, mu);
+    no_nonzero_difference(r, zeros, mu, correct, options.alternative);
     return r;
   }
 
-  std::vector<double> absd(n);
-  for (std::size_t i = 0; i < n; ++i) absd[i] = std::fabs(d[i]);
-  const detail::Ranks ranks = average_ranks(absd);
-  double v = 0.0;
-  for (std::size_t i = 0; i < n; ++i)
-    if (d[i] > 0.0) v += ranks.rank[i];
+  const SignedRankSum s = signed_rank_sum(d);
+  const double v = s.v;
   const double nd = static_cast<double>(n);
   const double total = nd * (nd + 1.0) / 2.0;
   r.statistic = v;
@@ -294,27 +407,19 @@ TestResult wilcoxon_signed_rank(std::span<const double> x_in, double mu, const T
 
   const bool want_exact = exact.value_or(n < 50);
   const bool too_large = n > detail::max_exact_signrank_n;
-  if (want_exact && !ranks.ties && zeros == 0 && !too_large) {
-    r.method = "Wilcoxon signed rank exact test";
-    r.exact = true;
-    const std::vector<double> dist = detail::signrank_distribution(n);
-    r.p_value = exact_p(v, nd * (nd + 1.0) / 4.0, options.alternative,
-                        [&](double q, bool lower) { return detail::tail(dist, q, lower); });
+  if (want_exact && !s.ranks.ties && zeros == 0 && !too_large) {
+    exact_test(r, "Wilcoxon signed rank exact test", detail::signrank_distribution(n), v,
+               nd * (nd + 1.0) / 4.0, options.alternative);
   } else {
-    r.method = "Wilcoxon signed rank test";
-    r.exact = false;
-    double z = v - nd * (nd + 1.0) / 4.0;
-    const double sigma = std::sqrt(nd * (nd + 1.0) * (2.0 * nd + 1.0) / 24.0 - ranks.tie_sum / 48.0);
-    double correction = 0.0;
-    if (correct) {
-      correction = continuity_correction(z, options.alternative);
-      r.method += " with continuity correction";
-    }
-    z = (z - correction) / sigma;
-    r.p_value = normal_p(z, options.alternative);
-    if (want_exact && ranks.ties) append_note(r.note, "cannot compute exact p-value with ties");
+    const double z = v - nd * (nd + 1.0) / 4.0;
+    const double sigma =
+        std::sqrt(nd * (nd + 1.0) * (2.0 * nd + 1.0) / 24.0 - s.ranks.tie_sum / 48.0);
+    const double correction =
+        normal_method(r, "Wilcoxon signed rank test", z, correct, options.alternative);
+    r.p_value = normal_p((z - correction) / sigma, options.alternative);
+    if (want_exact && s.ranks.ties) append_note(r.note, "cannot compute exact p-value with ties");
     if (want_exact && zeros > 0) append_note(r.note, "cannot compute exact p-value with zeroes");
-    if (want_exact && too_large && !ranks.ties && zeros == 0)
+    if (want_exact && too_large && !s.ranks.ties && zeros == 0)
       append_note(r.note, fmt::format("exact distribution not computed for n = {} > {}; normal "
                                       "approximation used",
                                       n, detail::max_exact_signrank_n));
@@ -339,79 +444,31 @@ TestResult mann_whitney(std::span<const double> x_in, std::span<const double> y_
                                       "no non-missing observations in y (R: \"not enough 'y' "
                                       "observations\")");
 
-  TestResult r;
-  r.test = test;
-  r.alternative = options.alternative;
-  r.conf_level = options.conf_level;
-  r.mu = 0.0;
-  r.n1 = x.size();
-  r.n2 = y.size();
-  const SampleDescription dx = describe_sample(x);
-  const SampleDescription dy = describe_sample(y);
-  r.mean1 = dx.mean;
-  r.sd1 = dx.sd;
-  r.median1 = dx.median;
-  r.iqr1 = dx.iqr;
-  r.mean2 = dy.mean;
-  r.sd2 = dy.sd;
-  r.median2 = dy.median;
-  r.iqr2 = dy.iqr;
-  r.statistic_name = "W";
-
-  std::vector<double> pooled(x);
-  pooled.insert(pooled.end(), y.begin(), y.end());
-  const detail::Ranks ranks = average_ranks(pooled);
+  TestResult r = two_sample_result(test, options, x, y);
+  const RankSum s = rank_sum(x, y);
+  const double w = s.w;
   const double nx = static_cast<double>(x.size());
   const double ny = static_cast<double>(y.size());
-  double rank_sum = 0.0;
-  for (std::size_t i = 0; i < x.size(); ++i) rank_sum += ranks.rank[i];
-  const double w = rank_sum - nx * (nx + 1.0) / 2.0;
 
   const bool want_exact = exact.value_or(x.size() < 50 && y.size() < 50);
   const double work = nx * ny * nx * ny / 4.0;
   const bool too_large = (x.size() >= 50 || y.size() >= 50) && work > detail::max_exact_ranksum_work;
-  if (want_exact && !ranks.ties && !too_large) {
-    r.method = "Wilcoxon rank sum exact test";
-    r.exact = true;
-    const std::vector<double> dist = detail::ranksum_distribution(x.size(), y.size());
-    r.p_value = exact_p(w, nx * ny / 2.0, options.alternative,
-                        [&](double q, bool lower) { return detail::tail(dist, q, lower); });
+  if (want_exact && !s.ranks.ties && !too_large) {
+    exact_test(r, "Wilcoxon rank sum exact test", detail::ranksum_distribution(x.size(), y.size()),
+               w, nx * ny / 2.0, options.alternative);
   } else {
-    r.method = "Wilcoxon rank sum test";
-    r.exact = false;
-    double z = w - nx * ny / 2.0;
-    const double sigma = std::sqrt((nx * ny / 12.0) *
-                                   ((nx + ny + 1.0) - ranks.tie_sum / ((nx + ny) * (nx + ny - 1.0))));
-    double correction = 0.0;
-    if (correct) {
-      correction = continuity_correction(z, options.alternative);
-      r.method += " with continuity correction";
-    }
+    const double z = w - nx * ny / 2.0;
+    const double sigma = std::sqrt(
+        (nx * ny / 12.0) * ((nx + ny + 1.0) - s.ranks.tie_sum / ((nx + ny) * (nx + ny - 1.0))));
+    const double correction =
+        normal_method(r, "Wilcoxon rank sum test", z, correct, options.alternative);
     if (!(sigma > 0.0)) {
-      // As in the signed-rank test: R gives NaN, except p = 1 one-sided with the correction.
-      r.statistic = w;
-      if (correct && options.alternative != Alternative::two_sided) {
-        r.p_value = 1.0;
-        r.note = fmt::format(
-            "all {} values of x and y are tied: W = {} has no variance; R's wilcox.test also "
-            "returns p = 1 here (its continuity correction over zero variance gives z = {}Inf), "
-            "which is no evidence either way",
-            pooled.size(), w, options.alternative == Alternative::less ? "+" : "-");
-        r.rank_biserial = 2.0 * w / (nx * ny) - 1.0;
-        return r;
-      }
-      r.computed = false;
-      r.note = fmt::format(
-          "all {} values of x and y are tied: the rank-sum statistic has no variance; R's "
-          "wilcox.test returns W = {} with p-value NaN (p = 1 only for a one-sided test with the "
-          "continuity correction)",
-          pooled.size(), w);
+      all_values_tied(r, w, x.size(), y.size(), correct, options.alternative);
       return r;
     }
-    z = (z - correction) / sigma;
-    r.p_value = normal_p(z, options.alternative);
-    if (want_exact && ranks.ties) append_note(r.note, "cannot compute exact p-value with ties");
-    if (want_exact && too_large && !ranks.ties)
+    r.p_value = normal_p((z - correction) / sigma, options.alternative);
+    if (want_exact && s.ranks.ties) append_note(r.note, "cannot compute exact p-value with ties");
+    if (want_exact && too_large && !s.ranks.ties)
       append_note(r.note, fmt::format("exact distribution not computed for n1 = {}, n2 = {}; normal "
                                       "approximation used",
                                       x.size(), y.size()));

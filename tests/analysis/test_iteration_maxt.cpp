@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "feint/analysis/study_findings.hpp"
-#include "feint/report/table1.hpp"
+#include "feint/tables/table1.hpp"
 
 using namespace feint;
 using analysis::Finding;
@@ -27,11 +27,11 @@ analysis::StudyResults study(const std::vector<Row>& rows) {
   r.scores.metrics = {"error"};
   r.scores.has_condition = true;
   for (const auto& row : rows) r.scores.records.push_back({row.participant, row.condition, row.iteration, {row.error}, 0});
-  report::Table1Options o;
+  tables::Table1Options o;
   o.metrics = {{"error", 0.5}};
   o.compare = std::make_pair(std::string("a"), std::string("b"));
   o.equivalence_by_evidence = true;
-  r.comparison = report::build_table1(r.scores, o);
+  r.comparison = tables::build_table1(r.scores, o);
   return r;
 }
 

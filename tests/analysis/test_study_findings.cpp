@@ -17,8 +17,8 @@
 #include "feint/analysis/study_findings.hpp"
 #include "feint/models/exposure.hpp"
 #include "feint/models/model_relabelling.hpp"
-#include "feint/report/model_render.hpp"
-#include "feint/report/writers.hpp"
+#include "feint/tables/model.hpp"
+#include "feint/tables/writers.hpp"
 #include "feint/stats/p_adjust.hpp"
 
 namespace fs = std::filesystem;
@@ -46,13 +46,13 @@ const Finding* by_id(const std::vector<Finding>& fs, const std::string& id) {
   return nullptr;
 }
 
-const report::MetricModel& metric_model(const report::ModelAnalysis& a, const std::string& metric) {
+const tables::MetricModel& metric_model(const tables::ModelAnalysis& a, const std::string& metric) {
   for (const auto& m : a.models)
     if (m.metric == metric) return m;
   throw std::runtime_error("no model of " + metric);
 }
 
-const models::AnovaTerm& term(const report::MetricModel& m, const std::string& name) {
+const models::AnovaTerm& term(const tables::MetricModel& m, const std::string& name) {
   for (const auto& t : m.fit.anova)
     if (t.term == name) return t;
   throw std::runtime_error("no term " + name);
@@ -126,9 +126,9 @@ TEST(StudyFindings, DemoMixedModelFindingsCarryTheModelTablesNumbers) {
     const Finding* ft = by_id(r.findings, "H1-model-trend-" + metric);
     ASSERT_TRUE(fi && fc && ft) << metric;
     // The F statistics are the model table's APA strings, in the table and in the sentence.
-    const std::string table = report::render_model(*r.model, report::OutputFormat::markdown);
-    EXPECT_EQ(fi->statistics, report::anova_apa(inter));
-    EXPECT_EQ(fc->statistics, report::anova_apa(cond));
+    const std::string table = tables::render_model(*r.model, tables::OutputFormat::markdown);
+    EXPECT_EQ(fi->statistics, tables::anova_apa(inter));
+    EXPECT_EQ(fc->statistics, tables::anova_apa(cond));
     EXPECT_TRUE(contains(fi->sentence, fi->statistics));
     EXPECT_TRUE(contains(fi->sentence, fmt::format("{:.2f}", inter.f)));
     EXPECT_TRUE(contains(table, fmt::format("{:.2f}", inter.f))) << table.substr(0, 600);
@@ -146,7 +146,7 @@ TEST(StudyFindings, DemoMixedModelFindingsCarryTheModelTablesNumbers) {
     EXPECT_TRUE(contains(ft->sentence, fmt::format("b = {:.4f} per iteration, 95% CI [{:.4f}, {:.4f}]",
                                                    *c.test.estimate, *c.test.conf_low, *c.test.conf_high)))
         << ft->sentence;
-    const std::string csv = report::render_model(*r.trend_model, report::OutputFormat::csv);
+    const std::string csv = tables::render_model(*r.trend_model, tables::OutputFormat::csv);
     EXPECT_TRUE(contains(csv, name)) << csv.substr(0, 400);
     expect_rule(*ft, *adj[2]);
   }
@@ -161,7 +161,7 @@ TEST(StudyFindings, DemoMixedModelFindingsCarryTheModelTablesNumbers) {
 TEST(StudyFindings, DemoExposureFindingsPerStrategyEqualTheModel) {
   const auto& r = demo();
   ASSERT_FALSE(r.figures.labels.empty()) << r.figures.labels_note;
-  // An independent join: the strategy column of scores.csv, read back by report::load_strategies.
+  // An independent join: the strategy column of scores.csv, read back by tables::load_strategies.
   const fs::path dir = fs::temp_directory_path() / fmt::format("feint-sf-{}", ::testing::UnitTest::GetInstance()->random_seed());
   fs::create_directories(dir);
   const fs::path file = dir / "scores.csv";
@@ -169,7 +169,7 @@ TEST(StudyFindings, DemoExposureFindingsPerStrategyEqualTheModel) {
   io::ScoresOptions so;
   so.metrics = {"error"};
   const io::ScoresTable scores = io::load_scores(file.string(), so);
-  const auto strategy = report::load_strategies(scores, so);
+  const auto strategy = tables::load_strategies(scores, so);
   fs::remove_all(dir);
   std::vector<std::string> part, cond;
   std::vector<double> it, y;
@@ -195,7 +195,7 @@ TEST(StudyFindings, DemoExposureFindingsPerStrategyEqualTheModel) {
                                                   *d.test.conf_low, *d.test.conf_high)))
         << f->sentence;
     EXPECT_TRUE(contains(f->sentence, fmt::format("adaptive: {:.3f} per exposure", *e.slopes[i].test.estimate)));
-    EXPECT_TRUE(contains(f->statistics, "adjusted " + report::apa_p(*adj[i]))) << f->statistics;
+    EXPECT_TRUE(contains(f->statistics, "adjusted " + tables::apa_p(*adj[i]))) << f->statistics;
     // the rule of every Welch test with a Bayes factor (docs/findings.md)
     ASSERT_TRUE(d.test.log_bf10.has_value());
     const double bf10 = std::exp(*d.test.log_bf10);
@@ -205,7 +205,7 @@ TEST(StudyFindings, DemoExposureFindingsPerStrategyEqualTheModel) {
     EXPECT_EQ(f->source, "exposure");  // the report's condition x exposure table
   }
   // That table holds the same slopes and differences, and renders the Holm-adjusted p.
-  const report::ExposureTable* table = nullptr;
+  const tables::ExposureTable* table = nullptr;
   for (const auto& t : r.exposure)
     if (t.metric == "error") table = &t;
   ASSERT_TRUE(table);
@@ -214,10 +214,10 @@ TEST(StudyFindings, DemoExposureFindingsPerStrategyEqualTheModel) {
     EXPECT_NEAR(*table->result.differences[i].test.estimate, *e.differences[i].test.estimate, 1e-12);
     EXPECT_NEAR(*table->result.slopes[i].test.estimate, *e.slopes[i].test.estimate, 1e-12);
   }
-  const std::string csv = report::render_exposure(r.exposure, report::OutputFormat::csv);
+  const std::string csv = tables::render_exposure(r.exposure, tables::OutputFormat::csv);
   EXPECT_TRUE(contains(csv, "metric,strategy,condition,estimate,std_error,df,statistic,p_value,p_adjusted"));
   EXPECT_TRUE(contains(csv, "error,exaggerating,adaptive-random,")) << csv;
-  const std::string text = report::render_exposure(r.exposure, report::OutputFormat::markdown);
+  const std::string text = tables::render_exposure(r.exposure, tables::OutputFormat::markdown);
   EXPECT_TRUE(contains(text, "Metric: error")) << text;
   EXPECT_TRUE(contains(text, "p Holm")) << text;
 }
@@ -251,18 +251,18 @@ analysis::StudyResults simulated(unsigned seed, double slope_adaptive, double ex
     }
   }
   r.table1.options.test.conf_level = 0.95;
-  report::ModelOptions o;
+  tables::ModelOptions o;
   o.metrics = {"error"};
-  r.model = report::build_model_analysis(r.scores, o);
+  r.model = tables::build_model_analysis(r.scores, o);
   o.trend = true;
-  r.trend_model = report::build_model_analysis(r.scores, o);
+  r.trend_model = tables::build_model_analysis(r.scores, o);
   return r;
 }
 
 }  // namespace
 
 TEST(StudyFindings, SimulatedPlantedSlopeDifferenceIsFoundAndTheNullIsNeverEquivalence) {
-  const std::vector<report::MetricSpec> metrics = {{"error", 0.5}};
+  const std::vector<tables::MetricSpec> metrics = {{"error", 0.5}};
   // Planted: the adaptive error rises 0.03 per iteration, the random one is flat.
   const auto planted = simulated(7, 0.03, 0.0);
   const auto fs = analysis::study_findings(planted, metrics);
@@ -299,7 +299,7 @@ TEST(StudyFindings, SimulatedPlantedSlopeDifferenceIsFoundAndTheNullIsNeverEquiv
 }
 
 TEST(StudyFindings, SimulatedExposureEffectInOneConditionIsFound) {
-  const std::vector<report::MetricSpec> metrics = {{"error", 0.5}};
+  const std::vector<tables::MetricSpec> metrics = {{"error", 0.5}};
   // Strategy A wears off under random (-0.06 per earlier exposure), not under adaptive.
   const auto r = simulated(11, 0.0, 0.06, 20);
   const auto fs = analysis::study_findings(r, metrics);

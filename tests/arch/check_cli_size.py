@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Fails when src/cli has more than LIMIT lines (issue 19: the command line stays thin).
+"""Fails when src/cli has more than LIMIT lines (the command line stays thin).
 
 The command line only parses options and calls the library (docs/architecture.md); logic and
 rendering belong to the library modules. Counts every file of src/cli as `wc -l src/cli/*` does

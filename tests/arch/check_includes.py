@@ -10,8 +10,8 @@ import os
 import re
 import sys
 
-ORDER = ["base", "io", "metrics", "stats", "models", "sim", "report", "analysis", "plot",
-         "publish", "collect", "cli"]
+ORDER = ["base", "io", "metrics", "stats", "models", "sim", "tables", "analysis", "plot",
+         "publish", "collect", "commands", "cli"]
 RANK = {m: i for i, m in enumerate(ORDER)}
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]feint/([^">]+)[">]', re.M)
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The study report in a real browser (issue #9).
+"""The study report in a real browser.
 
 Runs `feint analyze STUDY -o WORK/out`, then opens WORK/out/report.html from disk in Debian's
 headless Chromium (driven by chromedriver over WebDriver, on 127.0.0.1 only) with the network

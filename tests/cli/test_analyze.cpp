@@ -200,7 +200,7 @@ TEST(Analyze, RejectsBadStudiesAndSettingsWithDistinctExitCodes) {
   EXPECT_NE(r.err.find("expected two conditions A,B"), std::string::npos) << r.err;
 }
 
-// The JZS prior scale from feint.toml and the command line (issue 15): recorded in settings.toml,
+// The JZS prior scale from feint.toml and the command line: recorded in settings.toml,
 // applied to the tables' Bayes factors, and refused when it is not a positive number or a name.
 TEST(Analyze, BayesFactorPriorScaleFromTheSettingsFileAndTheCommandLine) {
   TempDir dir;

@@ -1,4 +1,4 @@
-// The study pipeline end to end (issue 19): the settings block that the report prints is a
+// The study pipeline end to end: the settings block that the report prints is a
 // feint.toml that feint accepts and that reproduces the run byte for byte; `analyze` without -o
 // says where it wrote; `plot` states its true defaults and refuses --apa.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// `feint analyze` reads a real survey export (issue #8): the questionnaire options of feint likert
+// `feint analyze` reads a real survey export: the questionnaire options of feint likert
 // are settings of feint.toml and options of feint analyze, and preview/unfinished rows are not
 // participants.
 #include <gtest/gtest.h>

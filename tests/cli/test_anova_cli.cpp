@@ -242,7 +242,7 @@ TEST(AnovaCli, LatexOfAnovaAndPowerCompilesInAPaper) {
 
 namespace {
 
-// Issue #18: when every participant of a condition has a missing value, `feint anova` stops
+// When every participant of a condition has a missing value, `feint anova` stops
 // (exit 65, as afex) instead of silently running the one-way ANOVA of the other condition;
 // --drop-empty-conditions asks for that analysis and the note says what was dropped.
 TEST(AnovaCli, ConditionWithEveryParticipantExcludedStopsUnlessAsked) {

@@ -1,4 +1,4 @@
-// The command line says what is wrong (issue #8): `feint help`, unknown commands, R's spellings of
+// The command line says what is wrong: `feint help`, unknown commands, R's spellings of
 // --p-adjust, `-o` everywhere, one exit code for a condition the data do not have, --paired on a
 // between-subjects design, and header-only inputs named in the message.
 #include <gtest/gtest.h>
@@ -157,7 +157,7 @@ TEST(LatexOptions, LabelCaptionAndWideAreTheUsers) {
   EXPECT_NE(r.err.find("--label"), std::string::npos) << r.err;
 }
 
-// anova, model and power (issue #10's commands) take the same options as table and likert.
+// anova, model and power (the model commands) take the same options as table and likert.
 TEST(LatexOptions, AnovaModelAndPowerTakeLabelCaptionAndWide) {
   const fs::path golden = fs::path(FEINT_SOURCE_DIR) / "tests" / "golden" / "models";
   // Two metrics (error and a made-up confusion), as the commands' defaults ask for.

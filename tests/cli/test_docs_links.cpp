@@ -1,4 +1,4 @@
-// The user's documentation points only to files a clone has (issue #8): README.md, docs/*.md and
+// The user's documentation points only to files a clone has: README.md, docs/*.md and
 // every `--help` name no file outside the repository (the specification in ../shared is not
 // shipped), and every page they name exists. The README says where the binary is.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Input files are sacred (issue #8): no command writes over one of its inputs, whatever name the
+// Input files are sacred: no command writes over one of its inputs, whatever name the
 // output is given (the same path, a symbolic link, a hard link), and `feint analyze` replaces its
 // output folder as one unit, never mixing runs and never touching the study.
 #include <gtest/gtest.h>
@@ -212,12 +212,12 @@ TEST(InputsAreSacred, AnalyzeRecordsTheFinalScoresPathInTheSidecar) {
   const std::string sidecar = read_text(out / "scores.csv.meta.json");
   EXPECT_EQ(sidecar.find("feint-staging"), std::string::npos) << sidecar;
   // The scores file is named relative to the sidecar's folder (the output folder): true wherever
-  // the folder is moved, and no absolute path (issue 19).
+  // the folder is moved, and no absolute path.
   EXPECT_NE(sidecar.find("\"output\": \"scores.csv\""), std::string::npos) << sidecar;
   EXPECT_EQ(sidecar.find(out.string()), std::string::npos) << sidecar;
 }
 
-// The commands added for the observer model (issues #16, #17) never write over what they read: a
+// The commands added for the observer model never write over what they read: a
 // pilot, an observer-parameter file, the logs of a fit, a path file.
 TEST(InputsAreSacred, ObserverCommandsRefuseToWriteOverTheirInputs) {
   feint::test::TempDir dir;

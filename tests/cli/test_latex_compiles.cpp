@@ -1,4 +1,4 @@
-// The LaTeX tables must compile as fragments of a paper (issue #3). Needs pdflatex with booktabs
+// The LaTeX tables must compile as fragments of a paper. Needs pdflatex with booktabs
 // (Debian: texlive-latex-base, texlive-latex-recommended); skips with a message where TeX is
 // absent, as it is on CI (TeX is not a dependency of feint).
 #include <gtest/gtest.h>

@@ -252,8 +252,8 @@ TEST(LikertCli, ListOptionsAreRepeatableAndDoNotSwallowTheFile) {
       << r.out;
 }
 
-// --bf-prior-scale (issue 15): accepted by name or number, stated in the note, and changes the
-// t-tests' Bayes factors (the values themselves: tests/report/test_likert.cpp, against the exact
+// --bf-prior-scale: accepted by name or number, stated in the note, and changes the
+// t-tests' Bayes factors (the values themselves: tests/tables/test_likert.cpp, against the exact
 // JZS integral); bad scales are usage errors that name the option.
 TEST(LikertCli, BayesFactorPriorScaleIsSettable) {
   const auto medium = run_feint("likert " + data("wide.csv") + " --format csv");

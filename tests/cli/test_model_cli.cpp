@@ -267,7 +267,7 @@ TEST(ModelCli, LatexCompilesAsAFragmentOfAPaperWithoutOverfullLines) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Issue #18: degenerate designs exit 65 with a message (never a crash), and scale invariance.
+// Degenerate designs exit 65 with a message (never a crash), and scale invariance.
 
 std::string fmt_g17(double v) {
   char buf[40];
@@ -394,7 +394,7 @@ TEST(ModelCli, RandomSlopeWithTwoTrialsPerParticipantExits65) {
 // The demo study, scored, with its metrics multiplied by 1e-9 ... 1e6: F, df and p of every term
 // of every model `feint analyze` and `feint model` fit on it (iteration as a factor, --trend,
 // --trend --random-slope; error, and confusion as scored by default and by `feint analyze` on the
-// demo) unchanged to 1e-8 (issue #18), Sum Sq scaled by c^2 (at 1e-9 feint exited 70 before issue
+// demo) unchanged to 1e-8, Sum Sq scaled by c^2 (at 1e-9 feint exited 70 before issue
 // #18). Measured: ~1e-11 (exact derivatives and a Newton-polished optimum, docs/mixed-model.md);
 // lmerTest's df at 1e-6 are off by a factor of 1000.
 TEST(ModelCli, DemoIsScaleInvariantFrom1e9To1e6) {

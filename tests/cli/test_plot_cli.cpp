@@ -1,4 +1,4 @@
-// feint plot and the figures + report.html of feint analyze (issue #9), end to end: every figure
+// feint plot and the figures + report.html of feint analyze, end to end: every figure
 // renders to PDF and SVG at both widths, the SVG parses as XML, a paper that \includegraphics
 // every PDF compiles without warnings (where pdflatex is installed), bad options are usage errors
 // and the inputs are never written.

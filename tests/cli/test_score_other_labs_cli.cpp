@@ -1,4 +1,4 @@
-// Issue 18 end to end: `feint score` on other labs' exports (tests/data/labs/), read right with
+// `feint score` on other labs' exports (tests/data/labs/), read right with
 // the options docs/formats.md names, or refused (exit 65/64) with a message naming the option.
 #include <gtest/gtest.h>
 

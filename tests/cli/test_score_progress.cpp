@@ -1,5 +1,5 @@
 // The progress line of `feint score`: drawn on stderr when it is a terminal (after the first
-// second), never when it is not (issue #2). `script` (util-linux, Essential in Debian) gives the
+// second), never when it is not. `script` (util-linux, Essential in Debian) gives the
 // process a pseudo-terminal.
 #include <gtest/gtest.h>
 

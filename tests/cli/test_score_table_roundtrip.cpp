@@ -1,4 +1,4 @@
-// Issue 8: the round trip `feint score` -> `feint table` works for every file score accepts.
+// The round trip `feint score` -> `feint table` works for every file score accepts.
 // Logs are generated with varied (valid) spellings: delimiters, column order and case, extra
 // columns, with and without condition and pad_speed columns, quoted ids with delimiters and
 // quotes, iterations written `01`/`+1`/` 2 `, targets as words and numbers, exponents, CRLF, a BOM,

@@ -1,4 +1,4 @@
-// Issue 8 end to end: `feint score` on real-lab quirks (docs/scoring.md "Reading real lab files").
+// `feint score` on real-lab quirks (docs/scoring.md "Reading real lab files").
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -42,7 +42,7 @@ TEST(ScoreTrustCli, TimeUnitMsConvertsAndASecondsReadingOfMsWarnsOnce) {
   EXPECT_NE(read_text(out).find(",5,4,0.46296296296296"), std::string::npos) << read_text(out);
   EXPECT_NE(read_text(out + ".meta.json").find("\"time_unit\": \"ms\""), std::string::npos);
 
-  // Read as seconds, these 4 s trials last 4000 s: they cannot be seconds (issue 18): exit 65,
+  // Read as seconds, these 4 s trials last 4000 s: they cannot be seconds: exit 65,
   // no table, the message names the file, line, column and the option.
   const auto refused = (d.path() / "refused.csv").string();
   r = run_feint("score " + shell_quote(log) + " -o " + shell_quote(refused));

@@ -241,7 +241,7 @@ TEST(TableCli, UnreadableInputExits74) {
   EXPECT_EQ(r.exit_code, 74) << r.err;
 }
 
-// --bf-prior-scale (issue 15): the JZS Bayes factors at another Cauchy scale r, against the exact
+// --bf-prior-scale: the JZS Bayes factors at another Cauchy scale r, against the exact
 // integral of the definition (tests/golden/bayes/make_bf_prior_golden.R, rel.tol 1e-12) at r =
 // sqrt(2)/2, 1, sqrt(2) and 0.5, for every test of the table; the note names the scale.
 TEST(TableCli, BayesFactorPriorScaleIsSettableAndMatchesTheExactIntegral) {

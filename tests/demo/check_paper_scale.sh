@@ -1,5 +1,5 @@
 #!/bin/sh
-# The shipped demo study against the paper's Table 1 (issue #17; docs/paper-scale.md):
+# The shipped demo study against the paper's Table 1 (docs/paper-scale.md):
 # score data/demo on the paper's (raw) confusion scale, then bench/paper_scale.py checks that at
 # least 30 of the paper's 40 means fall inside the demo's 95 % CIs, that no CI is more than twice
 # as wide as the paper's, and that adaptive stays above random in iterations 5-20 (error, pooled).

@@ -252,7 +252,7 @@ TEST(Json, QuotesStringsAndWritesNumbersOrNull) {
   EXPECT_EQ(feint::io::json_number(HUGE_VAL), "null");
 }
 
-// Issue 8: a blank first line (or several, or a BOM then blank lines) must not turn off
+// A blank first line (or several, or a BOM then blank lines) must not turn off
 // delimiter detection: blank lines before the header are skipped like blank lines anywhere.
 TEST(CsvReader, BlankLinesBeforeTheHeaderKeepDelimiterDetection) {
   CsvReader semi(temp_file("blank_semi.csv", "\na;b\n1,5;2\n").string());
@@ -267,7 +267,7 @@ TEST(CsvReader, BlankLinesBeforeTheHeaderKeepDelimiterDetection) {
   EXPECT_EQ(tab.header()[1], "a");
 }
 
-// Issue 18: a headerless (MATLAB) file, and column lookup that prefers the exact case.
+// A headerless (MATLAB) file, and column lookup that prefers the exact case.
 TEST(CsvReader, NoHeaderNamesColumnsByPositionOrByTheGivenNames) {
   const auto p = temp_file("noheader.csv", "1,2,3\n4,5,6\n");
   CsvOptions opt;

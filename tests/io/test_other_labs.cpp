@@ -1,4 +1,4 @@
-// Issue 18, "Files from other labs": each export that was read wrong or refused without a remedy
+// "Files from other labs": each export that was read wrong or refused without a remedy
 // is read right, or refused with a message naming the file, the row and column, and the option
 // that fixes it. The files in tests/data/labs/ imitate each lab's export.
 #include <gtest/gtest.h>

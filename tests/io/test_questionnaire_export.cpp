@@ -1,4 +1,4 @@
-// Questionnaire loader, issue #8: a real Qualtrics export (preview, test, spam and unfinished
+// Questionnaire loader: a real Qualtrics export (preview, test, spam and unfinished
 // responses are not participants), item renaming (--items name=Q5_1), and loading in memory linear
 // in the file (a long file whose items are all different must not build a rows x rows matrix).
 #include <gtest/gtest.h>

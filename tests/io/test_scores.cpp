@@ -132,7 +132,7 @@ TEST_F(ScoresFile, EmptyParticipantOrCondition) {
                 "needs its condition, or none does)");
 }
 
-// Issue 8: `feint score` on logs without a condition column writes an empty condition column;
+// `feint score` on logs without a condition column writes an empty condition column;
 // the tables read it as one condition for everybody (the score -> table round trip).
 TEST_F(ScoresFile, AConditionColumnEmptyOnEveryRowMeansNoConditions) {
   const auto p = write("s.csv", "participant,condition,iteration,error,confusion\nP1,,1,0.5,0.5\n"

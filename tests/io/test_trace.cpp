@@ -373,7 +373,7 @@ TEST(TraceReader, NumbersAreReadExactlyAsParseDouble) {
   }
 }
 
-// Issue 8: the iteration is a number, so `1` and `01` (and `+1`) are the same trial.
+// The iteration is a number, so `1` and `01` (and `+1`) are the same trial.
 TEST(TraceReader, IterationKeysAreNumbersSoOneAndZeroOneAreOneTrial) {
   const auto p = write("iter.csv", kHeader + row("P1,a,1", "right", "0", "0.5") +
                                        row("P1,a,01", "right", "1", "0.6") +
@@ -402,7 +402,7 @@ TEST(TraceRejects, AnIterationWrittenDifferentlyThatReappearsIsTheSameTrialReapp
   EXPECT_NE(msg.find("strict.csv:6: rows of this trial already appeared at "), std::string::npos) << msg;
 }
 
-// Issue 8: blank lines before the header are skipped; the delimiter is still detected.
+// Blank lines before the header are skipped; the delimiter is still detected.
 TEST(TraceReader, BlankLinesBeforeTheHeaderAreSkipped) {
   const auto p = write("blank.csv", "\n\r\n\nparticipant;iteration;target;t;pad\nP1;1;left;0;0.5\n"
                                     "P1;1;left;1;0.25\n");

@@ -1,4 +1,4 @@
-// The optional robot_x / robot_y columns of pad-trace logs (docs/formats.md, issue #16): read when
+// The optional robot_x / robot_y columns of pad-trace logs (docs/formats.md): read when
 // asked, renameable, both or neither, every value a number; ignored when not asked for.
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -176,7 +176,7 @@ TEST_F(ScoreLib, ASpecialFileIsWrittenInPlaceNeverReplaced) {
   EXPECT_TRUE((listing() == std::vector<std::string>{"log.csv", "pipe"}));
 }
 
-// Issue 8: extreme trial durations. Scores do not depend on the unit of time (metrics.md), so a
+// Extreme trial durations. Scores do not depend on the unit of time (metrics.md), so a
 // trace stretched to 1e263 s or squeezed to 1e-300 s scores as the original; a score that cannot
 // be represented (a speed beyond the largest double) rejects the trial with the reason.
 TEST_F(ScoreLib, ExtremeDurationsScoreAsTheUnscaledTrace) {
@@ -255,7 +255,7 @@ TEST_F(ScoreLib, HeaderOnlyInputNamesTheFile) {
   }
 }
 
-// Issue 8: times in milliseconds. --time-unit ms converts them to seconds (the scores equal the
+// Times in milliseconds. --time-unit ms converts them to seconds (the scores equal the
 // seconds log's), is recorded in the sidecar, and a seconds reading of a ms log warns once.
 TEST_F(ScoreLib, TimeUnitMsConvertsToSecondsAndIsRecorded) {
   const double t[] = {0, 300, 1000, 2000, 4000};  // example E in ms
@@ -286,7 +286,7 @@ TEST_F(ScoreLib, TimeUnitMsConvertsToSecondsAndIsRecorded) {
   EXPECT_NE(read(out + ".meta.json").find("\"time_unit\": \"ms\""), std::string::npos);
 
   // The same log read as seconds: a 4000 s trial cannot be seconds (over 20 minutes): refused,
-  // naming the file, line, column and the option (issue 18).
+  // naming the file, line, column and the option.
   got.clear();
   ScoreSettings secs;
   secs.on_warning = st.on_warning;
@@ -337,7 +337,7 @@ TEST_F(ScoreLib, TimeUnitMsOnALogInSecondsWarns) {
   EXPECT_NE(warnings[0].find("median trial lasts 0.004 s (2 trials"), std::string::npos) << warnings[0];
 }
 
-// Issue 8: the output and its sidecar are replaced as one unit. Two runs writing the same output
+// The output and its sidecar are replaced as one unit. Two runs writing the same output
 // at once (threads here; the lock is flock(2) on the folder, so processes behave the same) must
 // always leave one run's scores beside the same run's sidecar.
 TEST_F(ScoreLib, ConcurrentRunsNeverPairOneRunsScoresWithTheOthersSidecar) {

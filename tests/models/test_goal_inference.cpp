@@ -1,4 +1,4 @@
-// The goal-inference observer's closed form: invariants of the posterior (issue #16).
+// The goal-inference observer's closed form: invariants of the posterior.
 #include <cmath>
 #include <vector>
 

@@ -1,5 +1,5 @@
 // Kenward-Roger df (and the new edge-case data sets under Satterthwaite) against lmerTest /
-// pbkrtest / emmeans (tests/golden/models/kr_emm_golden.R), issue #18: type-III F, NumDF, DenDF,
+// pbkrtest / emmeans (tests/golden/models/kr_emm_golden.R): type-III F, NumDF, DenDF,
 // p, Sum Sq of lmerTest::anova(m, ddf = "Kenward-Roger") and the contrasts of the conditions at
 // each iteration of emmeans with lmer.df = "kenward-roger" / "satterthwaite".
 #include <gtest/gtest.h>

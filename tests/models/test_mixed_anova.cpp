@@ -155,7 +155,7 @@ TEST(SphericityCorrection, ParsesAfexNamesCaseInsensitively) {
 namespace feint::models {
 namespace {
 
-// Issue #18: every participant of one condition excluded (a missing value each). afex stops; so
+// Every participant of one condition excluded (a missing value each). afex stops; so
 // does feint, naming the condition and the way out, and the one-way analysis of the rest runs
 // only when asked for.
 TEST(WideDesign, ConditionWithEveryParticipantExcludedStops) {

@@ -1,4 +1,4 @@
-// The mixed model at the edges (issue #18): degenerate designs give a clear InvalidData or the
+// The mixed model at the edges: degenerate designs give a clear InvalidData or the
 // fit the data allow, and the fit is scale-invariant (F, df and p unchanged, estimates scaled)
 // when the response is multiplied by any factor from 1e-9 to 1e6.
 #include <gtest/gtest.h>
@@ -149,7 +149,7 @@ TEST(MixedModelEdge, OneIterationIsAClearError) {
   ModelSpec trend;
   trend.time_scale = TimeScale::linear;
   EXPECT_NE(error_of(one, trend).find("single trial"), std::string::npos);
-  // One condition and one iteration: the same message (it crashed before issue #18).
+  // One condition and one iteration: the same message (it once crashed here).
   const LongData one_cond = keep(one, [&](std::size_t i) { return one.group[i] == "adaptive"; });
   EXPECT_NE(error_of(one_cond).find("single trial"), std::string::npos);
 }

@@ -220,7 +220,7 @@ TEST(MixedModelGolden, ExposureSlopesPerStrategyMatchLmerTestContest) {
   }
 }
 
-// Issue #18: at any scale of the response feint gives lmerTest's answer at scale 1 (where
+// At any scale of the response feint gives lmerTest's answer at scale 1 (where
 // lmerTest is right); lmerTest's own DenDF collapse below ~1e-5 (scale_golden.R: numDeriv's
 // absolute step on sigma). The R values at small scales are asserted too, to document the drift.
 TEST(MixedModelGolden, ScaleInvariantWhereLmerTestDrifts) {

@@ -1,4 +1,4 @@
-// Issue #19's rules for figures: figure data equal what they are computed from, axes fitted to the
+// Rules for figures: figure data equal what they are computed from, axes fitted to the
 // data and the metric's range (never stretched by a far reference, which becomes an edge arrow),
 // bands clipped, one colour code for conditions (distinct in greyscale by dash and marker), faint
 // participants under the means, Likert answer labels, the exposure and model-fit figures, alt
@@ -21,9 +21,9 @@
 #include "feint/metrics/score.hpp"
 #include "feint/models/fitted_trend.hpp"
 #include "feint/plot/figures.hpp"
-#include "feint/report/likert.hpp"
-#include "feint/report/model_render.hpp"
-#include "feint/report/table1.hpp"
+#include "feint/tables/likert.hpp"
+#include "feint/tables/model.hpp"
+#include "feint/tables/table1.hpp"
 
 using namespace feint;
 namespace fs = std::filesystem;
@@ -71,7 +71,7 @@ std::string scores_csv() {
 
 struct Study {
   io::ScoresTable scores;
-  report::Table1 one, two;
+  tables::Table1 one, two;
   std::vector<metrics::TrialLabel> labels;
 };
 
@@ -80,12 +80,12 @@ const Study& study() {
     Study st;
     const fs::path p = write("scores.csv", scores_csv());
     st.scores = io::load_scores(p.string());
-    report::Table1Options o;
-    o.metrics = {report::parse_metric_spec("error=0.5"),
-                 report::parse_metric_spec("confusion=0.95")};
-    st.one = report::build_table1(st.scores, o);
+    tables::Table1Options o;
+    o.metrics = {tables::parse_metric_spec("error=0.5"),
+                 tables::parse_metric_spec("confusion=0.95")};
+    st.one = tables::build_table1(st.scores, o);
     o.compare = std::pair<std::string, std::string>{"adaptive", "random"};
-    st.two = report::build_table1(st.scores, o);
+    st.two = tables::build_table1(st.scores, o);
     st.labels = metrics::read_trial_labels(p.string());
     return st;
   }();
@@ -354,9 +354,9 @@ TEST(ExposureTrend, MeansAndTheFittedLineAreRsLmWithClusteredErrors) {
 
 TEST(ModelFit, FittedCellMeansOfABalancedFactorModelAreTheObservedMeans) {
   const auto& st = study();
-  report::ModelOptions o;
+  tables::ModelOptions o;
   o.metrics = {"error"};
-  const auto analysis = report::build_model_analysis(st.scores, o);
+  const auto analysis = tables::build_model_analysis(st.scores, o);
   const auto& fit = analysis.models[0].fit;
   const auto trend = models::fitted_trend(fit, 0.95);
   ASSERT_EQ(trend.size(), 2u);
@@ -395,8 +395,8 @@ TEST(LikertLabels, BuiltInAgreeLabelsOrTheQuestionnairesMap) {
     q += fmt::format("P{},{},{},{}\n", i, i % 2 ? "B" : "A", 1 + i % 7, 7 - i % 7);
   }
   const fs::path p = write("q.csv", q);
-  report::LikertSettings l;
-  const auto d = plot::likert_distribution_data(report::analyze_likert_file(p.string(), l));
+  tables::LikertSettings l;
+  const auto d = plot::likert_distribution_data(tables::analyze_likert_file(p.string(), l));
   ASSERT_EQ(d.answer_labels.size(), 7u);
   EXPECT_EQ(d.answer_labels.front(), "Strongly disagree");
   EXPECT_EQ(d.answer_labels[3], "Neither agree nor disagree");
@@ -405,13 +405,13 @@ TEST(LikertLabels, BuiltInAgreeLabelsOrTheQuestionnairesMap) {
   EXPECT_EQ(f.legend.front().label, "1 Strongly disagree");
   l.load.labels =
       io::parse_label_map("Never=1,Rarely=2,Sometimes=3,Often=4,Mostly=5,Usually=6,Always=7");
-  const auto u = plot::likert_distribution_data(report::analyze_likert_file(p.string(), l));
+  const auto u = plot::likert_distribution_data(tables::analyze_likert_file(p.string(), l));
   EXPECT_EQ(u.answer_labels.front(), "Never");
   EXPECT_EQ(u.answer_labels.back(), "Always");
   l.load.labels.clear();
   l.load.scale_min = 0;
   l.load.scale_max = 10;
-  const auto n = plot::likert_distribution_data(report::analyze_likert_file(p.string(), l));
+  const auto n = plot::likert_distribution_data(tables::analyze_likert_file(p.string(), l));
   EXPECT_EQ(n.answer_labels.front(), "0");  // no built-in labels for 11 points
   EXPECT_EQ(n.answer_labels.size(), 11u);
 }
@@ -466,15 +466,15 @@ Demo demo_figures() {
   Demo d;
   const io::ScoresTable scores = io::load_scores(scores_path.string());
   const auto labels = metrics::read_trial_labels(scores_path.string());
-  report::Table1Options o;
-  o.metrics = {report::parse_metric_spec("error=0.5"), report::parse_metric_spec("confusion=0.95")};
-  const report::Table1 one = report::build_table1(scores, o);
+  tables::Table1Options o;
+  o.metrics = {tables::parse_metric_spec("error=0.5"), tables::parse_metric_spec("confusion=0.95")};
+  const tables::Table1 one = tables::build_table1(scores, o);
   o.compare = std::pair<std::string, std::string>{"adaptive", "random"};
-  const report::Table1 two = report::build_table1(scores, o);
-  report::ModelOptions mo;
+  const tables::Table1 two = tables::build_table1(scores, o);
+  tables::ModelOptions mo;
   mo.metrics = {"error", "confusion"};
   mo.trend = true;
-  const auto models = report::build_model_analysis(scores, mo);
+  const auto models = tables::build_model_analysis(scores, mo);
   for (const std::string metric : {"error", "confusion"}) {
     const auto m = plot::metric_figure_data(one, &two, metric);
     d.figures.emplace_back(metric, plot::metric_figure(m));
@@ -498,9 +498,9 @@ Demo demo_figures() {
   plot::TracesFigureData traces{metrics::mean_traces(log_files, io::TraceOptions{}, labels), 0.95};
   d.figures.emplace_back("traces", plot::traces_figure(traces.curves, traces.conf_level));
   d.alt.emplace_back("traces", plot::alt_text(traces));
-  report::LikertSettings ls;
+  tables::LikertSettings ls;
   ls.reference = 3.5;
-  const auto likert = report::analyze_likert_file(dir + "/questionnaire.csv", ls);
+  const auto likert = tables::analyze_likert_file(dir + "/questionnaire.csv", ls);
   const auto dist = plot::likert_distribution_data(likert);
   d.figures.emplace_back("likert", plot::likert_distribution_figure(dist));
   d.alt.emplace_back("likert", plot::alt_text(dist));
@@ -621,7 +621,7 @@ TEST(EdgeCases, OneConditionIsAllParticipantsInTheFirstStyle) {
                            "P1,1,s,0.2,0.3\nP1,2,s,0.3,0.3\nP2,1,s,0.4,0.5\nP2,2,s,0.6,0.4\n"
                            "P3,1,s,0.5,0.2\nP3,2,s,0.5,0.6\n");
   const io::ScoresTable scores = io::load_scores(p.string());
-  const report::Table1 one = report::build_table1(scores, report::Table1Options{});
+  const tables::Table1 one = tables::build_table1(scores, tables::Table1Options{});
   const auto d = plot::metric_figure_data(one, nullptr, "error");
   const plot::Figure f = plot::metric_figure(d);
   EXPECT_EQ(f.panels[0].lines[0].label, "all participants");
@@ -636,7 +636,7 @@ TEST(EdgeCases, OneConditionIsAllParticipantsInTheFirstStyle) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Figures take data, never files (issue 19): no reader in the plot module's sources.
+// Figures take data, never files: no reader in the plot module's sources.
 
 TEST(Architecture, PlotReadsNoFile) {
   const fs::path root = FEINT_SOURCE_DIR;

@@ -13,8 +13,8 @@
 #include "feint/error.hpp"
 #include "feint/io/scores.hpp"
 #include "feint/plot/figures.hpp"
-#include "feint/report/likert.hpp"
-#include "feint/report/table1.hpp"
+#include "feint/tables/likert.hpp"
+#include "feint/tables/table1.hpp"
 
 using namespace feint;
 namespace fs = std::filesystem;
@@ -64,18 +64,18 @@ std::string scores_csv() {
 
 struct Tables {
   io::ScoresTable scores;
-  report::Table1 one, two;
+  tables::Table1 one, two;
 };
 
 Tables build(stats::PAdjustMethod adjust) {
   const fs::path p = temp_file("scores.csv", scores_csv());
   Tables t;
   t.scores = io::load_scores(p.string());
-  report::Table1Options o;
+  tables::Table1Options o;
   o.p_adjust = adjust;
-  t.one = report::build_table1(t.scores, o);
+  t.one = tables::build_table1(t.scores, o);
   o.compare = std::pair<std::string, std::string>{"A", "B"};
-  t.two = report::build_table1(t.scores, o);
+  t.two = tables::build_table1(t.scores, o);
   return t;
 }
 
@@ -195,7 +195,7 @@ TEST(Occurrence, ScoresWithoutStrategyAreInvalidData) {
 
 namespace {
 
-report::LikertAnalysis likert_analysis() {
+tables::LikertAnalysis likert_analysis() {
   // 7-point items: q1 mostly agrees, q2 spread around neutral (4).
   std::string s = "participant,condition,q1,q2\n";
   const int q1[] = {6, 7, 5, 6, 6, 7, 5, 4, 6, 7};
@@ -208,15 +208,15 @@ report::LikertAnalysis likert_analysis() {
     }
   }
   const fs::path p = temp_file("q.csv", s);
-  report::LikertSettings l;
+  tables::LikertSettings l;
   l.reference = 3.5;
-  return report::analyze_likert_file(p.string(), l);
+  return tables::analyze_likert_file(p.string(), l);
 }
 
 }  // namespace
 
 TEST(LikertFigures, MeansAreTheOneSampleTTestRows) {
-  const report::LikertAnalysis a = likert_analysis();
+  const tables::LikertAnalysis a = likert_analysis();
   const auto means = plot::likert_means_data(a).means;
   std::size_t rows = 0;
   for (const auto& row : a.rows) {
@@ -239,7 +239,7 @@ TEST(LikertFigures, MeansAreTheOneSampleTTestRows) {
 }
 
 TEST(LikertFigures, DistributionIsCentredOnTheNeutralPoint) {
-  const report::LikertAnalysis a = likert_analysis();
+  const tables::LikertAnalysis a = likert_analysis();
   const auto bars = plot::likert_distribution_data(a).bars;
   ASSERT_EQ(bars.size(), 4u);
   for (const auto& b : bars) {
@@ -263,7 +263,7 @@ TEST(LikertFigures, DistributionIsCentredOnTheNeutralPoint) {
 }
 
 TEST(LikertFigures, TwoSampleAnalysisHasNoMeansFigure) {
-  report::LikertAnalysis a = likert_analysis();
+  tables::LikertAnalysis a = likert_analysis();
   a.two_sample = true;
   EXPECT_THROW(plot::likert_means_data(a), InvalidData);
 }

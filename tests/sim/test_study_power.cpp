@@ -1,4 +1,4 @@
-// Power of an adaptive-vs-random study from simulated goal-inference participants (issue #17):
+// Power of an adaptive-vs-random study from simulated goal-inference participants:
 // checked against known truths, not against itself.
 #include <cmath>
 

@@ -1,4 +1,4 @@
-// Cronbach's alpha with missing answers against psych::alpha (issue #8): psych's default pairwise
+// Cronbach's alpha with missing answers against psych::alpha: psych's default pairwise
 // covariances and complete cases (tests/golden/alpha/alpha_missing.csv, written by
 // tests/golden/alpha/make_alpha_missing_golden.R).
 #include <gtest/gtest.h>

@@ -145,7 +145,7 @@ TEST(ExactDecimal, DescribeDecimalAgreesWithDescribeOnOrdinaryData) {
   }
 }
 
-// Issue 8: the mean of values that cancel keeps every digit, from text and from doubles.
+// The mean of values that cancel keeps every digit, from text and from doubles.
 TEST(ExactDecimal, TheMeanOfCancellingValuesIsExact) {
   const std::vector<std::string> t = {"1e9", "-1e9", "1"};
   EXPECT_EQ(fs::describe_decimal(t).mean, 1.0 / 3);
@@ -157,7 +157,7 @@ TEST(ExactDecimal, TheMeanOfCancellingValuesIsExact) {
   EXPECT_EQ(fs::summarize(std::vector<double>{1e16, 1, -1e16}).mean, 1.0 / 3);
 }
 
-// Issue 8: min, quartiles at data points and max are values of the file, never rebuilt ones.
+// Min, quartiles at data points and max are values of the file, never rebuilt ones.
 TEST(ExactDecimal, OrderStatisticsAreTheFilesValues) {
   const std::vector<std::string> t = {"10000000.3", "0.1", "0.3", "0.7", "0.5"};
   const auto d = fs::describe_decimal(t);
@@ -168,7 +168,7 @@ TEST(ExactDecimal, OrderStatisticsAreTheFilesValues) {
   EXPECT_EQ(d.max, 10000000.3);
 }
 
-// Issue 8: mantissas longer than 36 digits are read (their tail is below double precision).
+// Mantissas longer than 36 digits are read (their tail is below double precision).
 TEST(ExactDecimal, LongMantissasAreRead) {
   const std::vector<std::string> t = {"0.12345678901234567890123456789012345678901234567890",
                                       "1.5", "2.25"};
@@ -177,6 +177,6 @@ TEST(ExactDecimal, LongMantissasAreRead) {
   EXPECT_EQ(d.max, 2.25);
   EXPECT_EQ(*d.mean, (0.12345678901234567890123456789012345678901234567890 + 3.75) / 3);
   // Values whose scales are too far apart for one exact scale are an error here; feint describe
-  // then falls back to the doubles (tests/report/test_describe.cpp).
+  // then falls back to the doubles (tests/tables/test_describe.cpp).
   EXPECT_THROW(fs::describe_decimal(std::vector<std::string>{"1e-300", "1e300"}), feint::InvalidData);
 }

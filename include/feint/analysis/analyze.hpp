@@ -4,7 +4,10 @@
 //                                              -> feint/plot (figures), feint/publish (files)
 #pragma once
 
+#include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "feint/analysis/results.hpp"
 #include "feint/analysis/study.hpp"

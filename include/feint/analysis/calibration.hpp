@@ -1,4 +1,4 @@
-// feint/analysis/calibration.hpp - the findings checked against a known truth (issue 15, item 6):
+// feint/analysis/calibration.hpp - the findings checked against a known truth:
 // studies made by the simulator of `feint simulate study` (sim::write_study), analysed as
 // `feint analyze` analyses them (load_study -> analyze -> study_findings), and the headline claim
 // of each hypothesis counted. docs/findings.md "Calibration against truth" has the rates.

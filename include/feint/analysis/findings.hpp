@@ -1,4 +1,4 @@
-// feint/analysis/findings.hpp - what the study shows, in sentences (issue 15): the findings engine.
+// feint/analysis/findings.hpp - what the study shows, in sentences: the findings engine.
 //
 // A Finding answers one question of the study in a sentence with its numbers (APA style), with a
 // strength of evidence taken from the statistics by the wording rules of docs/findings.md, never

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "feint/analysis/figure_data.hpp"
-#include "feint/report/exposure_render.hpp"
+#include "feint/tables/exposure_render.hpp"
 #include "feint/analysis/findings.hpp"
 #include "feint/io/diagnostic.hpp"
 #include "feint/io/participants.hpp"
@@ -18,10 +18,10 @@
 #include "feint/metrics/exposure_trend.hpp"
 #include "feint/metrics/score.hpp"
 #include "feint/models/fitted_trend.hpp"
-#include "feint/report/anova_render.hpp"
-#include "feint/report/likert.hpp"
-#include "feint/report/model_render.hpp"
-#include "feint/report/table1.hpp"
+#include "feint/tables/anova.hpp"
+#include "feint/tables/likert.hpp"
+#include "feint/tables/model.hpp"
+#include "feint/tables/table1.hpp"
 
 namespace feint::analysis {
 
@@ -37,7 +37,7 @@ struct Exclusion {
   std::string code;
 };
 
-/// What was read, left out and warned about, stage by stage (issue 15 item 5).
+/// What was read, left out and warned about, stage by stage.
 struct Diagnostics {
   metrics::ScoreSummary scoring;  ///< files, rows and trials read, scored, rejected
   std::size_t participants = 0;   ///< distinct participants with at least one scored trial
@@ -78,16 +78,16 @@ struct StudyResults {
   std::string scores_sidecar;    ///< scores.csv.meta.json's bytes ("" when none)
   std::string rejects_csv;       ///< scores.csv.rejects.csv's bytes ("" in strict mode)
   // Tables.
-  report::Table1 table1;                     ///< one-sample, per condition
-  std::optional<report::Table1> comparison;  ///< condition A against B (--compare)
-  std::optional<report::AnovaReport> anova;  ///< mixed ANOVA (GG); empty when the design allows none
-  std::optional<report::ModelAnalysis> model;        ///< metric ~ condition * iteration (feint model)
-  std::optional<report::ModelAnalysis> trend_model;  ///< metric ~ condition * iteration as a trend
-  std::optional<report::LikertAnalysis> likert;          ///< against the reference
-  std::optional<report::LikertAnalysis> likert_compare;  ///< A against B
+  tables::Table1 table1;                     ///< one-sample, per condition
+  std::optional<tables::Table1> comparison;  ///< condition A against B (--compare)
+  std::optional<tables::AnovaReport> anova;  ///< mixed ANOVA (GG); empty when the design allows none
+  std::optional<tables::ModelAnalysis> model;        ///< metric ~ condition * iteration (feint model)
+  std::optional<tables::ModelAnalysis> trend_model;  ///< metric ~ condition * iteration as a trend
+  std::optional<tables::LikertAnalysis> likert;          ///< against the reference
+  std::optional<tables::LikertAnalysis> likert_compare;  ///< A against B
   /// Condition x exposure per strategy, one per metric (two conditions and the trials' strategies
   /// needed; analysis::exposure_table); the findings' source "exposure".
-  std::vector<report::ExposureTable> exposure;
+  std::vector<tables::ExposureTable> exposure;
   FigureData figures;
   Diagnostics diagnostics;
   std::vector<Finding> findings;  ///< filled by the findings engine (empty until then)

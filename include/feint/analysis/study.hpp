@@ -13,7 +13,7 @@
 
 #include "feint/analysis/settings.hpp"
 #include "feint/io/questionnaire.hpp"
-#include "feint/report/likert.hpp"
+#include "feint/tables/likert.hpp"
 
 namespace feint::analysis {
 
@@ -26,14 +26,14 @@ struct Study {
   std::string config;             ///< the settings file that was read ("" = none); not read here
   AnalysisSettings settings;
   /// The Likert settings (questionnaire loading options, composites, reference, tests).
-  report::LikertSettings likert;
+  tables::LikertSettings likert;
   std::optional<io::Questionnaire> answers;  ///< loaded and validated; empty without one
   /// Typed settings, checked once.
   metrics::ScoreSettings scoring;
   ResolvedReportOptions tests;
-  std::vector<report::MetricSpec> metrics;
+  std::vector<tables::MetricSpec> metrics;
   std::optional<std::pair<std::string, std::string>> compare;
-  std::vector<report::OutputFormat> formats;
+  std::vector<tables::OutputFormat> formats;
 
   /// Every input (log folders and files, questionnaire, settings file): what an output folder
   /// must stay clear of.

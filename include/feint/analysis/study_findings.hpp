@@ -6,7 +6,7 @@
 
 #include "feint/analysis/findings.hpp"
 #include "feint/analysis/results.hpp"
-#include "feint/report/table1.hpp"
+#include "feint/tables/table1.hpp"
 
 namespace feint::analysis {
 
@@ -29,7 +29,7 @@ inline constexpr std::uint64_t kModelPermutations = 9999;
 /// labels (figures.labels) joined to the scores, exposure_findings per metric.
 /// Wording rules: docs/findings.md.
 std::vector<Finding> study_findings(const StudyResults& results,
-                                    const std::vector<report::MetricSpec>& metrics,
+                                    const std::vector<tables::MetricSpec>& metrics,
                                     const WordingRules& rules = {});
 
 /// H1 from the mixed models, per metric: the condition x iteration interaction and the condition
@@ -43,8 +43,8 @@ std::vector<Finding> study_findings(const StudyResults& results,
 /// needs the corrected p below alpha (and, for the slope, its interval excluding 0); otherwise "no
 /// evidence either way", never "evidence for no difference". Sources: "model" and "model-trend".
 /// Either model may be null (left out of the study).
-std::vector<Finding> mixed_model_findings(const report::ModelAnalysis* model,
-                                          const report::ModelAnalysis* trend,
+std::vector<Finding> mixed_model_findings(const tables::ModelAnalysis* model,
+                                          const tables::ModelAnalysis* trend,
                                           const WordingRules& rules = {});
 
 /// The input of models::exposure_slopes_by_condition for one metric: each scored trial with a value
@@ -62,7 +62,7 @@ ExposureInput exposure_input(const io::ScoresTable& scores, const std::vector<Tr
 /// The report's condition x exposure table of `metric` (models::exposure_slopes_by_condition on
 /// exposure_input, the conditions in `conditions` order, JZS prior scale `bf_prior_r` for the
 /// difference tests' Bayes factors); throws what the fit throws.
-report::ExposureTable exposure_table(const io::ScoresTable& scores, const std::vector<TrialLabel>& labels,
+tables::ExposureTable exposure_table(const io::ScoresTable& scores, const std::vector<TrialLabel>& labels,
                                      const std::string& metric, const std::vector<std::string>& conditions,
                                      double conf_level, double bf_prior_r = 0.7071067811865476);
 

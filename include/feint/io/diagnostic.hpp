@@ -1,7 +1,7 @@
 // feint/io/diagnostic.hpp - a structured note about how input was read (a warning, not an error).
 //
 // Loaders return these instead of printing them, so that a pipeline can carry them into its
-// results and a report can show them (issue 18: "put the ms warning in the report"). Each has a
+// results and a report can show them ("put the ms warning in the report"). Each has a
 // stable code (for tests and machine readers), where it applies, and the full sentence a person
 // reads, which names the option that changes the reading.
 #pragma once

@@ -94,7 +94,7 @@ struct TraceOptions {
   /// Lenient mode: called for each invalid trial instead of throwing.
   std::function<void(const Rejection&)> on_reject;
 
-  // ---- other labs' exports (issue 18; docs/formats.md "Files from other labs") ----
+  // ---- other labs' exports (docs/formats.md "Files from other labs") ----
   /// Decimal mark of the numbers (t, pad, target, pad_speed): '.', ',' or 0 = per file: '.' in a
   /// `,`-delimited file; in any other, the first number (target, pad_speed, t, pad) holding a `,`
   /// or a `.` decides

@@ -37,7 +37,7 @@ struct ExposureSlope {
   std::size_t left_out = 0;      ///< participants with trials of the strategy but no slope
 };
 
-/// Condition x exposure per strategy (issue 15), by the participant-level two-stage ("slopes as
+/// Condition x exposure per strategy, by the participant-level two-stage ("slopes as
 /// outcomes") method, valid whenever participants are independent, whatever the within-participant
 /// variance or correlation:
 ///  stage 1: for each participant and strategy, the OLS slope of y on exposure over that

@@ -6,7 +6,7 @@
 //   y ~ group * time + (1 + time | participant)         (linear trend with a random slope)
 //
 // `group` is the between- (condition) or within- (strategy) factor, `time` the iteration (or the
-// exposure count of issue #10). The design uses R's default treatment coding with levels in R's
+// count of exposures to a strategy). The design uses R's default treatment coding with levels in R's
 // order, so coefficients, their covariance and every contrast equal lme4's. See docs/mixed-model.md
 // for the formulas and the golden tests (tests/golden/models/).
 #pragma once

@@ -1,4 +1,4 @@
-// feint/plot/figures.hpp - the study's figures (issues #9, #19), each in two steps: the figure's
+// feint/plot/figures.hpp - the study's figures, each in two steps: the figure's
 // data, plain structs taken from results computed upstream (the tables' tidy rows, the Likert
 // analysis, metrics' mean traces and exposure trends, models' fitted trends; no statistic is
 // computed twice and no file is read here), then the Figure that draws them (canvas.hpp), and a
@@ -34,8 +34,8 @@
 #include "feint/metrics/mean_trace.hpp"
 #include "feint/models/fitted_trend.hpp"
 #include "feint/plot/canvas.hpp"
-#include "feint/report/likert.hpp"
-#include "feint/report/table1.hpp"
+#include "feint/tables/likert.hpp"
+#include "feint/tables/table1.hpp"
 
 namespace feint::plot {
 
@@ -89,10 +89,10 @@ struct MetricFigureData {
 
 /// Reads the figure's data from the one-sample Table 1 (and the two-sample one, if given).
 /// Throws InvalidData when `metric` is not one of the tables' metrics.
-MetricFigureData metric_figure_data(const report::Table1& one_sample,
-                                    const report::Table1* comparison, const std::string& metric);
-MetricFigureData metric_figure_data(const report::Table1& one_sample,
-                                    const report::Table1* comparison, const std::string& metric,
+MetricFigureData metric_figure_data(const tables::Table1& one_sample,
+                                    const tables::Table1* comparison, const std::string& metric);
+MetricFigureData metric_figure_data(const tables::Table1& one_sample,
+                                    const tables::Table1* comparison, const std::string& metric,
                                     MetricRange range);
 Figure metric_figure(const MetricFigureData& data);
 std::string alt_text(const MetricFigureData& data);
@@ -120,12 +120,12 @@ struct ParticipantsData {
 /// Throws InvalidData when `metric` is not loaded in `scores`. The range defaults to
 /// metric_range(metric).
 ParticipantsData participants_data(const io::ScoresTable& scores, const std::string& metric,
-                                   const report::Table1* one_sample);
+                                   const tables::Table1* one_sample);
 ParticipantsData participants_data(const io::ScoresTable& scores, const std::string& metric,
-                                   const report::Table1* one_sample, MetricRange range);
+                                   const tables::Table1* one_sample, MetricRange range);
 Figure participants_figure(const ParticipantsData& data);
 Figure participants_figure(const io::ScoresTable& scores, const std::string& metric,
-                           const report::Table1* one_sample);
+                           const tables::Table1* one_sample);
 std::string alt_text(const ParticipantsData& data);
 
 // ---------------------------------------------------------------------------------------------
@@ -171,9 +171,9 @@ struct LikertMeansData {
 };
 /// The one-sample t-test rows of a one-sample analysis, per group and name, in the table's order.
 /// Throws InvalidData for a two-sample analysis (no reference to plot against).
-LikertMeansData likert_means_data(const report::LikertAnalysis& analysis);
+LikertMeansData likert_means_data(const tables::LikertAnalysis& analysis);
 Figure likert_means_figure(const LikertMeansData& data);
-Figure likert_means_figure(const report::LikertAnalysis& analysis);
+Figure likert_means_figure(const tables::LikertAnalysis& analysis);
 std::string alt_text(const LikertMeansData& data);
 
 /// Percent of the answers per scale point, per group and item (composites have no distribution),
@@ -193,9 +193,9 @@ struct LikertDistribution {
   std::vector<std::string> groups;  ///< conditions ("" = everybody)
   std::vector<LikertBar> bars;
 };
-LikertDistribution likert_distribution_data(const report::LikertAnalysis& analysis);
+LikertDistribution likert_distribution_data(const tables::LikertAnalysis& analysis);
 Figure likert_distribution_figure(const LikertDistribution& data);
-Figure likert_distribution_figure(const report::LikertAnalysis& analysis);
+Figure likert_distribution_figure(const tables::LikertAnalysis& analysis);
 std::string alt_text(const LikertDistribution& data);
 
 // ---------------------------------------------------------------------------------------------

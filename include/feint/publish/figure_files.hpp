@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "feint/analysis/options.hpp"
+#include "feint/analysis/settings.hpp"
 #include "feint/plot/canvas.hpp"
 
 namespace feint::publish {

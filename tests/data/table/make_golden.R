@@ -1,5 +1,5 @@
 # Regenerates golden_table1.csv: R's t.test / p.adjust for scores_small.csv, per mode, metric and
-# iteration, the reference for tests/report/test_table1.cpp.   Rscript make_golden.R
+# iteration, the reference for tests/tables/test_table1.cpp.   Rscript make_golden.R
 d <- read.csv("scores_small.csv", stringsAsFactors = FALSE)
 refs <- c(error = 0.5, confusion = 0.95)
 out <- list()

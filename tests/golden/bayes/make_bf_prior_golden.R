@@ -1,4 +1,4 @@
-# JZS Bayes factors of a small scores table at several prior scales r (issue #15: the prior scale is
+# JZS Bayes factors of a small scores table at several prior scales r (the prior scale is
 # settable, `--bf-prior-scale`). Regenerate from the repository root with R 4.2:
 #   Rscript tests/golden/bayes/make_bf_prior_golden.R
 # Writes prior_scale_scores.csv (participant, condition, iteration, error; 12 adaptive and 9 random

@@ -1,5 +1,5 @@
-# Generalized eta squared with its interval for every effect of the mixed-ANOVA goldens (issue #15
-# item 3), as effectsize::eta_squared(model, generalized = TRUE) defines it on an afex model, and
+# Generalized eta squared with its interval for every effect of the mixed-ANOVA goldens
+# as effectsize::eta_squared(model, generalized = TRUE) defines it on an afex model, and
 # the exact roots of that definition. Run from the project root:
 #   Rscript tests/golden/effect/anova_ges_ci.R
 # Writes tests/golden/effect/anova_ges_data.csv (the long data of every case: effects strong enough

@@ -2,7 +2,7 @@
 # Run from the repository root:  Rscript tests/golden/likert/make_golden.R
 # Writes tests/golden/likert/golden.csv: run, group, name, quantity, value (%.17g).
 #
-# Settings mirrored by tests/report/test_likert_golden.cpp:
+# Settings mirrored by tests/tables/test_likert_golden.cpp:
 #   common : scale 1-7, --reverse boring, --composite enjoyment=entertainment,boring,fun
 #   one    : one-sample against the midpoint 4, each condition, --p-adjust holm
 #   compare: --compare adaptive,random

@@ -1,4 +1,4 @@
-# Golden values for the estimated marginal means and contrasts of `feint anova` (issue #18):
+# Golden values for the estimated marginal means and contrasts of `feint anova`:
 # emmeans 1.8.4-1 on afex::aov_ez objects (afex 1.2-1), with emmeans' default for afex objects,
 # the multivariate model (afex_options(emmeans_model = "multivariate")): cell means, and every
 # contrast's SE from the pooled within-condition covariance of the iterations, df = N - a.

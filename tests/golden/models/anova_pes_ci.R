@@ -1,4 +1,4 @@
-# Partial eta squared with its interval for every effect of the ANOVA goldens (issue #15 item 3):
+# Partial eta squared with its interval for every effect of the ANOVA goldens:
 # effectsize::F_to_eta2 on the table afex reports (GG-corrected df where afex corrects), with its
 # default one-sided ("greater") 95 % interval, as feint anova's pes_low / pes_high.
 # Run from the project root: Rscript tests/golden/models/anova_pes_ci.R

@@ -1,5 +1,5 @@
 # Golden values for Kenward-Roger df and estimated marginal means / contrasts of feint's mixed
-# model (tests/models/test_kr_emmeans_golden.cpp), issue #18.
+# model (tests/models/test_kr_emmeans_golden.cpp).
 #
 #   cd tests/golden/models && Rscript kr_emm_golden.R
 #

@@ -1,4 +1,4 @@
-# lmerTest's Satterthwaite df when the response is measured in small units (issue #18).
+# lmerTest's Satterthwaite df when the response is measured in small units.
 #
 #   cd tests/golden/models && Rscript scale_golden.R
 #

@@ -1,0 +1,49 @@
+// feint/commands/observer_power.hpp - the settings of `feint power observer` as the command line
+// spells them, and their conversion into sim::StudyPowerSettings: the simulated participants'
+// observer given, read from a file, set one parameter at a time, or fitted to a pilot's error by
+// simulated moments (sim/pilot_fit.hpp; docs/paper-scale.md, "Power from a pilot").
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "feint/analysis/settings.hpp"
+#include "feint/sim/study_power.hpp"
+
+namespace feint::commands {
+
+struct ObserverPowerOptions {
+  std::vector<int> participants{10, 20, 30, 40, 60, 80, 100};
+  std::string observer_file;
+  std::string pilot;
+  std::string metric = "error";
+  std::string compare = "adaptive,random";
+  std::vector<std::string> observer;  // NAME=VALUE
+  std::string participant_model = "goal-inference";
+  int iterations = 20;
+  double lambda = 0.5;
+  int from_iteration = 5;
+  std::size_t studies = 400;
+  std::uint64_t seed = 1;
+  unsigned threads = 0;  // 0: all cores
+  double target_power = 0.8;
+};
+
+/// The power study's settings and one sentence saying where the observer's parameters came from.
+struct ObserverPowerPlan {
+  sim::StudyPowerSettings settings;
+  std::string source;
+};
+
+/// The settings at significance level `alpha`; with a pilot, beta and recognition_logodds are
+/// fitted to its error (a search of 100 participants per condition on its own random streams).
+/// Throws UsageError for a bad parameter or --compare, InvalidData/IoError for the files.
+ObserverPowerPlan observer_power_plan(const ObserverPowerOptions& options, double alpha);
+
+/// observer_power_plan at `r.alpha`, sim::study_power, rendered in `r.format`.
+std::string observer_power_report(const ObserverPowerOptions& options,
+                                  const analysis::ResolvedReportOptions& r);
+
+}  // namespace feint::commands

@@ -1,0 +1,65 @@
+#include "feint/commands/observer_power.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <thread>
+
+#include "feint/analysis/settings.hpp"
+#include "feint/io/file_identity.hpp"
+#include "feint/io/scores.hpp"
+#include "feint/tables/study_power_render.hpp"
+#include "feint/sim/pilot_fit.hpp"
+
+namespace feint::commands {
+
+ObserverPowerPlan observer_power_plan(const ObserverPowerOptions& a, double alpha) {
+  ObserverPowerPlan plan;
+  sim::StudyPowerSettings& s = plan.settings;
+  s.participants = a.participants;
+  s.studies = a.studies;
+  s.seed = a.seed;
+  s.threads = a.threads ? a.threads : std::max(1u, std::thread::hardware_concurrency());
+  s.alpha = alpha;
+  s.from_iteration = a.from_iteration;
+  s.target_power = a.target_power;
+  s.study.iterations = a.iterations;
+  s.study.lambda = a.lambda;
+  if (sim::parse_participant_model(a.participant_model) == sim::ParticipantModel::heuristic) {
+    s.study.observer = sim::ObserverParams{};
+  }
+  if (!a.observer_file.empty()) sim::read_parameters(s.study.observer, a.observer_file);
+  for (const auto& kv : a.observer) sim::set_parameter(s.study.observer, kv);
+  std::string& source = plan.source;
+  source = a.observer_file.empty() ? std::string() : "from " + a.observer_file;
+  if (!a.observer.empty())
+    source += std::string(source.empty() ? "" : ", ") + "set on the command line";
+  if (!a.pilot.empty()) {
+    // beta and recognition_logodds fitted to the pilot's error by simulated moments.
+    io::ScoresOptions so;
+    so.metrics = {a.metric};
+    const auto table = io::load_scores(a.pilot, so);
+    const auto [cond_a, cond_b] = analysis::parse_compare(a.compare);
+    const auto moments = sim::pilot_moments(table, 0, cond_a, cond_b, a.from_iteration);
+    sim::StudySettings search = s.study;
+    search.participants = 100;
+    search.seed = a.seed ^ 0x5049'4C4F'54ULL;  // "PILOT": not the power studies' streams
+    const auto fit = sim::fit_pilot(moments, search, a.from_iteration);
+    s.study.observer = fit.observer;
+    source +=
+        fmt::format("{}fitted to pilot {} ({} + {} participants): beta {:.3f}, recognition {:.2f}",
+                    source.empty() ? "" : "; ", a.pilot, moments.adaptive, moments.random,
+                    fit.observer.beta, fit.observer.recognition_logodds);
+  }
+  return plan;
+}
+
+std::string observer_power_report(const ObserverPowerOptions& options,
+                                  const analysis::ResolvedReportOptions& r) {
+  io::refuse_overwriting_inputs({options.pilot, options.observer_file}, {r.output});
+  const ObserverPowerPlan plan = observer_power_plan(options, r.alpha);
+  const auto result = sim::study_power(plan.settings);
+  return tables::render_study_power(result, plan.source, r.format, r.presentation);
+}
+
+}  // namespace feint::commands

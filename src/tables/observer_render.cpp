@@ -1,0 +1,162 @@
+#include "feint/tables/observer_render.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "feint/io/number.hpp"
+
+namespace feint::tables {
+
+namespace {
+
+std::string num(double x, int digits = 3) {
+  return std::isnan(x) ? std::string("-") : fmt::format("{:.{}f}", x, digits);
+}
+
+std::string ci_text(const models::ParameterEstimate& p) {
+  return fmt::format("{} [{}{}, {}{}]", num(p.estimate), p.low_at_bound ? "<=" : "",
+                     num(p.conf_low), num(p.conf_high), p.high_at_bound ? "(bound)" : "");
+}
+
+std::string render_text(const models::StudyObserverFit& r, const models::ObserverFitSettings& a,
+                        std::size_t rejected_rows, const std::string& path_source) {
+  std::string out = fmt::format(
+      "Goal-inference observer fitted to {} trial(s) ({}); pad noise: {}{}; {}% profile-likelihood "
+      "CIs.\n",
+      r.trials_used, path_source,
+      a.noise == models::PadNoise::ar1 ? "Gaussian AR(1) around b(t)"
+                                       : "independent Gaussian around b(t)",
+      a.thin > 0 ? fmt::format(", one sample per {} s", a.thin) : "", num(100 * a.level, 0));
+  if (rejected_rows > 0)
+    out += fmt::format("{} trial(s) rejected by the log reader (see below).\n", rejected_rows);
+  auto fits = [&](const std::vector<models::ObserverFit>& fs, const char* title) {
+    out += fmt::format("\n{}\n", title);
+    out += fmt::format("{:<12} {:<10} {:>6} {:>7}  {:<30} {:<30}{} {:>7} {:>6} {:>12}\n", "unit",
+                       "condition", "trials", "samples", "beta (1/m) [CI]", "tau (s) [CI]",
+                       a.fit_prior ? fmt::format(" {:<30}", "P(right) [CI]") : "", "sigma", "phi",
+                       "logLik");
+    for (const auto& f : fs) {
+      std::string prior;
+      if (a.fit_prior) prior = fmt::format(" {:<30}", ci_text(f.parameter("prior_right")));
+      out += fmt::format("{:<12} {:<10} {:>6} {:>7}  {:<30} {:<30}{} {:>7} {:>6} {:>12}\n", f.unit,
+                         f.condition, f.trials, f.samples, ci_text(f.parameter("beta")),
+                         ci_text(f.parameter("tau")), prior, num(f.sigma, 4), num(f.phi, 3),
+                         num(f.log_likelihood, 2));
+    }
+  };
+  fits(r.participants, "Per participant");
+  fits(r.conditions, "Pooled per condition");
+  if (!r.learning.empty()) {
+    out +=
+        "\nLearning: beta_k = beta0 exp(gamma exposure_k), exposure = earlier trials of the same "
+        "strategy\n";
+    for (const auto& l : r.learning) {
+      out += fmt::format("  {:<10} gamma = {}, beta0 = {}, LR chi2(1) = {}, p = {}\n", l.condition,
+                         ci_text(l.gamma), num(l.beta0), num(l.statistic, 3),
+                         l.p_value < 1e-4 ? fmt::format("{:.2e}", l.p_value) : num(l.p_value, 4));
+    }
+  }
+  out +=
+      "\nModel-human agreement (model b(t) at each participant's fit vs the pad; r = Pearson "
+      "correlation)\n";
+  out += fmt::format(
+      "{:<10} {:<13} {:>9} {:>6}  {:>7} {:>7} {:>6} {:>6}  {:>7} {:>7} {:>6} {:>6}  {:>7} {:>7}\n",
+      "condition", "strategy", "iteration", "trials", "E human", "E model", "E r", "E rmse",
+      "C human", "C model", "C r", "C rmse", "trace r", "rmse");
+  for (const auto& g : r.agreement) {
+    out += fmt::format(
+        "{:<10} {:<13} {:>9} {:>6}  {:>7} {:>7} {:>6} {:>6}  {:>7} {:>7} {:>6} {:>6}  {:>7} "
+        "{:>7}\n",
+        g.condition, g.strategy,
+        g.iteration == 0 ? std::string("all") : std::to_string(g.iteration), g.trials,
+        num(g.human_error), num(g.model_error), num(g.error_r, 2), num(g.error_rmse),
+        num(g.human_confusion), num(g.model_confusion), num(g.confusion_r, 2),
+        num(g.confusion_rmse), num(g.trace_r, 2), num(g.trace_rmse));
+  }
+  if (!r.issues.empty()) {
+    out += "\nLeft out or flagged:\n";
+    for (const auto& i : r.issues) out += fmt::format("  {}: {}\n", i.label, i.reason);
+  }
+  return out;
+}
+
+std::string json_estimate(const models::ParameterEstimate& p) {
+  return fmt::format(
+      "{{\"estimate\": {}, \"conf.low\": {}, \"conf.high\": {}, \"low_at_bound\": {}, "
+      "\"high_at_bound\": {}}}",
+      io::json_number(p.estimate), io::json_number(p.conf_low), io::json_number(p.conf_high),
+      p.low_at_bound, p.high_at_bound);
+}
+
+std::string render_json(const models::StudyObserverFit& r, const models::ObserverFitSettings& a,
+                        const std::string& path_source) {
+  auto fits = [&](const std::vector<models::ObserverFit>& fs) {
+    std::string s = "[";
+    for (std::size_t i = 0; i < fs.size(); ++i) {
+      const auto& f = fs[i];
+      s += fmt::format(
+          "{}\n    {{\"unit\": {}, \"condition\": {}, \"trials\": {}, \"samples\": {}, "
+          "\"logLik\": {}, \"sigma\": {}, \"phi\": {}",
+          i ? "," : "", io::json_quote(f.unit), io::json_quote(f.condition), f.trials, f.samples,
+          io::json_number(f.log_likelihood), io::json_number(f.sigma), io::json_number(f.phi));
+      for (const auto& p : f.parameters)
+        s += fmt::format(", {}: {}", io::json_quote(p.name), json_estimate(p));
+      s += "}";
+    }
+    return s + "]";
+  };
+  std::string out = fmt::format(
+      "{{\n  \"method\": \"Maximum likelihood, goal-inference observer; pad noise {}\", \"path\": "
+      "{}, "
+      "\"conf.level\": {},\n  \"participants\": {},\n  \"conditions\": {},\n  \"learning\": [",
+      a.noise == models::PadNoise::ar1 ? "ar1" : "independent", io::json_quote(path_source),
+      io::json_number(a.level), fits(r.participants), fits(r.conditions));
+  for (std::size_t i = 0; i < r.learning.size(); ++i) {
+    const auto& l = r.learning[i];
+    out += fmt::format(
+        "{}\n    {{\"condition\": {}, \"gamma\": {}, \"beta0\": {}, \"statistic\": {}, \"df\": 1, "
+        "\"p.value\": {}, \"method\": {}}}",
+        i ? "," : "", io::json_quote(l.condition), json_estimate(l.gamma), io::json_number(l.beta0),
+        io::json_number(l.statistic), io::json_number(l.p_value), io::json_quote(l.method));
+  }
+  out += "],\n  \"agreement\": [";
+  for (std::size_t i = 0; i < r.agreement.size(); ++i) {
+    const auto& g = r.agreement[i];
+    out += fmt::format(
+        "{}\n    {{\"condition\": {}, \"strategy\": {}, \"iteration\": {}, \"trials\": {}, "
+        "\"human_error\": {}, "
+        "\"model_error\": {}, \"error_r\": {}, \"error_rmse\": {}, \"human_confusion\": {}, "
+        "\"model_confusion\": {}, "
+        "\"confusion_r\": {}, \"confusion_rmse\": {}, \"trace_r\": {}, \"trace_rmse\": {}}}",
+        i ? "," : "", io::json_quote(g.condition), io::json_quote(g.strategy),
+        g.iteration == 0 ? std::string("null") : std::to_string(g.iteration), g.trials,
+        io::json_number(g.human_error), io::json_number(g.model_error), io::json_number(g.error_r),
+        io::json_number(g.error_rmse), io::json_number(g.human_confusion),
+        io::json_number(g.model_confusion), io::json_number(g.confusion_r),
+        io::json_number(g.confusion_rmse), io::json_number(g.trace_r),
+        io::json_number(g.trace_rmse));
+  }
+  out += "],\n  \"issues\": [";
+  for (std::size_t i = 0; i < r.issues.size(); ++i) {
+    out += fmt::format("{}\n    {{\"trial\": {}, \"reason\": {}}}", i ? "," : "",
+                       io::json_quote(r.issues[i].label), io::json_quote(r.issues[i].reason));
+  }
+  return out + "]\n}\n";
+}
+
+}  // namespace
+
+std::string render_observer_fit_text(const sim::ObserverLogFit& fit,
+                                     const models::ObserverFitSettings& settings) {
+  return render_text(fit.fit, settings, fit.rejected_rows, fit.path_source);
+}
+
+std::string render_observer_fit_json(const sim::ObserverLogFit& fit,
+                                     const models::ObserverFitSettings& settings) {
+  return render_json(fit.fit, settings, fit.path_source);
+}
+
+}  // namespace feint::tables
