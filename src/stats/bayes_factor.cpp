@@ -7,6 +7,7 @@
 #include <numbers>
 #include <vector>
 
+#include <boost/math/distributions/students_t.hpp>
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <fmt/format.h>
 
@@ -52,14 +53,77 @@ double log_integral(F&& log_f, double scale, std::vector<double> breaks, double 
   return scale + std::log(total);
 }
 
-/// Rouder's g integral for the two-sided point test, over x = log g.
-double log_bf_point(double t, double n, double nu, double r) {
+/// log I_x(a, b), the regularised incomplete beta, for x < (a + 1) / (a + b + 2), by its continued
+/// fraction (modified Lentz; Press et al., Numerical Recipes, 3rd ed., sec. 6.4) with the prefactor
+/// x^a (1 - x)^b / (a B(a, b)) in logs: exact where I_x itself underflows a double.
+double log_ibeta_lower(double a, double b, double x) {
+  const double log_front = a * std::log(x) + b * std::log1p(-x) - std::log(a) -
+                           (std::lgamma(a) + std::lgamma(b) - std::lgamma(a + b));
+  constexpr double kTiny = 1e-300;
+  const double qab = a + b, qap = a + 1, qam = a - 1;
+  double c = 1, d = 1 - qab * x / qap;
+  if (std::fabs(d) < kTiny) d = kTiny;
+  d = 1 / d;
+  double h = d;
+  for (int m = 1; m <= 100000; ++m) {
+    const double m2 = 2.0 * m;
+    double aa = m * (b - m) * x / ((qam + m2) * (a + m2));
+    d = 1 + aa * d;
+    if (std::fabs(d) < kTiny) d = kTiny;
+    c = 1 + aa / c;
+    if (std::fabs(c) < kTiny) c = kTiny;
+    d = 1 / d;
+    h *= d * c;
+    aa = -(a + m) * (qab + m) * x / ((a + m2) * (qap + m2));
+    d = 1 + aa * d;
+    if (std::fabs(d) < kTiny) d = kTiny;
+    c = 1 + aa / c;
+    if (std::fabs(c) < kTiny) c = kTiny;
+    d = 1 / d;
+    const double del = d * c;
+    h *= del;
+    if (std::fabs(del - 1) < 1e-16) break;
+  }
+  return log_front + std::log(h);
+}
+
+/// log T_nu(z), the Student t CDF in logs, at any z: from the upper tail for z >= 0 (log1p keeps it
+/// exact near 1), Boost's CDF in the lower tail while it is a normal double, and beyond that
+/// T_nu(z) = I_{nu / (nu + z^2)}(nu / 2, 1 / 2) / 2 in logs (the one-sided Bayes factors multiply
+/// a likelihood ratio of e^5000 by such a tail at large t).
+double log_t_cdf(const boost::math::students_t_distribution<double>& dist, double nu, double z) {
+  if (z >= 0) return std::log1p(-boost::math::cdf(dist, -z));
+  const double p = boost::math::cdf(dist, z);
+  if (p > 1e-280) return std::log(p);
+  return std::log(0.5) + log_ibeta_lower(nu / 2, 0.5, nu / (nu + z * z));
+}
+
+/// Rouder's g integral over x = log g, for the whole line (side = 0) or one half of it (side = +1:
+/// delta > 0, side = -1: delta < 0).
+///
+/// The Cauchy(0, r) prior is the mixture delta | g ~ N(0, g), g ~ InvGamma(1/2, r^2 / 2). Given g,
+/// the whole line gives Rouder et al.'s (2009) likelihood ratio t_nu(t / sigma) / (sigma t_nu(t)),
+/// sigma^2 = 1 + n g. Truncating delta to one side (and doubling the prior there) makes the
+/// joint of the numerator's normal and delta a skew normal with shape lambda = sqrt(n g), and its
+/// mixture over the chi scale of t Azzalini and Capitanio's (2003) skew t: the one-sided ratio is the
+/// whole-line one times 2 T_{nu+1}(side lambda u sqrt((nu + 1) / (u^2 + nu))), u = t / sigma. So a
+/// one-sided Bayes factor is one smooth integral over g at any t and n, as the two-sided one; the
+/// two halves add up to twice the whole line exactly (T(z) + T(-z) = 1).
+double log_bf_point(double t, double n, double nu, double r, int side = 0) {
   const double log_null = -(nu + 1) / 2 * std::log1p(t * t / nu);
   const double c = std::log(r) - 0.5 * std::log(2 * kPi);
+  const boost::math::students_t_distribution<double> t_next(nu + 1);
   auto lf = [&](double x) {
     const double g = std::exp(x);
-    return -0.5 * std::log1p(n * g) - (nu + 1) / 2 * std::log1p(t * t / ((1 + n * g) * nu)) + c -
-           0.5 * x - r * r / (2 * g) - log_null;
+    double v = -0.5 * std::log1p(n * g) - (nu + 1) / 2 * std::log1p(t * t / ((1 + n * g) * nu)) +
+               c - 0.5 * x - r * r / (2 * g) - log_null;
+    if (side != 0) {
+      const double u = t / std::sqrt(1 + n * g);
+      const double lambda = std::sqrt(n * g);
+      v += std::log(2.0) +
+           log_t_cdf(t_next, nu + 1, side * lambda * u * std::sqrt((nu + 1) / (u * u + nu)));
+    }
+    return v;
   };
   // The integrand is smooth and unimodal in x; locate its peak on a grid, integrate +-40 around it
   // (beyond, it falls below e^-40 of the peak on both sides: like e^-x above, like exp(-e^-x) below).
@@ -114,8 +178,13 @@ double log_theta_integral(double t, double n, double nu, double r, double a, dou
   auto lf = [&](double th) {
     return log_likelihood_ratio(t, n, nu, r * std::tan(th), log_p0, cutoff);
   };
-  // the likelihood's width in theta: (1 / sqrt(N)) d theta / d delta = cos^2(theta) / (r sqrt(N))
-  const double width = std::cos(peak) * std::cos(peak) / (r * std::sqrt(n));
+  // The likelihood's width in theta: sd(delta) * d theta / d delta, with d theta / d delta =
+  // cos^2(theta) / r and sd(delta) = sd(t | ncp) / sqrt(N), where the noncentral t's spread grows
+  // with its centre, Var(t | ncp) ~ 1 + ncp^2 / (2 nu). Without that growth the breaks below
+  // covered a fraction of a standard deviation at large t (t = 500, N = 30: 0.6 sd), and the
+  // adaptive quadrature subdivided a peak at a piece's edge for minutes.
+  const double sd_delta = std::sqrt((1 + t * t / (2 * nu)) / n);
+  const double width = std::cos(peak) * std::cos(peak) / r * sd_delta;
   const double centre = std::clamp(peak, a, b);
   const double pad = std::min(1e-12, (b - a) * 1e-6);
   const double scale = lf(std::clamp(centre, a + pad, b - pad));
@@ -146,6 +215,9 @@ double jzs_log_bf(double t, double n_eff, double df, double r, double lo, double
   check_args(t, n_eff, df, r);
   if (!(lo < hi)) throw UsageError(fmt::format("Bayes factor: interval [{}, {}] is empty", lo, hi));
   if (std::isinf(lo) && std::isinf(hi)) return log_bf_point(t, n_eff, df, r);
+  // The half lines (one-sided alternatives) by the g integral: exact and fast at any t and n.
+  if (lo == 0 && std::isinf(hi)) return log_bf_point(t, n_eff, df, r, +1);
+  if (std::isinf(lo) && hi == 0) return log_bf_point(t, n_eff, df, r, -1);
   return log_bf_interval(t, n_eff, df, r, lo, hi);
 }
 

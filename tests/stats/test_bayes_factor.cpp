@@ -126,3 +126,47 @@ TEST(BayesFactor, NullEvidenceGrowsWithNAndLargeTIsFinite) {
   EXPECT_LT(jzs_bf_interval_null(0, 500, 499, 0.1).bf10(), 1.0 / 3);
 }
 
+
+// One-sided Bayes factors at any t and n (docs/bayes-factors.md). They are computed as Rouder's g
+// integral times a skew-t factor; three independent checks:
+//  1. where the direct integral over the noncentral t likelihood is tractable (an interval
+//     [0, 1e12] goes through it; the prior mass beyond 1e12 is 5e-13), the two agree to 1e-8;
+//  2. the halves add up to the whole line, BF_full = (BF_+ + BF_-) / 2, at |t| up to 1e4 and n up
+//     to 1e5, and the side the data point to carries the evidence;
+//  3. far in the tail the side against the data tends to 2 Cauchy(0; r) / sqrt(n nu): the likelihood
+//     ratio falls like exp(sqrt(n nu) delta) below delta = 0.
+// A metric far from its reference (t ~ 500 at n = 30) once made the one-sided integral run for
+// minutes: such a test then hangs, and ctest's timeout fails it.
+TEST(BayesFactor, OneSidedAgreesWithTheDirectIntegralAndHoldsAtExtremeTAndN) {
+  constexpr double kFar = 1e12;
+  for (double n : {3.0, 30.0, 1000.0}) {
+    for (double t : {-37.0, -2.0, 0.5, 4.0, 50.0}) {
+      const double up = jzs_log_bf(t, n, n - 1, kJzsMediumScale, 0, kInf);
+      const double down = jzs_log_bf(t, n, n - 1, kJzsMediumScale, -kInf, 0);
+      EXPECT_LT(std::fabs(std::expm1(up - jzs_log_bf(t, n, n - 1, kJzsMediumScale, 0, kFar))), 1e-8)
+          << "t=" << t << " n=" << n;
+      EXPECT_LT(std::fabs(std::expm1(down - jzs_log_bf(t, n, n - 1, kJzsMediumScale, -kFar, 0))), 1e-8)
+          << "t=" << t << " n=" << n;
+    }
+  }
+  for (double n : {3.0, 30.0, 1000.0, 1e5}) {
+    for (double t : {-1e4, -500.0, -37.0, 4.0, 50.0, 500.0, 5000.0, 1e4}) {
+      const double nu = n - 1;
+      const double full = jzs_log_bf(t, n, nu);
+      const double up = jzs_log_bf(t, n, nu, kJzsMediumScale, 0, kInf);
+      const double down = jzs_log_bf(t, n, nu, kJzsMediumScale, -kInf, 0);
+      ASSERT_TRUE(std::isfinite(full) && std::isfinite(up) && std::isfinite(down))
+          << "t=" << t << " n=" << n;
+      const double hi = std::max(up, down);
+      const double halves = hi + std::log(0.5 * std::exp(up - hi) + 0.5 * std::exp(down - hi));
+      EXPECT_LT(std::fabs(std::expm1(halves - full)), 1e-9)
+          << "t=" << t << " n=" << n << ": log BF full " << full << ", halves " << halves;
+      EXPECT_GT(t > 0 ? up : down, t > 0 ? down : up) << "t=" << t << " n=" << n;
+      if (n >= 1000 && std::fabs(t) >= 5000) {
+        const double against = t > 0 ? down : up;
+        const double tail = std::log(2 / (M_PI * kJzsMediumScale) / std::sqrt(n * nu));
+        EXPECT_NEAR(against, tail, 0.01) << "t=" << t << " n=" << n;
+      }
+    }
+  }
+}
