@@ -67,7 +67,7 @@ void add_selection_command(CLI::App& parent) {
 
 void run_study(const sim::StudyOptions& o) {
   const sim::StudySettings s = sim::study_settings(o);
-  const auto people = sim::write_study(s, o.out);
+  const auto people = sim::write_study(s, o.out, o.replace, FEINT_VERSION);
   // Where the files are, and the mean trial error by condition (first and last five iterations).
   fmt::print("{}", tables::study_summary_text(people, s, o.out));
 }
@@ -79,8 +79,12 @@ void add_study_command(CLI::App& parent) {
       "Simulate a user study (adaptive vs random selection) and write pad-trace logs "
       "(DIR/logs/P*.csv.gz) and a Likert questionnaire (DIR/questionnaire.csv); "
       "docs/simulation.md.");
-  cmd->add_option("-o,--output,--out", opts->out, "output directory (created if missing)")
+  cmd->add_option("-o,--output,--out", opts->out,
+                  "output directory (created if missing; a non-empty one is refused)")
       ->required();
+  cmd->add_flag("--replace", opts->replace,
+                "replace the folder of an earlier feint simulate study whole (never a folder "
+                "holding other files)");
   cmd->add_option("--participants,-p", opts->participants, "participants per condition")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));

@@ -85,9 +85,40 @@ ParticipantRecord simulate_participant(const StudySettings& settings, int index)
   return p;
 }
 
-std::vector<ParticipantRecord> write_study(const StudySettings& settings, const std::string& dir) {
+namespace {
+
+// A folder that `feint simulate study` wrote before it wrote a manifest: logs/ with P*.csv.gz and
+// questionnaire.csv.
+bool is_legacy_study_output(std::string_view name) {
+  if (name == "logs/" || name == "questionnaire.csv") return true;
+  constexpr std::string_view prefix = "logs/P", suffix = ".csv.gz";
+  if (name.size() <= prefix.size() + suffix.size() || name.substr(0, prefix.size()) != prefix ||
+      name.substr(name.size() - suffix.size()) != suffix) {
+    return false;
+  }
+  const auto digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  return std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+}  // namespace
+
+io::FolderWriter study_folder_writer(bool replace) {
+  io::FolderWriter w;
+  w.command = "feint simulate study";
+  w.manifest = ".feint-simulate.json";
+  w.option = "-o";
+  w.legacy_output = &is_legacy_study_output;
+  w.ask_before_replacing = true;
+  w.replace = replace;
+  w.replace_option = "--replace";
+  return w;
+}
+
+std::vector<ParticipantRecord> write_study(const StudySettings& settings, const std::string& dir,
+                                           bool replace, std::string_view tool_version) {
   namespace fs = std::filesystem;
-  const fs::path logs = fs::path(dir) / "logs";
+  io::OutputFolder folder(dir, {}, study_folder_writer(replace));
+  const fs::path logs = folder.staging() / "logs";
   std::error_code ec;
   fs::create_directories(logs, ec);
   if (ec) throw IoError(fmt::format("{}: cannot create directory: {}", logs.string(), ec.message()));
@@ -144,7 +175,8 @@ std::vector<ParticipantRecord> write_study(const StudySettings& settings, const 
     q += fmt::format("{},{},{},{},{},{}\n", p.id, to_string(p.condition), p.likert[0], p.likert[1],
                      p.likert[2], p.likert[3]);
   }
-  io::write_file_atomically((fs::path(dir) / "questionnaire.csv").string(), q);
+  io::write_file_atomically(folder.path("questionnaire.csv"), q);
+  folder.commit(tool_version);
   return all;
 }
 

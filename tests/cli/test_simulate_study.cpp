@@ -75,7 +75,7 @@ TEST(SimulateStudyCli, SameSeedSameDataDifferentSeedDifferentData) {
   EXPECT_NE(slurp_csv(a / "logs" / "P01.csv.gz"), slurp_csv(c / "logs" / "P01.csv.gz"));
 }
 
-TEST(SimulateStudyCli, BadOptionsAreUsageErrorsAndAFileInTheWayIsAnIoError) {
+TEST(SimulateStudyCli, BadOptionsAndAFileInTheWayAreUsageErrors) {
   TempDir dir;
   for (const std::string args : {"simulate study", "simulate study --out x --participants 0",
                                  "simulate study --out x --lambda 2", "simulate study --out x --iterations 0",
@@ -86,5 +86,58 @@ TEST(SimulateStudyCli, BadOptionsAreUsageErrorsAndAFileInTheWayIsAnIoError) {
   const auto blocker = dir / "file";
   write_text(blocker, "not a directory");
   const auto r = run_feint("simulate study --participants 1 --iterations 1 --out " + shell_quote(blocker.string()));
-  EXPECT_EQ(r.exit_code, 74) << r.err;
+  // As feint analyze -o says of a file in the way: the command line names a file, not a folder.
+  EXPECT_EQ(r.exit_code, 64) << r.err;
+  EXPECT_NE(r.err.find("exists and is not a folder"), std::string::npos) << r.err;
+  EXPECT_EQ(read_text(blocker), "not a directory");
+}
+
+namespace {
+std::size_t logs_in(const std::filesystem::path& study) {
+  std::size_t n = 0;
+  for (const auto& e : std::filesystem::directory_iterator(study / "logs")) n += e.is_regular_file();
+  return n;
+}
+}  // namespace
+
+// A second run into the same folder never mixes with the first: it is refused unless --replace is
+// given, and then the folder is replaced whole (no log of the first run is left beside the new
+// questionnaire). --replace never deletes a file that feint simulate study did not write.
+TEST(SimulateStudyCli, ANonEmptyFolderIsRefusedUnlessReplacedAndThenReplacedWhole) {
+  TempDir dir;
+  const auto sim = dir / "sim";
+  const std::string out = " --iterations 2 --seed 3 --out " + shell_quote(sim.string());
+  ASSERT_EQ(run_feint("simulate study --participants 3" + out).exit_code, 0);
+  ASSERT_EQ(logs_in(sim), 6u);
+  const std::string first_questionnaire = read_text(sim / "questionnaire.csv");
+
+  auto r = run_feint("simulate study --participants 1" + out);
+  EXPECT_EQ(r.exit_code, 64) << r.err;
+  EXPECT_NE(r.err.find("is not empty"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--replace"), std::string::npos) << r.err;
+  EXPECT_EQ(logs_in(sim), 6u);  // untouched
+  EXPECT_EQ(read_text(sim / "questionnaire.csv"), first_questionnaire);
+
+  r = run_feint("simulate study --participants 1 --replace" + out);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(logs_in(sim), 2u);  // the first run's P03..P06 are gone
+  const std::string q = read_text(sim / "questionnaire.csv");
+  EXPECT_EQ(std::count(q.begin(), q.end(), '\n'), 3);
+  EXPECT_TRUE(std::filesystem::exists(sim / ".feint-simulate.json"));
+
+  // A file the user put there is never deleted, even with --replace.
+  write_text(sim / "notes.txt", "my notes");
+  r = run_feint("simulate study --participants 2 --replace" + out);
+  EXPECT_EQ(r.exit_code, 64) << r.err;
+  EXPECT_NE(r.err.find("'notes.txt'"), std::string::npos) << r.err;
+  EXPECT_EQ(read_text(sim / "notes.txt"), "my notes");
+  EXPECT_EQ(logs_in(sim), 2u);
+
+  // Nor is a folder of data that feint did not write (no manifest, other names).
+  const auto data = dir / "data";
+  write_text(data / "logs" / "participant-a.csv", "t,pad\n");
+  r = run_feint("simulate study --participants 1 --replace --iterations 1 --out " +
+                shell_quote(data.string()));
+  EXPECT_EQ(r.exit_code, 64) << r.err;
+  EXPECT_EQ(read_text(data / "logs" / "participant-a.csv"), "t,pad\n");
 }

@@ -37,6 +37,7 @@ std::vector<SimulationSettings> selection_settings(const SelectionOptions& optio
 
 struct StudyOptions {
   std::string out;
+  bool replace = false;  ///< --replace: replace an earlier `feint simulate study` folder whole
   int participants = 20;
   int iterations = 20;
   double lambda = 0.5;

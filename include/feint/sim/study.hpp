@@ -11,8 +11,10 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "feint/io/output_folder.hpp"
 #include "feint/sim/observer.hpp"
 #include "feint/sim/selection.hpp"
 #include "feint/sim/trajectory.hpp"
@@ -59,8 +61,17 @@ inline constexpr std::array<Algorithm, 2> kStudyConditions = {Algorithm::adaptiv
 /// Writes DIR/logs/<participant>.csv.gz (columns participant, condition, iteration, strategy,
 /// variant, target, t, pad, pad_speed, robot_x, robot_y: the robot's position in metres at each
 /// sample, formats.md "Robot path") and DIR/questionnaire.csv (participant, condition,
-/// entertainment, deception, intelligence, trust). Files are written to temporaries and renamed.
-/// Returns the participants (for a summary). Throws IoError when a file cannot be written.
-std::vector<ParticipantRecord> write_study(const StudySettings& settings, const std::string& dir);
+/// entertainment, deception, intelligence, trust). DIR is written as one unit
+/// (feint/io/output_folder.hpp): everything goes into a staging folder that replaces DIR when
+/// complete, so a run never mixes with an earlier one. A DIR that exists and is not empty is
+/// refused (UsageError) unless `replace` is set, and even then only when it holds nothing but an
+/// earlier `feint simulate study`'s files. Returns the participants (for a summary). Throws
+/// IoError when a file cannot be written.
+std::vector<ParticipantRecord> write_study(const StudySettings& settings, const std::string& dir,
+                                           bool replace = false,
+                                           std::string_view tool_version = "unknown");
+
+/// `feint simulate study` as the writer of its folder (manifest .feint-simulate.json; --replace).
+io::FolderWriter study_folder_writer(bool replace);
 
 }  // namespace feint::sim
