@@ -463,7 +463,14 @@ struct TraceReader::Impl {
     if (mark == '.') return parse_number(s);
     return num_other(s);
   }
+  // A cell holding a JSON array or object (a whole trace in one cell) is no number, and its commas
+  // say nothing about the decimal mark.
+  static bool is_list(std::string_view s) {
+    const auto first = s.find_first_not_of(" \t");
+    return first != std::string_view::npos && (s[first] == '[' || s[first] == '{');
+  }
   std::optional<double> num_other(std::string_view s) {
+    if (is_list(s)) return std::nullopt;
     if (mark == 0) {  // not known yet: the first value with a mark decides
       const bool comma = s.find(',') != std::string_view::npos;
       if (s.find('.') != std::string_view::npos) {
@@ -486,6 +493,14 @@ struct TraceReader::Impl {
   }
   // Why a number cell was not read, when the decimal mark may be the reason.
   std::string mark_hint(std::string_view s) const {
+    if (is_list(s)) {
+      // jsPsych writes one row per trial, its trace as JSON arrays in cells: not a decimal mark.
+      return "; the cell holds a list (a JSON array, as jsPsych writes a whole trace in one row): "
+             "feint reads one row per pad sample, or a trial's whole trace from one JSON cell: "
+             "put the arrays in one column as {\"t\":[...],\"pad\":[...]} and give "
+             "--samples-column COLUMN (docs/formats.md, \"Files from other labs\"), or write one "
+             "row per sample";
+    }
     if (mark == ',' && s.find('.') != std::string_view::npos) {
       return options.decimal == ','
                  ? "; --decimal , is given, so a '.' is not allowed"
@@ -497,6 +512,12 @@ struct TraceReader::Impl {
     }
     return {};
   }
+  // A cell as a message shows it: a long one (a whole trace in one cell) cut to its first 40
+  // characters, so that the message stays readable.
+  static std::string shown_cell(std::string_view s) {
+    return s.size() <= 60 ? std::string(s) : std::string(s.substr(0, 40)) + "\u2026";
+  }
+
   [[gnu::always_inline]] std::string_view get(Field f) const {
     const int i = cols.index[f];
     if (i < 0) return f == kParticipant ? std::string_view(file_participant) : std::string_view{};
@@ -675,7 +696,7 @@ struct TraceReader::Impl {
       invalid(b, line, ts.empty() ? fmt::format("column '{}': empty (expected a time in {})",
                                                 cols.name[kT], unit_name)
                                   : fmt::format("column '{}': '{}' is not a number (expected a "
-                                                "time in {}{}){}", cols.name[kT], ts, unit_name,
+                                                "time in {}{}){}", cols.name[kT], shown_cell(ts), unit_name,
                                                 mark == ',' ? ", decimal comma" : ", decimal point",
                                                 mark_hint(ts)));
       return;
@@ -685,7 +706,7 @@ struct TraceReader::Impl {
       invalid(b, line, ps.empty() ? fmt::format("column '{}': empty (expected a pad position in "
                                                 "[0, 1])", cols.name[kPad])
                                   : fmt::format("column '{}': '{}' is not a number (expected a pad "
-                                                "position in [0, 1]){}", cols.name[kPad], ps,
+                                                "position in [0, 1]){}", cols.name[kPad], shown_cell(ps),
                                                 mark_hint(ps)));
       return;
     }

@@ -211,6 +211,27 @@ TEST(OtherLabs, JsPsychWithoutTheOptionIsRefusedWithIt) {
                      "COLUMN"), std::string::npos) << msg;
 }
 
+// jsPsych's one row per trial with the trace as parallel JSON arrays in two cells (t and pad):
+// the message says the cell holds a list and names the option that reads a whole trace from one
+// cell, and never suggests a decimal comma (the commas are the list's).
+TEST(OtherLabs, TraceAsArraysInSeparateCellsIsRefusedNamingArraysNotADecimalComma) {
+  std::string long_t = "[0";
+  for (int k = 1; k < 60; ++k) long_t += "," + std::to_string(17 * k);
+  long_t += "]";
+  const std::string p = write("arrays-in-cells.csv",
+                              "participant,condition,iteration,target,t,pad\n"
+                              "P1,adaptive,1,left,\"" + long_t + "\",\"[0.5,0.45,0.4]\"\n");
+  const auto msg = error_of({p});
+  EXPECT_NE(msg.find("arrays-in-cells.csv:2:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("column 't'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("the cell holds a list (a JSON array"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("--samples-column COLUMN"), std::string::npos) << msg;
+  EXPECT_EQ(msg.find("decimal comma?"), std::string::npos) << msg;
+  // The cell is shown cut to its first 40 characters, not the whole trace.
+  EXPECT_NE(msg.find("'" + long_t.substr(0, 40) + "\u2026'"), std::string::npos) << msg;
+  EXPECT_EQ(msg.find(long_t), std::string::npos) << msg;
+}
+
 TEST(OtherLabs, MalformedJsonCellNamesRowColumnAndSample) {
   TraceOptions opt;
   opt.samples_column = "trace";
