@@ -26,6 +26,26 @@ std::string display_path(const std::string& path, const std::string& base) {
   return rel.generic_string();
 }
 
+namespace {
+
+std::filesystem::path canonical_of(const std::string& p) {
+  std::error_code ec;
+  const fs::path c = fs::weakly_canonical(fs::absolute(p, ec), ec);
+  return ec ? fs::absolute(p).lexically_normal() : c;
+}
+
+}  // namespace
+
+std::string path_from(const std::string& path_text, const std::string& folder_text) {
+  const fs::path path = canonical_of(path_text), from = canonical_of(folder_text);
+  if (path == from) return (fs::path("..") / from.filename()).generic_string();
+  auto p = path.begin(), f = from.begin();
+  std::size_t shared = 0;
+  for (; p != path.end() && f != from.end() && *p == *f; ++p, ++f) ++shared;
+  if (shared <= 1) return (fs::path(kPathPlaceholder) / path.filename()).generic_string();
+  return path.lexically_relative(from).generic_string();
+}
+
 std::vector<std::string> Study::inputs() const {
   std::vector<std::string> v = log_inputs;
   for (const auto& p : {questionnaire, config}) {

@@ -59,8 +59,9 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
   const std::string out = a.out.empty() ? std::string("feint-analysis") : a.out;
   const analysis::StudyResults results = analysis::analyze(study, FEINT_VERSION);
   for (const auto& w : results.diagnostics.warnings) fmt::print(stderr, "feint: warning: {}\n", w);
-  const publish::WrittenStudy written =
-      publish::write_study(study, results, out, commands::quoted_command_line(process_arguments()));
+  // The Reproduce line runs from the report's folder: its paths are relative to it.
+  const std::string command = commands::quoted_command_line(process_arguments(), out);
+  const publish::WrittenStudy written = publish::write_study(study, results, out, command);
   // What the study shows (docs/findings.md), also in OUT/findings.json and first in the report.
   if (!results.findings.empty()) fmt::print("{}", analysis::findings_text(results.findings));
   fmt::print(

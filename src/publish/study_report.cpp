@@ -15,6 +15,14 @@ namespace feint::publish {
 
 namespace {
 
+// The Reproduce line names a folder outside every folder the report shares with its study as
+// PATH_TO/NAME (commands::quoted_command_line): say what to put there.
+std::string placeholder_note(const std::string& command_line) {
+  return command_line.find("PATH_TO/") == std::string::npos
+             ? ""
+             : "; PATH_TO stands for where that folder is on your machine";
+}
+
 namespace fs = std::filesystem;
 using io::html_escape;
 using tables::OutputFormat;
@@ -252,14 +260,16 @@ std::string settings_html(const analysis::StudyResults& r) {
   return settings;
 }
 
-// The Reproduce section: the command line that made this report.
+// The Reproduce section: the command line that made this report, run from its folder.
 std::string reproduce_html(const analysis::StudyResults& r, const ReportContext& c) {
   return fmt::format(
-      "<p>This report was made by feint {} with the command</p>\n<pre>{}</pre>\n"
+      "<p>This report was made by feint {} with the command below, run from this "
+      "report's folder (its paths are relative to it{}):</p>\n<pre>{}</pre>\n"
       "<p>Every table is also in the output folder as text, Markdown, LaTeX, CSV "
       "and JSON (as the formats setting asks); the figures one-column (3.5 in) and "
       "two-column (7.16 in) wide.</p>\n",
-      html_escape(r.tool_version), html_escape(c.command_line));
+      html_escape(r.tool_version), html_escape(placeholder_note(c.command_line)),
+      html_escape(c.command_line));
 }
 
 }  // namespace
@@ -323,7 +333,9 @@ std::string study_report_markdown(const analysis::StudyResults& r,
   }
   o += "\n## Settings\n\n`feint analyze --config settings.toml STUDY` reproduces this run:\n\n```toml\n" +
        r.settings_toml + "```\n";
-  o += fmt::format("\n## Reproduce\n\nMade by feint {} with\n\n```\n{}\n```\n", r.tool_version,
+  o += fmt::format("\n## Reproduce\n\nMade by feint {} with the command below, run from this "
+                   "report's folder (its paths are relative to it{}):\n\n```\n{}\n```\n",
+                   r.tool_version, placeholder_note(c.command_line),
                    c.command_line);
   return o;
 }

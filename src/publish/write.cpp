@@ -93,7 +93,7 @@ WrittenStudy write_study(const analysis::Study& study, const analysis::StudyResu
   if (!a.no_figures) drawn = draw_figures(r, a.figure_formats, out.staging().string());
   if (!a.no_report) {
     ReportContext c;
-    c.study_folder = analysis::display_path(study.folder, ".");
+    c.study_folder = analysis::path_from(study.folder, out_name);  // as the Reproduce line
     c.questionnaire = analysis::display_path(study.questionnaire, study.folder);
     c.config = analysis::display_path(study.config, study.folder);
     c.command_line = command_line;

@@ -194,6 +194,30 @@ TEST(AnalyzePipeline, PrintedSettingsReproduceTheRunByteForByte) {
   EXPECT_EQ(read_text(second / "settings.toml"), toml);
 }
 
+// The report's Reproduce line is a command to run from the report's folder: its paths are relative
+// to that folder, not to the shell's folder of whoever made it, so a shared report carries no one's
+// folder layout, and the line run from there makes the same report again.
+TEST(AnalyzePipeline, ReproduceLineRunsFromTheReportsFolder) {
+  TempDir dir;
+  small_study(dir / "lab", 1.0, true);
+  fs::create_directories(dir / "elsewhere");
+  const std::string run_from_elsewhere =
+      "cd " + shell_quote((dir / "elsewhere").string()) + " && " + shell_quote(FEINT_EXE) +
+      " analyze ../lab/study -o ../out/res --no-figures >/dev/null 2>&1; echo $?";
+  ASSERT_EQ(shell_output(run_from_elsewhere), "0\n");
+  const auto res = dir / "out" / "res";
+  const std::string md = read_text(res / "report.md");
+  const std::string line = "feint analyze ../../lab/study -o ../res --no-figures";
+  ASSERT_NE(md.find("run from this report's folder"), std::string::npos) << md;
+  ASSERT_NE(md.find("```\n" + line + "\n```"), std::string::npos) << md.substr(md.find("## Reproduce"));
+  EXPECT_NE(read_text(res / "report.html").find("<pre>" + line + "</pre>"), std::string::npos);
+  // Run it from the report's folder, as the report says: the same report again.
+  const std::string again = "cd " + shell_quote(res.string()) + " && " + shell_quote(FEINT_EXE) +
+                            line.substr(5) + " >/dev/null 2>&1; echo $?";
+  ASSERT_EQ(shell_output(again), "0\n");
+  EXPECT_EQ(read_text(dir / "out" / "res" / "report.md"), md);
+}
+
 TEST(AnalyzePipeline, WithoutOutputSaysWhereItWrote) {
   TempDir dir;
   const std::string out = shell_output("cd " + shell_quote(dir.path().string()) + " && " +

@@ -52,4 +52,13 @@ Study load_study(const std::string& folder, const AnalysisSettings& settings,
 /// the current folder otherwise), never absolute unless it has no relative form; '/' separators.
 std::string display_path(const std::string& path, const std::string& base);
 
+/// What a path outside every folder a report shares with its study is shown as: PATH_TO/NAME.
+inline constexpr const char* kPathPlaceholder = "PATH_TO";
+
+/// `path` as seen from `folder` (a report's folder), so that a command run from there finds it:
+/// relative to `folder` ('/' separators; `folder` itself as ../NAME), or PATH_TO/NAME when the two
+/// share no folder but the root (a shared report then carries no one's folder layout). Neither
+/// needs to exist.
+std::string path_from(const std::string& path, const std::string& folder);
+
 }  // namespace feint::analysis

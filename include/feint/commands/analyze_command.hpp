@@ -11,11 +11,17 @@
 
 namespace feint::commands {
 
-/// A command line as the study report shows it: the program by its file name, absolute paths
-/// shown relative to the current folder (analysis::display_path), arguments with spaces or shell
-/// characters in single quotes; so that the report names no absolute path. `arguments` are the
-/// process's arguments as the caller captured them (the program first); empty gives "".
-std::string quoted_command_line(const std::vector<std::string>& arguments);
+/// A command line as the study report shows it, to be run from the report's folder: the program
+/// by its file name; every argument that names a file or folder (that exists, or is
+/// `output_folder`), alone or after `--option=`, rewritten relative to `output_folder` (the output
+/// folder itself as ../NAME); a path that shares no folder but the root with the output folder
+/// shown as PATH_TO/NAME (analysis::path_from), so that a shared report carries no one's folder
+/// layout; arguments with spaces or shell characters in single quotes. `arguments` are the
+/// process's arguments as the caller captured them (the program first, then the command's name,
+/// which is never rewritten); empty gives "". With `output_folder` empty, paths are shown relative
+/// to the current folder (analysis::display_path) as before.
+std::string quoted_command_line(const std::vector<std::string>& arguments,
+                                const std::string& output_folder = "");
 
 /// "feint analyze: R rows read, T trials scored, X rejected; N files written to FOLDER" (noting
 /// when FOLDER is the default), then "feint analyze: open FOLDER/report.html" unless --no-report.

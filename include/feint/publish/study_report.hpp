@@ -37,7 +37,7 @@ DrawnFigures draw_figures(const analysis::StudyResults& results,
 
 /// What the page says about where it came from.
 struct ReportContext {
-  std::string study_folder;   ///< as the user named it (shown relative to the current folder)
+  std::string study_folder;   ///< as seen from the report's folder (analysis::path_from)
   std::string questionnaire;  ///< relative to the study ("" = none)
   std::string config;         ///< relative to the study or current folder ("" = none)
   std::string command_line;   ///< the command that ran ("" = not known)
