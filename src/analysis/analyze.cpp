@@ -206,12 +206,15 @@ void load_scored(const Scored& sc, const std::vector<std::string>& metrics, Stud
   for (const auto& c : r.scores.conditions()) d.participants_per_condition.emplace_back(c, per[c].size());
 }
 
+using Comparison = std::optional<std::pair<std::string, std::string>>;
+
 // Stage 3. Table 1: one-sample per condition, and A against B when asked.
-void build_tables(const Study& study, const tables::Table1Options& t, StudyResults& r) {
+void build_tables(const Study& study, const Comparison& compare, const tables::Table1Options& t,
+                  StudyResults& r) {
   r.table1 = tables::build_table1(r.scores, t);
-  if (study.compare) {
+  if (compare) {
     tables::Table1Options c = t;
-    c.compare = study.compare;
+    c.compare = compare;
     c.var_equal = study.settings.var_equal;
     c.paired = study.settings.paired;
     r.comparison = tables::build_table1(r.scores, c);
@@ -221,8 +224,9 @@ void build_tables(const Study& study, const tables::Table1Options& t, StudyResul
 // Stage 4. The mixed ANOVA (GG, as afex) and the mixed models (as lme4/lmerTest): left out, with
 // the reason, when the design does not allow them (one iteration, one condition, a constant
 // metric).
-void fit_models(const Study& study, const std::vector<std::string>& metrics,
-                const std::string& prefix, StudyResults& r) {
+void fit_models(const Study& study, const Comparison& compare,
+                const std::vector<std::string>& metrics, const std::string& prefix,
+                StudyResults& r) {
   Diagnostics& d = r.diagnostics;
   try {
     r.anova = tables::build_anova_report(r.scores, models::SphericityCorrection::GG);
@@ -242,7 +246,7 @@ void fit_models(const Study& study, const std::vector<std::string>& metrics,
   }
   tables::ModelOptions o;
   o.metrics = metrics;
-  o.compare = study.compare;
+  o.compare = compare;
   o.alpha = study.tests.alpha;
   o.conf_level = study.tests.test.conf_level;
   o.p_adjust = study.tests.p_adjust;
@@ -288,7 +292,7 @@ void compare_respondents(const io::Questionnaire& q, StudyResults& r) {
 }
 
 // Stage 5. The questionnaire, when the study has one.
-void analyze_questionnaire(const Study& study, StudyResults& r) {
+void analyze_questionnaire(const Study& study, const Comparison& compare, StudyResults& r) {
   if (!study.answers) return;
   Diagnostics& d = r.diagnostics;
   const io::Questionnaire& q = *study.answers;
@@ -306,9 +310,9 @@ void analyze_questionnaire(const Study& study, StudyResults& r) {
   for (auto& [_, e] : excluded) d.exclusions.push_back(std::move(e));
   compare_respondents(q, r);
   r.likert = tables::analyze_likert(q, study.likert);
-  if (study.compare) {
+  if (compare) {
     tables::LikertSettings lc = study.likert;
-    lc.compare = study.compare;
+    lc.compare = compare;
     r.likert_compare = tables::analyze_likert(q, lc);
   }
 }
@@ -329,6 +333,7 @@ void collect_figure_data(const Study& study, const Scored& sc, const tables::Tab
     topt.column_map = sc.settings.column_map;
     topt.delimiter = sc.settings.delimiter;
     topt.unsorted = sc.settings.unsorted;
+    topt.time_divisor = sc.settings.time_unit == metrics::TimeUnit::ms ? 1000 : 1;  // as scored
     r.figures.traces = mean_traces(study.logs, topt, r.figures.labels, t.test.conf_level);
     for (const auto& m : metrics) {
       r.figures.exposure.push_back(
@@ -363,6 +368,36 @@ void collect_figure_data(const Study& study, const Scored& sc, const tables::Tab
 
 }  // namespace
 
+std::optional<std::pair<std::string, std::string>> default_comparison(
+    const Study& study, const std::vector<std::string>& conditions) {
+  if (study.compare || !study.config.empty() || conditions.size() != 2) return std::nullopt;
+  std::vector<std::string> c = conditions;
+  if (c[0].empty() || c[1].empty()) return std::nullopt;
+  std::sort(c.begin(), c.end());
+  if (c[1] == "adaptive") std::swap(c[0], c[1]);
+  return std::pair{c[0], c[1]};
+}
+
+namespace {
+
+// The comparison of the run: the one set, or the default one (said in the report's Design, and
+// written into the printed settings so that they reproduce the run).
+Comparison decide_comparison(const Study& study, StudyResults& r) {
+  if (study.compare) return study.compare;
+  Comparison c = default_comparison(study, r.scores.conditions());
+  if (c) {
+    r.comparison_note = fmt::format(
+        "compared by default: the logs hold exactly these two conditions and no settings file "
+        "names a comparison (set compare = \"A,B\" in feint.toml to choose)");
+    AnalysisSettings printed = study.settings;
+    printed.compare = c->first + "," + c->second;
+    r.settings_toml = settings_toml(printed);
+  }
+  return c;
+}
+
+}  // namespace
+
 StudyResults analyze(const Study& study, const std::string& tool_version) {
   StudyResults r;
   r.study = study.name;
@@ -373,9 +408,10 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   const tables::Table1Options t = table1_options(study);
   const std::vector<std::string> metrics = metric_columns(t);
   load_scored(scored, metrics, r);
-  build_tables(study, t, r);
-  fit_models(study, metrics, scored.prefix, r);
-  analyze_questionnaire(study, r);
+  const Comparison compare = decide_comparison(study, r);
+  build_tables(study, compare, t, r);
+  fit_models(study, compare, metrics, scored.prefix, r);
+  analyze_questionnaire(study, compare, r);
   collect_figure_data(study, scored, t, metrics, r);
   r.scores.path = "scores.csv";
   // Stage 7. The findings (docs/findings.md): what the study shows, and how strongly.

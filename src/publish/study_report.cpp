@@ -118,8 +118,10 @@ std::vector<std::pair<std::string, std::string>> design_rows(const analysis::Stu
       {"Iterations",
        its.empty() ? "none" : fmt::format("{} ({} to {})", its.size(), its.front(), its.back())},
       {"Metrics and references", fmt::format("{}", fmt::join(metrics, "; "))},
-      {"Comparison", r.comparison ? fmt::format("{} against {}", r.comparison->blocks.front().group1,
-                                                r.comparison->blocks.front().group2)
+      {"Comparison", r.comparison ? fmt::format("{} against {}{}", r.comparison->blocks.front().group1,
+                                                r.comparison->blocks.front().group2,
+                                                r.comparison_note.empty() ? ""
+                                                    : " (" + r.comparison_note + ")")
                                   : "none (set compare = \"A,B\")"},
       {"Questionnaire", c.questionnaire.empty() ? "none" : c.questionnaire},
       {"Settings file", c.config.empty() ? "none" : c.config},

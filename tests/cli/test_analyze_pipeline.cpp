@@ -143,6 +143,28 @@ TEST(AnalyzePipeline, MillisecondTimesAreWarnedInTheReport) {
             std::string::npos);
 }
 
+// Times in milliseconds read with --time-unit ms draw the same mean pad traces as the same study in
+// seconds: the figures read the logs as the scorer does (they used to read milliseconds as seconds).
+TEST(AnalyzePipeline, MillisecondLogsDrawTheSameTracesAsSeconds) {
+  TempDir dir;
+  const auto in_s = small_study(dir / "s", 1.0, true);
+  const auto in_ms = small_study(dir / "ms", 1000.0, true);
+  auto r = run_feint("analyze " + shell_quote(in_s.string()) + " -o " +
+                     shell_quote((dir / "out-s").string()) + " --figure-formats svg");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_feint("analyze " + shell_quote(in_ms.string()) + " --time-unit ms -o " +
+                shell_quote((dir / "out-ms").string()) + " --figure-formats svg");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::size_t compared = 0;
+  for (const auto& e : fs::directory_iterator(dir / "out-s" / "figures")) {
+    const std::string name = e.path().filename().string();
+    if (name.find("trace") == std::string::npos) continue;
+    EXPECT_EQ(read_text(e.path()), read_text(dir / "out-ms" / "figures" / name)) << name;
+    ++compared;
+  }
+  EXPECT_GE(compared, 1u);
+}
+
 TEST(AnalyzePipeline, TwoConditionsRefuseALogWithoutTheConditionColumn) {
   TempDir dir;
   const auto study = small_study(dir.path(), 1, false);
@@ -216,6 +238,33 @@ TEST(AnalyzePipeline, ReproduceLineRunsFromTheReportsFolder) {
                             line.substr(5) + " >/dev/null 2>&1; echo $?";
   ASSERT_EQ(shell_output(again), "0\n");
   EXPECT_EQ(read_text(dir / "out" / "res" / "report.md"), md);
+}
+
+// A study folder without feint.toml whose logs hold exactly two conditions compares them with no
+// setting made by hand, says so in the report, and its printed settings name the comparison (so
+// they reproduce the run). A settings file that names no comparison is obeyed.
+TEST(AnalyzePipeline, TwoConditionsAreComparedByDefaultAndTheReportSaysSo) {
+  TempDir dir;
+  const auto study = small_study(dir.path(), 1.0, true);
+  auto r = run_feint("analyze " + shell_quote(study.string()) + " -o " +
+                     shell_quote((dir / "out").string()) + " --no-figures");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir / "out" / "table1_compare.csv"));
+  const std::string md = read_text(dir / "out" / "report.md");
+  EXPECT_NE(md.find("- Comparison: adaptive against random (compared by default: the logs hold "
+                    "exactly these two conditions"),
+            std::string::npos)
+      << md.substr(0, 1500);
+  EXPECT_NE(read_text(dir / "out" / "settings.toml").find("compare = \"adaptive,random\""),
+            std::string::npos);
+
+  // A settings file without a comparison: the study's own choice, no comparison.
+  feint::test::write_text(study / "feint.toml", "alpha = 0.05\n");
+  r = run_feint("analyze " + shell_quote(study.string()) + " -o " +
+                shell_quote((dir / "out2").string()) + " --no-figures");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "out2" / "table1_compare.csv"));
+  EXPECT_NE(read_text(dir / "out2" / "report.md").find("- Comparison: none"), std::string::npos);
 }
 
 TEST(AnalyzePipeline, WithoutOutputSaysWhereItWrote) {

@@ -21,4 +21,12 @@ namespace feint::analysis {
 /// Scoring uses a private temporary folder (removed before returning); the study is never written.
 StudyResults analyze(const Study& study, const std::string& tool_version = "unknown");
 
+/// The comparison a study gets when no setting names one: its two conditions, when the study has
+/// no settings file and its scores hold exactly two (named) conditions; "adaptive" first when it
+/// is one of them (the paper's design: the adaptive condition is the one H1 is about), otherwise
+/// in alphabetical order, so that the contrast does not depend on the logs' file names. None when
+/// a comparison was set, a settings file was read, or there are not exactly two conditions.
+std::optional<std::pair<std::string, std::string>> default_comparison(
+    const Study& study, const std::vector<std::string>& conditions);
+
 }  // namespace feint::analysis

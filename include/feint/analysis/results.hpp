@@ -80,6 +80,9 @@ struct StudyResults {
   // Tables.
   tables::Table1 table1;                     ///< one-sample, per condition
   std::optional<tables::Table1> comparison;  ///< condition A against B (--compare)
+  /// Why the conditions were compared when no setting asked it (default_comparison), for the
+  /// report's Design; empty when a setting named the comparison or none was made.
+  std::string comparison_note;
   std::optional<tables::AnovaReport> anova;  ///< mixed ANOVA (GG); empty when the design allows none
   std::optional<tables::ModelAnalysis> model;        ///< metric ~ condition * iteration (feint model)
   std::optional<tables::ModelAnalysis> trend_model;  ///< metric ~ condition * iteration as a trend
