@@ -1,38 +1,26 @@
 // `feint observer fit`: the goal-inference observer fitted to pad-trace logs (docs/observer.md).
-// Thin: sim::fit_observer_to_logs reads the logs and fits; tables::render_observer_fit_* print it.
+// Thin: commands::observer_fit_report reads the logs (the loader options of `feint score`), fits
+// and renders.
 #include <memory>
 
 #include "commands.hpp"
-#include "feint/tables/observer_render.hpp"
-#include "feint/sim/observer_logs.hpp"
+#include "feint/commands/observer_power.hpp"
 #include "options.hpp"
 
 namespace feint::cli {
-
-namespace {
-
-void run_fit(const sim::ObserverFitOptions& a) {
-  const models::ObserverFitSettings s = sim::observer_fit_settings(a);
-  const sim::ObserverLogFit fit = sim::fit_observer_to_logs(a.inputs, s);
-  write_report(a.output, a.format == "json" ? tables::render_observer_fit_json(fit, s)
-                                            : tables::render_observer_fit_text(fit, s));
-}
-
-}  // namespace
 
 void add_observer_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "observer", "The goal-inference observer (docs/observer.md): fit it to people.");
   cmd->require_subcommand(1);
-  auto a = std::make_shared<sim::ObserverFitOptions>();
+  auto c = std::make_shared<commands::ObserverFitCommand>();
+  sim::ObserverFitOptions* a = &c->o;
   auto* fit = cmd->add_subcommand(
       "fit",
       "Fit the observer's rationality beta and delay tau (and optionally the prior) to pad-trace "
-      "logs by "
-      "maximum likelihood, per participant and pooled per condition, with profile-likelihood CIs, "
-      "model-human agreement per strategy and iteration, and a test of learning (a change of beta "
-      "with "
-      "exposure).");
+      "logs by maximum likelihood, per participant and pooled per condition, with profile-"
+      "likelihood CIs, model-human agreement per strategy and iteration, and a test of learning (a "
+      "change of beta with exposure).");
   fit->add_option("inputs", a->inputs,
                   "log files, directories or globs (the format of `feint score`)")
       ->required();
@@ -54,7 +42,8 @@ void add_observer_command(CLI::App& app) {
                   "pad speed for confusion when the logs have none (pad units/s)")
       ->capture_default_str();
   fit->add_flag("--no-learning", a->no_learning, "skip the learning test");
-  fit->callback([a] { run_fit(*a); });
+  add_loader_options(*fit, c->loader, "Reading the logs (as feint score)");
+  fit->callback([c] { write_report(c->o.output, commands::observer_fit_report(*c)); });
 }
 
 }  // namespace feint::cli

@@ -153,6 +153,13 @@ void add_score_options(CLI::App& cmd, ScoreOptions& o, const std::string& group)
   cmd.add_option("--pad-speed", o.pad_speed,
                  "Pad speed v in pad units per second for every trial; replaces a pad_speed column "
                  "(needed by --confusion-norm speed when the logs have none)");
+  add_loader_options(cmd, o);
+  cmd.option_defaults()->group(previous);
+}
+
+void add_loader_options(CLI::App& cmd, ScoreOptions& o, const std::string& group) {
+  const std::string previous = cmd.option_defaults()->get_group();
+  if (!group.empty()) cmd.option_defaults()->group(group);
   // One value per use: CLI11 2.1 would otherwise let a list option swallow a positional argument.
   cmd.add_option("--map", o.maps,
                  "NAME=COLUMN: read field NAME (participant, condition, iteration, strategy, "

@@ -84,11 +84,14 @@ void run_report(const ReportCommand<Options>& a, Render render) {
 using analysis::score_settings;
 using analysis::ScoreOptions;
 
-/// Registers --trim, --trim-start, --trim-end, --deadband, --confusion-norm, --pad-speed, --map,
-/// --delimiter, --on-error, --time-unit, --decimal, --no-header, --columns, --iteration-base,
-/// --participant-from-path, --samples-column and --single-condition on `cmd` (in help group
-/// `group`, if not empty), bound to `options`.
+/// Registers --trim, --trim-start, --trim-end, --deadband, --belief-deadband, --confusion-norm,
+/// --pad-speed, then the loader options, on `cmd` (in help group `group`, if not empty).
 void add_score_options(CLI::App& cmd, ScoreOptions& options, const std::string& group = "");
+
+/// The loader options, how to READ logs (every command that reads logs takes them): --map,
+/// --delimiter, --on-error, --time-unit, --decimal, --no-header, --columns, --iteration-base,
+/// --participant-from-path, --samples-column, --single-condition, bound to `options`.
+void add_loader_options(CLI::App& cmd, ScoreOptions& options, const std::string& group = "");
 
 // --- the settings file
 /// The settings file of a run: `given` (--config) when set, else STUDY/feint.toml when it exists,

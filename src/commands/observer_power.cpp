@@ -8,10 +8,33 @@
 #include "feint/analysis/settings.hpp"
 #include "feint/io/file_identity.hpp"
 #include "feint/io/scores.hpp"
+#include "feint/metrics/score.hpp"
+#include "feint/tables/observer_render.hpp"
 #include "feint/tables/study_power_render.hpp"
 #include "feint/sim/pilot_fit.hpp"
 
 namespace feint::commands {
+
+io::TraceOptions loader_trace_options(const analysis::ScoreOptions& loader) {
+  // Read as the scorer reads (metrics' reading options; analysis/analyze.cpp's mean traces).
+  const metrics::ScoreSettings s = analysis::score_settings(loader);
+  io::TraceOptions t = s.reading;
+  t.column_map = s.column_map;
+  t.delimiter = s.delimiter;
+  t.unsorted = s.unsorted;
+  t.time_divisor = s.time_unit == metrics::TimeUnit::ms ? 1000 : 1;
+  t.on_reject = {};
+  if (s.on_error == metrics::OnError::skip) t.on_reject = [](const io::Rejection&) {};
+  return t;
+}
+
+std::string observer_fit_report(const ObserverFitCommand& c) {
+  const io::TraceOptions reading = loader_trace_options(c.loader);
+  const models::ObserverFitSettings s = sim::observer_fit_settings(c.o);
+  const sim::ObserverLogFit fit = sim::fit_observer_to_logs(c.o.inputs, s, reading);
+  return c.o.format == "json" ? tables::render_observer_fit_json(fit, s)
+                              : tables::render_observer_fit_text(fit, s);
+}
 
 ObserverPowerPlan observer_power_plan(const ObserverPowerOptions& a, double alpha) {
   ObserverPowerPlan plan;

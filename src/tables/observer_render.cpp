@@ -31,7 +31,7 @@ std::string render_text(const models::StudyObserverFit& r, const models::Observe
                                        : "independent Gaussian around b(t)",
       a.thin > 0 ? fmt::format(", one sample per {} s", a.thin) : "", num(100 * a.level, 0));
   if (rejected_rows > 0)
-    out += fmt::format("{} trial(s) rejected by the log reader (see below).\n", rejected_rows);
+    out += fmt::format("{} trial(s) left out while reading the logs (see below).\n", rejected_rows);
   auto fits = [&](const std::vector<models::ObserverFit>& fs, const char* title) {
     out += fmt::format("\n{}\n", title);
     out += fmt::format("{:<12} {:<10} {:>6} {:>7}  {:<30} {:<30}{} {:>7} {:>6} {:>12}\n", "unit",

@@ -125,4 +125,6 @@ TEST(ObserverFitOptions, PathSourceSaysWhereThePathsCameFrom) {
   logs.paths_logged = 0;
   EXPECT_EQ(logs.path_source(),
             "path rebuilt from strategy, variant, target and the default geometry");
+  logs.paths_rebuilt = 0;  // no trial: no claim
+  EXPECT_EQ(logs.path_source(), "no robot path (no trial was read)");
 }

@@ -1,7 +1,9 @@
-// feint/commands/observer_power.hpp - the settings of `feint power observer` as the command line
-// spells them, and their conversion into sim::StudyPowerSettings: the simulated participants'
-// observer given, read from a file, set one parameter at a time, or fitted to a pilot's error by
-// simulated moments (sim/pilot_fit.hpp; docs/paper-scale.md, "Power from a pilot").
+// feint/commands/observer_power.hpp - the observer's commands. `feint observer fit`: the loader
+// options (as `feint score` spells them) turned into the log reader's options, the fit and its
+// rendering (docs/observer.md). `feint power observer`: its settings as the command line spells
+// them, and their conversion into sim::StudyPowerSettings: the simulated participants' observer
+// given, read from a file, set one parameter at a time, or fitted to a pilot's error by simulated
+// moments (sim/pilot_fit.hpp; docs/paper-scale.md, "Power from a pilot").
 #pragma once
 
 #include <cstddef>
@@ -10,9 +12,28 @@
 #include <vector>
 
 #include "feint/analysis/settings.hpp"
+#include "feint/io/trace.hpp"
+#include "feint/sim/observer_logs.hpp"
 #include "feint/sim/study_power.hpp"
 
 namespace feint::commands {
+
+/// The loader options (--map, --delimiter, --time-unit, --decimal, --no-header, --columns,
+/// --iteration-base, --participant-from-path, --samples-column, --single-condition, --on-error)
+/// as io::TraceReader takes them, checked and converted as `feint score` does
+/// (analysis::score_settings; UsageError names the option). --on-error skip sets a no-op
+/// `on_reject` (lenient mode); strict leaves it empty. The scoring options are not used.
+io::TraceOptions loader_trace_options(const analysis::ScoreOptions& loader);
+
+/// `feint observer fit`: its options and the loader options of `feint score`.
+struct ObserverFitCommand {
+  sim::ObserverFitOptions o;
+  analysis::ScoreOptions loader;
+};
+
+/// Checks the options, reads the logs with the loader options, fits (sim::fit_observer_to_logs)
+/// and renders as text or JSON. Throws UsageError, InvalidData (no trial left to fit), IoError.
+std::string observer_fit_report(const ObserverFitCommand& command);
 
 struct ObserverPowerOptions {
   std::vector<int> participants{10, 20, 30, 40, 60, 80, 100};
