@@ -87,11 +87,19 @@ TEST(Calibration, SimulatedStudiesGiveEveryHeadlineAndTheSameAnswerOnAnyThreadCo
 TEST(Calibration, APlantedAdaptiveVersusRandomEffectIsReported) {
   // lambda = 1 (the strongest adaptive selection) with 40 participants per condition: the
   // goal-inference participants learn the random condition's strategies faster, so error is higher
-  // under adaptive selection, and the mixed models' family reports it (bench/findings_calibration
-  // measures the rate over 100 studies).
+  // under adaptive selection, and the mixed models' family reports it. Its rate on 60 other studies,
+  // calibration_run(o, 3000, 60, 2) with the same o: 60 of 60 (95 % Clopper-Pearson interval
+  // [0.94, 1]; 235 s CPU). Six studies here (about 24 s CPU on two threads),
+  // asserted: at least 5 of them. With a rate of 0.99 fewer than 5 of 6 has probability 0.0015
+  // (0.046 at the interval's lower end, 0.94); a rate of 0.75 is caught with probability 0.47.
   sim::StudyOptions o = small(40, 1.0);
   o.iterations = 20;
-  const auto out = analysis::calibration_run(o, 7, 1, 2);
-  EXPECT_EQ(out[0].strengths[family(out[0], "H1 mixed models (Holm over 3 tests): error")],
-            Strength::evidence_for_difference);
+  const int studies = 6;
+  const auto out = analysis::calibration_run(o, 7, studies, 2);
+  ASSERT_EQ(out.size(), static_cast<std::size_t>(studies));
+  int found = 0;
+  for (const auto& study : out)
+    found += study.strengths[family(study, "H1 mixed models (Holm over 3 tests): error")] ==
+             Strength::evidence_for_difference;
+  EXPECT_GE(found, studies - 1) << found << " of " << studies << " planted studies";
 }

@@ -4,11 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <boost/math/distributions/binomial.hpp>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -261,7 +264,7 @@ analysis::StudyResults simulated(unsigned seed, double slope_adaptive, double ex
 
 }  // namespace
 
-TEST(StudyFindings, SimulatedPlantedSlopeDifferenceIsFoundAndTheNullIsNeverEquivalence) {
+TEST(StudyFindings, SimulatedPlantedSlopeDifferenceIsFound) {
   const std::vector<tables::MetricSpec> metrics = {{"error", 0.5}};
   // Planted: the adaptive error rises 0.03 per iteration, the random one is flat.
   const auto planted = simulated(7, 0.03, 0.0);
@@ -282,20 +285,51 @@ TEST(StudyFindings, SimulatedPlantedSlopeDifferenceIsFoundAndTheNullIsNeverEquiv
   EXPECT_LT(*c.test.conf_low, -0.03);
   EXPECT_GT(*c.test.conf_high, -0.03);
   EXPECT_NEAR(*c.test.estimate, -0.03, 0.01);
+}
 
-  // Null studies: no model finding ever claims "evidence for no difference" (no Bayes factor), and
-  // the false "evidence for a difference" of the interaction is rare (alpha, Holm over 3 tests).
-  int false_difference = 0;
-  const int studies = 20;
-  for (int s = 0; s < studies; ++s) {
-    const auto null = simulated(100 + static_cast<unsigned>(s), 0.0, 0.0, 8);
-    for (const auto& f : analysis::mixed_model_findings(&*null.model, &*null.trend_model)) {
-      EXPECT_NE(f.strength, Strength::evidence_for_no_difference) << f.sentence;
-      EXPECT_NE(f.strength, Strength::not_computable) << f.sentence;
-      if (f.id == "H1-model-interaction-error" && f.strength == Strength::evidence_for_difference) ++false_difference;
+// Null studies (no effect anywhere, the participants exchangeable between the conditions): no model
+// finding ever claims "evidence for no difference" (no Bayes factor), and a false "evidence for a
+// difference" in any of the three model tests is rare. Each finding claims a difference when its
+// Holm-adjusted relabelling p is below .05, so "any of the three" needs a raw p below .05 / 3
+// (Holm's first step): by Bonferroni its rate is at most 5 %, whatever the tests' dependence. The
+// count over 150 studies is then at most Binomial(150, 0.05), asserted <= its 99.9 % quantile, 17
+// (11.3 %; measured: 7, the interaction alone in 4). The studies run on two threads (about 23 s
+// CPU in all).
+TEST(StudyFindings, NullStudiesRarelyClaimAModelDifferenceAndNeverEquivalence) {
+  const int studies = 150;
+  struct Outcome {
+    bool any = false, interaction = false;
+    std::vector<std::string> wrong;  // sentences of findings with a strength a null study must not get
+  };
+  std::vector<Outcome> outcomes(studies);
+  auto run = [&](int first) {
+    for (int s = first; s < studies; s += 2) {
+      const auto null = simulated(100 + static_cast<unsigned>(s), 0.0, 0.0, 8);
+      for (const auto& f : analysis::mixed_model_findings(&*null.model, &*null.trend_model)) {
+        if (f.strength == Strength::evidence_for_no_difference || f.strength == Strength::not_computable)
+          outcomes[static_cast<std::size_t>(s)].wrong.push_back(f.sentence);
+        if (f.strength == Strength::evidence_for_difference) {
+          outcomes[static_cast<std::size_t>(s)].any = true;
+          if (f.id == "H1-model-interaction-error") outcomes[static_cast<std::size_t>(s)].interaction = true;
+        }
+      }
     }
+  };
+  std::thread other(run, 1);
+  run(0);
+  other.join();
+  int false_difference = 0, false_interaction = 0;
+  for (const auto& o : outcomes) {
+    for (const auto& w : o.wrong) ADD_FAILURE() << w;
+    false_difference += o.any;
+    false_interaction += o.interaction;
   }
-  EXPECT_LE(false_difference, 3);  // expected <= 1 of 20 at alpha = .05
+  namespace bm = boost::math;
+  const double bound = bm::quantile(bm::complement(bm::binomial_distribution<double>(studies, 0.05), 0.001));
+  EXPECT_EQ(bound, 17);
+  std::printf("%d null studies: a false difference in %d (the interaction in %d); bound %g\n", studies,
+              false_difference, false_interaction, bound);
+  EXPECT_LE(false_difference, bound) << "of " << studies << " null studies";
 }
 
 TEST(StudyFindings, SimulatedExposureEffectInOneConditionIsFound) {

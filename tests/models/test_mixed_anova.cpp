@@ -2,6 +2,7 @@
 // and the precise errors of bad input (formats.md style, InvalidData = exit 65).
 #include <gtest/gtest.h>
 
+#include <boost/math/distributions/fisher_f.hpp>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -118,12 +119,40 @@ TEST(MixedAnova, EpsilonsLieInTheirBoundsAndCorrectedPIsNotSmaller) {
 }
 
 TEST(MixedAnova, OneConditionGivesTheOneWayRepeatedMeasuresAnova) {
-  const MixedAnova a = mixed_anova(make_wide_design(grid(7, 4, 1), "error", "s"));
+  const auto obs = grid(7, 4, 1);
+  const MixedAnova a = mixed_anova(make_wide_design(obs, "error", "s"));
   ASSERT_EQ(a.effects.size(), 1u);
   EXPECT_EQ(a.effects[0].effect, "iteration");
   EXPECT_EQ(a.effects[0].num_df, 3.0);
   EXPECT_EQ(a.effects[0].den_df, 18.0);
   EXPECT_TRUE(a.one_way());
+  // The closed form of the balanced one-way repeated-measures ANOVA, from the observations
+  // themselves (n = 7 participants, k = 4 iterations): SS_iteration = n sum_j (mean_j - mean)^2,
+  // SS_participant = k sum_i (mean_i - mean)^2, SS_error = SS_total - both;
+  // F = (SS_iteration / (k - 1)) / (SS_error / ((n - 1)(k - 1))), p = P(F(3, 18) > F).
+  const double n = 7, k = 4;
+  double y[7][4] = {};
+  for (const auto& o : obs) y[std::stoi(o.participant.substr(3))][o.iteration - 1] = *o.value;
+  double grand = 0, row[7] = {}, col[4] = {};
+  for (int i = 0; i < 7; ++i)
+    for (int j = 0; j < 4; ++j) {
+      grand += y[i][j] / (n * k);
+      row[i] += y[i][j] / k;
+      col[j] += y[i][j] / n;
+    }
+  double ss_total = 0, ss_iteration = 0, ss_participant = 0;
+  for (int i = 0; i < 7; ++i)
+    for (int j = 0; j < 4; ++j) ss_total += (y[i][j] - grand) * (y[i][j] - grand);
+  for (int j = 0; j < 4; ++j) ss_iteration += n * (col[j] - grand) * (col[j] - grand);
+  for (int i = 0; i < 7; ++i) ss_participant += k * (row[i] - grand) * (row[i] - grand);
+  const double ss_error = ss_total - ss_iteration - ss_participant;
+  const double f = (ss_iteration / 3) / (ss_error / 18);
+  ASSERT_GT(f, 0.0);
+  EXPECT_NEAR(a.effects[0].ss, ss_iteration, 1e-12);
+  EXPECT_NEAR(a.effects[0].error_ss, ss_error, 1e-12);
+  EXPECT_NEAR(a.effects[0].f, f, 1e-10 * f);
+  const double p = boost::math::cdf(boost::math::complement(boost::math::fisher_f(3, 18), f));
+  EXPECT_NEAR(a.effects[0].p_value, p, 1e-10 * p);
 }
 
 TEST(MixedAnova, TooFewParticipantsForTheCorrectionsSaysWhy) {
