@@ -102,6 +102,21 @@ bool is_legacy_study_output(std::string_view name) {
 
 }  // namespace
 
+std::string study_toml(const StudySettings& settings, std::string_view tool_version) {
+  return fmt::format(
+      "# The design of this simulated study, written by feint simulate study (feint {}), read by\n"
+      "# `feint analyze` (names are its options without the dashes; the command line wins).\n"
+      "# {} participants per condition, {} iterations, lambda {} (adaptive), seed {}.\n\n"
+      "# The study compares its two conditions (Table 1 two-sample, the models, the questionnaire).\n"
+      "compare = \"adaptive,random\"\n\n"
+      "# Confusion on the paper's scale (eq. 4 without normalisation), where the paper's reference\n"
+      "# 0.95 lies: the scores and the reference are on one scale (docs/metrics.md).\n"
+      "confusion-norm = \"raw\"\n"
+      "metric = [\"error=0.5\", \"confusion=0.95\"]\n",
+      tool_version, settings.participants, settings.iterations,
+      io::format_double(settings.lambda), settings.seed);
+}
+
 io::FolderWriter study_folder_writer(bool replace) {
   io::FolderWriter w;
   w.command = "feint simulate study";
@@ -176,6 +191,7 @@ std::vector<ParticipantRecord> write_study(const StudySettings& settings, const 
                      p.likert[2], p.likert[3]);
   }
   io::write_file_atomically(folder.path("questionnaire.csv"), q);
+  io::write_file_atomically(folder.path("feint.toml"), study_toml(settings, tool_version));
   folder.commit(tool_version);
   return all;
 }

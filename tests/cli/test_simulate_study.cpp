@@ -141,3 +141,27 @@ TEST(SimulateStudyCli, ANonEmptyFolderIsRefusedUnlessReplacedAndThenReplacedWhol
   EXPECT_EQ(r.exit_code, 64) << r.err;
   EXPECT_EQ(read_text(data / "logs" / "participant-a.csv"), "t,pad\n");
 }
+
+// A simulated study carries its design: `feint analyze DIR` with no flag compares its two
+// conditions and scores confusion on the scale of its reference (raw, the paper's 0.95).
+TEST(SimulateStudyCli, TheStudyCarriesItsDesignAndIsAnalysedWithNoFlag) {
+  TempDir dir;
+  const auto sim = dir / "sim";
+  ASSERT_EQ(run_feint("simulate study --participants 3 --iterations 3 --seed 5 --out " +
+                      shell_quote(sim.string()))
+                .exit_code,
+            0);
+  const std::string toml = read_text(sim / "feint.toml");
+  EXPECT_NE(toml.find("compare = \"adaptive,random\""), std::string::npos) << toml;
+  EXPECT_NE(toml.find("confusion-norm = \"raw\""), std::string::npos) << toml;
+  EXPECT_NE(toml.find("metric = [\"error=0.5\", \"confusion=0.95\"]"), std::string::npos) << toml;
+  const auto out = dir / "out";
+  const auto r = run_feint("analyze " + shell_quote(sim.string()) + " -o " +
+                           shell_quote(out.string()) + " --no-figures");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(out / "table1_compare.csv"));
+  const std::string md = read_text(out / "report.md");
+  EXPECT_NE(md.find("- Comparison: adaptive against random\n"), std::string::npos) << md.substr(0, 1500);
+  EXPECT_NE(md.find("- Settings file: feint.toml"), std::string::npos);
+  EXPECT_NE(read_text(out / "settings.toml").find("confusion-norm = \"raw\""), std::string::npos);
+}

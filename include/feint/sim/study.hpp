@@ -71,6 +71,11 @@ std::vector<ParticipantRecord> write_study(const StudySettings& settings, const 
                                            bool replace = false,
                                            std::string_view tool_version = "unknown");
 
+/// The study's feint.toml (written as DIR/feint.toml): the comparison of its two conditions, and
+/// confusion on the raw scale with the paper's references, so that `feint analyze DIR` compares the
+/// conditions with the scores and references on one scale, with no setting made by hand.
+std::string study_toml(const StudySettings& settings, std::string_view tool_version);
+
 /// `feint simulate study` as the writer of its folder (manifest .feint-simulate.json; --replace).
 io::FolderWriter study_folder_writer(bool replace);
 
