@@ -35,6 +35,9 @@ void run(CLI::App& cmd, CollectArgs& a) {
   const collect::Settings s = collect::study_settings(a.o, study);
   const collect::ServerOptions o = collect::server_options(a.o);
   collect::Study st(study, s);
+  if (collect::write_study_toml(study, s, FEINT_VERSION))  // the design, for feint analyze
+    fmt::print(stderr, "feint collect: wrote {} (the study's design for feint analyze)\n",
+               (study / "feint.toml").string());
   collect::Server server(st, o);
   fmt::print(stderr, "{}", collect::network_warning(a.o.host));
   fmt::print("{}", collect::start_message(study, s, a.o.host, server));

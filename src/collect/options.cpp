@@ -1,13 +1,18 @@
 #include "feint/collect/options.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <utility>
 
 #include "feint/error.hpp"
 #include "feint/io/number.hpp"
+#include "feint/io/output.hpp"
 
 namespace feint::collect {
 
@@ -111,6 +116,51 @@ std::string start_message(const fs::path& study, const Settings& s, const std::s
   out += fmt::format("connections: at most {} at once\n", server.max_connections());
   out += fmt::format("Stop with Ctrl-C; a restart resumes from the files in {}.\n", study.string());
   return out;
+}
+
+std::string study_toml(const Settings& s, std::string_view tool_version) {
+  std::vector<std::string> names;
+  for (const auto& c : s.conditions) names.push_back(c.name);
+  std::string out = fmt::format(
+      "# The design of this study, written by feint collect (feint {}) at its first start, read by\n"
+      "# `feint analyze STUDY` (names are its options without the dashes; the command line wins).\n"
+      "# Collected with: conditions {}, {} iterations after {} practice rounds, pad speed {} per\n"
+      "# second, {} samples per second, seed {}, questionnaire items {} (1-7).\n\n",
+      tool_version, fmt::join(names, ", "), s.iterations, s.practice,
+      io::format_double(s.pad_speed), io::format_double(s.geometry.sample_rate), s.seed,
+      fmt::join(s.items, ", "));
+  if (names.size() == 2) {
+    out += fmt::format(
+        "# The comparison the study was run for (Table 1 two-sample, the models, the questionnaire).\n"
+        "compare = \"{},{}\"\n\n",
+        names[0], names[1]);
+  } else {
+    out += "# Three or more conditions: no comparison of two is made by default; name one with\n"
+           "# compare = \"A,B\".\n\n";
+  }
+  out +=
+      "# Confusion on the paper's scale (eq. 4 without normalisation), where the paper's reference\n"
+      "# 0.95 lies: the scores and the reference are on one scale (docs/metrics.md).\n"
+      "confusion-norm = \"raw\"\n"
+      "metric = [\"error=0.5\", \"confusion=0.95\"]\n\n"
+      "# The questionnaire's answers are whole numbers 1-7.\n"
+      "likert-scale = \"1-7\"\n";
+  return out;
+}
+
+bool write_study_toml(const fs::path& study, const Settings& s, std::string_view tool_version) {
+  const fs::path target = study / "feint.toml";
+  std::error_code ec;
+  if (fs::exists(target, ec)) return false;
+  const fs::path tmp = study / ".feint.toml.feint-tmp";
+  io::write_file_atomically(tmp.string(), study_toml(s, tool_version));
+  const bool linked = ::link(tmp.c_str(), target.c_str()) == 0;
+  const int err = errno;
+  fs::remove(tmp, ec);
+  if (!linked && err != EEXIST) {
+    throw IoError(fmt::format("cannot write '{}': {}", target.string(), std::strerror(err)));
+  }
+  return linked;
 }
 
 }  // namespace feint::collect

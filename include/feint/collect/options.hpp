@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "feint/collect/server.hpp"
@@ -55,5 +56,17 @@ std::string network_warning(const std::string& host);
 /// and the admin page, the connection cap, how to stop.
 std::string start_message(const std::filesystem::path& study, const Settings& s,
                           const std::string& host, const Server& server);
+
+/// The study's feint.toml as `feint collect` writes it at its first start: the design that
+/// `feint analyze STUDY` reads. The comparison of the first two conditions (none with three or
+/// more), confusion on the raw scale with the paper's references (so the scores and the reference
+/// are on one scale), the questionnaire's 1-7 scale; the collection's own settings as comments.
+std::string study_toml(const Settings& s, std::string_view tool_version);
+
+/// Writes STUDY/feint.toml (study_toml) unless the study has one: an existing file is never
+/// replaced, even by a start racing this one (the file is linked into place, which fails when the
+/// name exists). Returns true when it wrote the file. Throws IoError when it cannot write.
+bool write_study_toml(const std::filesystem::path& study, const Settings& s,
+                      std::string_view tool_version);
 
 }  // namespace feint::collect
