@@ -329,11 +329,7 @@ void collect_figure_data(const Study& study, const Scored& sc, const tables::Tab
   }
   if (!r.figures.labels.empty()) {
     // Read as the scorer read them (other labs' options: decimal mark, headerless files, ...).
-    io::TraceOptions topt = sc.settings.reading;
-    topt.column_map = sc.settings.column_map;
-    topt.delimiter = sc.settings.delimiter;
-    topt.unsorted = sc.settings.unsorted;
-    topt.time_divisor = sc.settings.time_unit == metrics::TimeUnit::ms ? 1000 : 1;  // as scored
+    const io::TraceOptions topt = metrics::reading_options(sc.settings);
     r.figures.traces = mean_traces(study.logs, topt, r.figures.labels, t.test.conf_level);
     for (const auto& m : metrics) {
       r.figures.exposure.push_back(

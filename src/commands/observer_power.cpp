@@ -18,12 +18,8 @@ namespace feint::commands {
 io::TraceOptions loader_trace_options(const analysis::ScoreOptions& loader) {
   // Read as the scorer reads (metrics' reading options; analysis/analyze.cpp's mean traces).
   const metrics::ScoreSettings s = analysis::score_settings(loader);
-  io::TraceOptions t = s.reading;
-  t.column_map = s.column_map;
-  t.delimiter = s.delimiter;
-  t.unsorted = s.unsorted;
-  t.time_divisor = s.time_unit == metrics::TimeUnit::ms ? 1000 : 1;
-  t.on_reject = {};
+  io::TraceOptions t = metrics::reading_options(s);
+  t.require_pad_speed = false;  // the fit has its own --pad-speed for logs without one
   if (s.on_error == metrics::OnError::skip) t.on_reject = [](const io::Rejection&) {};
   return t;
 }

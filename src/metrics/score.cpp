@@ -120,8 +120,6 @@ void validate(const ScoreSettings& settings, const std::string& output_path) {
   }
 }
 
-namespace {
-
 // The reader's options from the scoring settings (on_reject is set by score_each).
 io::TraceOptions reading_options(const ScoreSettings& settings) {
   io::TraceOptions opt = settings.reading;
@@ -135,6 +133,8 @@ io::TraceOptions reading_options(const ScoreSettings& settings) {
   opt.time_divisor = settings.time_unit == TimeUnit::ms ? 1000 : 1;
   return opt;
 }
+
+namespace {
 
 // What the time-unit check needs of the scored trials: every duration (8 bytes per trial, for the
 // median) and the longest trial, named when the unit is refused.

@@ -112,6 +112,11 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
 /// Scores `inputs` into the CSV `output_path` (`-` = stdout), atomically, plus the sidecar (and,
 /// in skip mode, the rejects list). A failing run leaves no scores file behind. Throws
 /// UsageError, InvalidData, IoError.
+/// The log reader's options as the scorer reads the logs (column map, delimiter, time unit, pad
+/// speed, unsorted rows; on_reject unset): every other reader of the same logs (the mean traces,
+/// the observer fit) reads them through this, so that they see the trials the scores came from.
+io::TraceOptions reading_options(const ScoreSettings& settings);
+
 ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSettings& settings,
                            const std::string& output_path);
 
