@@ -1,6 +1,7 @@
 // The connection loop of `feint collect` (feint/collect/server.hpp): Boost.Beast sessions (modelled
 // on Beast's http_server_async example), the Host check, the client's address, the connection cap
-// and the back-off when descriptors run out. The requests themselves are answered in server.cpp.
+// (at the cap, the connection quiet longest is closed to let a new one in) and the back-off when
+// descriptors run out. The requests themselves are answered in server.cpp.
 #include <fmt/format.h>
 #include <malloc.h>
 #include <sys/resource.h>
@@ -17,7 +18,11 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <functional>
+#include <limits>
+#include <list>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <random>
 #include <thread>
@@ -38,7 +43,64 @@ using tcp = net::ip::tcp;
 
 namespace {
 
-/// What the sessions share with the server: options, the study, the state, the connection count.
+std::int64_t steady_ns() noexcept {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+/// A connection that has received a byte of its request within this time is still sending (an
+/// upload in progress) and is never closed to make room; nor is one accepted, or answered, within
+/// it (a browser sends its request at once on a new or kept-alive connection).
+constexpr std::int64_t kQuietBeforeClosable = 1'000'000'000;  // ns
+
+/// What the acceptor's thread reads of a connection, to choose the one to close at the cap. Only
+/// the connection's own thread writes it.
+struct Activity {
+  enum Phase : int {
+    waiting,    // for the first byte of a request
+    receiving,  // a request: some bytes in, not all
+    busy,       // the request is being handled or answered, or the connection is closing
+  };
+  std::atomic<std::int64_t> quiet_since{steady_ns()};  // its last byte in, answer out, or accept
+  std::atomic<int> phase{waiting};
+  std::atomic<bool> served{false};  // it has had a whole request answered
+
+  void heard() noexcept {
+    quiet_since.store(steady_ns(), std::memory_order_relaxed);
+    if (phase.load(std::memory_order_relaxed) == waiting)
+      phase.store(receiving, std::memory_order_relaxed);
+  }
+  bool closable(std::int64_t now) const noexcept {
+    return phase.load(std::memory_order_relaxed) != busy &&
+           now - quiet_since.load(std::memory_order_relaxed) >= kQuietBeforeClosable;
+  }
+};
+
+/// Beast's rate-policy hook, used only to see every read from the socket (however little it
+/// brings, e.g. a header trickled byte by byte): no limit is applied.
+class ArrivalPolicy {
+ public:
+  explicit ArrivalPolicy(Activity* a) noexcept : activity_(a) {}
+
+ private:
+  friend class beast::rate_policy_access;
+  static constexpr std::size_t kAll = std::numeric_limits<std::size_t>::max();
+  std::size_t available_read_bytes() const noexcept { return kAll; }
+  std::size_t available_write_bytes() const noexcept { return kAll; }
+  void transfer_read_bytes(std::size_t n) const noexcept {
+    if (n > 0) activity_->heard();
+  }
+  void transfer_write_bytes(std::size_t) const noexcept {}
+  void on_timer() const noexcept {}
+  Activity* activity_;
+};
+
+using Stream = beast::basic_stream<tcp, net::any_io_executor, ArrivalPolicy>;
+
+class Session;
+
+/// What the sessions share with the server: options, the study, the state, the connections.
 struct Shared {
   Study& study;
   ServerOptions opt;
@@ -47,26 +109,62 @@ struct Shared {
   std::atomic<std::size_t> pending{0};  // requests handed to the handler and not yet answered
   std::size_t max_connections = 0;
   std::vector<std::string> allowed_hosts;  // empty: no Host check
+  std::mutex sessions_mu;                  // guards `sessions`
+  std::list<Session*> sessions;            // every open connection (its entry is erased first)
   Shared(Study& s, ServerOptions o)
       : study(s), opt(std::move(o)), state(opt.rejections_per_minute) {}
+  std::shared_ptr<Session> quiet_longest();
 };
 
 class Session : public std::enable_shared_from_this<Session> {
  public:
-  Session(tcp::socket&& socket, Shared& shared) : stream_(std::move(socket)), sh_(shared) {
+  Session(tcp::socket&& socket, Shared& shared)
+      : stream_(ArrivalPolicy(&activity_), std::move(socket)), sh_(shared) {
     beast::error_code ec;
     const auto ep = stream_.socket().remote_endpoint(ec);
     peer_ = ec ? std::string() : ep.address().to_string();
+    std::lock_guard lock(sh_.sessions_mu);
+    entry_ = sh_.sessions.insert(sh_.sessions.end(), this);
   }
-  ~Session() { --sh_.connections; }
+  ~Session() {
+    {
+      std::lock_guard lock(sh_.sessions_mu);
+      sh_.sessions.erase(entry_);
+    }
+    release_slot();
+  }
 
   void run() {
     net::dispatch(stream_.get_executor(),
                   beast::bind_front_handler(&Session::read, shared_from_this()));
   }
 
+  const Activity& activity() const noexcept { return activity_; }
+
+  /// Closes the connection to make room for a new one, if it may still be closed: checked again
+  /// on its own thread, where no byte can arrive meanwhile. Then `then()`, on that thread.
+  void make_room(std::function<void()> then) {
+    net::dispatch(stream_.get_executor(), [self = shared_from_this(), then = std::move(then)] {
+      if (self->activity_.closable(steady_ns())) {
+        self->activity_.phase.store(Activity::busy, std::memory_order_relaxed);
+        self->closed_to_make_room_ = true;
+        self->stream_.close();  // the read waiting on it ends with operation_aborted
+        self->release_slot();   // its descriptor is free now
+      }
+      then();
+    });
+  }
+
  private:
+  void release_slot() {
+    if (counted_) --sh_.connections;
+    counted_ = false;
+  }
+
   void read() {
+    // Bytes already buffered (a pipelined request) are a request under way.
+    activity_.phase.store(buffer_.size() > 0 ? Activity::receiving : Activity::waiting,
+                          std::memory_order_relaxed);
     parser_.emplace();
     parser_->body_limit(sh_.opt.body_limit);
     parser_->header_limit(16 * 1024);
@@ -79,6 +177,10 @@ class Session : public std::enable_shared_from_this<Session> {
   }
 
   void on_read(beast::error_code ec, std::size_t) {
+    activity_.phase.store(Activity::busy, std::memory_order_relaxed);
+    // A request read just before the connection was closed to make room is not handled: nobody
+    // can be told its answer (a browser sends it again on a new connection).
+    if (closed_to_make_room_) return;
     if (ec == http::error::end_of_stream || ec == beast::error::timeout ||
         ec == net::error::operation_aborted) {
       return close();
@@ -165,6 +267,9 @@ class Session : public std::enable_shared_from_this<Session> {
         stream_, *res,
         [self = shared_from_this(), res, keep_alive](beast::error_code ec, std::size_t) {
           if (ec || !keep_alive) return self->close();
+          // Quiet from now: the wait for the next request starts at the answer.
+          self->activity_.quiet_since.store(steady_ns(), std::memory_order_relaxed);
+          self->activity_.served.store(true, std::memory_order_relaxed);
           self->read();
         });
   }
@@ -174,13 +279,48 @@ class Session : public std::enable_shared_from_this<Session> {
     stream_.socket().shutdown(tcp::socket::shutdown_send, ec);
   }
 
-  beast::tcp_stream stream_;
+  Activity activity_;  // before stream_, whose policy points to it
+  Stream stream_;
   beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::string_body>> parser_;
   Shared& sh_;
   std::string peer_;
+  std::list<Session*>::iterator entry_;
   bool first_ = true;
+  bool counted_ = true;  // still counted in sh_.connections
+  bool closed_to_make_room_ = false;
 };
+
+/// The connection to close for a new one. Of the connections neither busy nor sending (a byte of a
+/// request within kQuietBeforeClosable), one that has never had a request answered goes before one
+/// that has (a browser sends its request as soon as it connects: a connection that sent nothing, or
+/// half a header, and fell silent is not a browser at work; a browser's kept-alive connection costs
+/// it a reconnection), and among them the one quiet longest. When that one has been quiet for less
+/// than kQuietBeforeClosable (just accepted, or just answered) nothing is closed yet: the caller
+/// looks again shortly, rather than close a kept-alive connection for a newer silent one. Null
+/// when nothing may be closed now.
+std::shared_ptr<Session> Shared::quiet_longest() {
+  const std::int64_t now = steady_ns();
+  std::lock_guard lock(sessions_mu);
+  Session* best = nullptr;
+  bool best_served = true;
+  std::int64_t best_since = 0;
+  for (Session* s : sessions) {
+    const Activity& a = s->activity();
+    const int phase = a.phase.load(std::memory_order_relaxed);
+    const std::int64_t since = a.quiet_since.load(std::memory_order_relaxed);
+    if (phase == Activity::busy || (phase == Activity::receiving && !a.closable(now))) continue;
+    const bool served = a.served.load(std::memory_order_relaxed);
+    if (!best || (!served && best_served) || (served == best_served && since < best_since)) {
+      best = s;
+      best_served = served;
+      best_since = since;
+    }
+  }
+  if (!best || !best->activity().closable(now)) return nullptr;
+  // Null also when it is being destroyed (its entry is erased first, under the lock).
+  return best->weak_from_this().lock();
+}
 
 bool is_loopback(const net::ip::address& a) {
   return a.is_loopback() || (a.is_v4() && (a.to_v4().to_uint() >> 24) == 127);
@@ -247,39 +387,58 @@ struct Server::Impl {
   }
 
   void accept() {
-    if (sh.connections.load() >= sh.max_connections) {
-      // At the cap: leave new connections in the listen queue (no descriptor is spent on them)
-      // and look again shortly; the open connections are served meanwhile.
-      note(warned_cap, noted_cap, "connections_capped",
-           fmt::format("{} simultaneous connections (the cap): new connections wait until one "
-                       "closes; idle ones close after {} s",
-                       sh.max_connections, sh.opt.idle_timeout.count()));
-      delay = std::chrono::milliseconds(50);
-      return wait_then_accept();
-    }
+    // Over the cap by the connection just accepted: make room before accepting more.
+    if (sh.connections.load() > sh.max_connections) return make_room();
     net::io_context& home = *iocs[next++ % iocs.size()];
     acceptor.async_accept(home, [this](beast::error_code ec, tcp::socket socket) {
-      if (!ec) {
-        ++sh.connections;
-        std::make_shared<Session>(std::move(socket), sh)->run();
-        const auto now = std::chrono::steady_clock::now();
-        if (sh.connections.load() < sh.max_connections * 9 / 10 && now - noted_cap >= std::chrono::minutes(1))
-          warned_cap = false;
-        if (now - noted_fds >= std::chrono::minutes(1)) warned_fds = false;
-        delay = std::chrono::milliseconds(10);
-        if (acceptor.is_open()) accept();
-        return;
-      }
+      if (!ec) return accepted(std::move(socket));
       if (!acceptor.is_open() || ec == net::error::operation_aborted) return;
       if (ec == net::error::no_descriptors || ec.value() == ENFILE || ec == net::error::no_memory ||
           ec == net::error::no_buffer_space) {
-        // Out of descriptors (more than the cap allowed for, or the whole system): back off
-        // instead of retrying at once (which would spin on the same error), up to 1 s.
+        // Out of descriptors (files beyond the reserve, or the whole system): free one by closing
+        // the connection quiet longest, if one may be closed, and back off instead of retrying at
+        // once (which would spin on the same error): 10 ms doubling to 1 s.
         note(warned_fds, noted_fds, "descriptors_exhausted",
-             fmt::format("cannot accept a connection: {}; retrying with back-off", ec.message()));
+             fmt::format("cannot accept a connection: {}; closing the connection quiet longest "
+                         "(if one may be closed) and retrying with back-off",
+                         ec.message()));
+        if (auto victim = sh.quiet_longest()) victim->make_room([] {});
         delay = std::min(std::chrono::milliseconds(1000), delay * 2);
       }
       wait_then_accept();
+    });
+  }
+
+  void accepted(tcp::socket socket) {
+    ++sh.connections;
+    std::make_shared<Session>(std::move(socket), sh)->run();
+    const auto now = std::chrono::steady_clock::now();
+    if (sh.connections.load() < sh.max_connections * 9 / 10 &&
+        now - noted_cap >= std::chrono::minutes(1))
+      warned_cap = false;
+    if (now - noted_fds >= std::chrono::minutes(1)) warned_fds = false;
+    delay = std::chrono::milliseconds(10);
+    if (acceptor.is_open()) accept();
+  }
+
+  /// At the cap a new connection is accepted (one descriptor over the cap, within the reserve) and
+  /// the connection quiet longest is closed for it; accepting goes on once it is closed. When none
+  /// may be closed (all busy or sending), new connections wait in the listen queue (no descriptor
+  /// is spent on them) and this is tried again in 50 ms.
+  void make_room() {
+    note(warned_cap, noted_cap, "connections_capped",
+         fmt::format("{} simultaneous connections (the cap): a new connection closes the one "
+                     "quiet longest (never one being answered or sending a request)",
+                     sh.max_connections));
+    auto victim = sh.quiet_longest();
+    if (!victim) {
+      delay = std::chrono::milliseconds(50);
+      return wait_then_accept();
+    }
+    victim->make_room([this] {
+      net::post(*iocs[0], [this] {
+        if (acceptor.is_open()) accept();
+      });
     });
   }
 };
@@ -306,15 +465,17 @@ Server::Server(Study& study, ServerOptions options)
   if (!ec) a.listen(net::socket_base::max_listen_connections, ec);
   if (ec) throw IoError(fmt::format("cannot listen on {}:{}: {}", o.host, o.port, ec.message()));
   auto& sh = impl_->sh;
-  sh.max_connections = o.max_connections;
-  if (sh.max_connections == 0) {
+  {
     rlimit rl{};
     const std::size_t reserve = reserved_descriptors(o.threads);
     const std::size_t limit =
         ::getrlimit(RLIMIT_NOFILE, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY
             ? static_cast<std::size_t>(rl.rlim_cur)
             : std::size_t{1} << 20;
-    sh.max_connections = limit > reserve + 8 ? limit - reserve : 8;
+    // A larger --max-connections than the descriptors allow is lowered: connections beyond it
+    // would take the descriptors the study's files need, and accept would fail with EMFILE.
+    const std::size_t room = limit > reserve + 8 ? limit - reserve : 8;
+    sh.max_connections = o.max_connections == 0 ? room : std::min(o.max_connections, room);
   }
   if (is_loopback(address) || !o.allowed_hosts.empty()) {
     sh.allowed_hosts = o.allowed_hosts;

@@ -35,9 +35,12 @@ struct ServerOptions {
   std::size_t body_limit = 2 * 1024 * 1024;  // bytes per request body
   std::chrono::seconds timeout{30};          // to read one request
   std::chrono::seconds idle_timeout{10};     // a kept-alive connection waiting for its next request
-  /// Simultaneous connections; 0: the descriptor limit (RLIMIT_NOFILE) less a reserve for the
-  /// files the server writes (reserved_descriptors()). At the cap, new connections wait in the
-  /// listen queue until one closes; the connections already open are served as before.
+  /// Simultaneous connections; 0 (or more than fits): the descriptor limit (RLIMIT_NOFILE) less a
+  /// reserve for the files the server writes (reserved_descriptors()). At the cap, a new
+  /// connection is accepted and the connection quiet longest is closed for it (never one whose
+  /// request is being handled or answered, nor one that received a byte, was answered or was
+  /// accepted within the last second); when none may be closed, new connections wait in the
+  /// listen queue.
   std::size_t max_connections = 0;
   /// Accepted `Host` headers (DNS-rebinding defence): NAME or NAME:PORT, case-insensitive. When
   /// bound to a loopback address, localhost, 127.0.0.1 and [::1] (without a port or with the
