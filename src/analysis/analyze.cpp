@@ -170,7 +170,6 @@ tables::Table1Options table1_options(const Study& study) {
   t.equivalence = study.settings.equivalence;
   t.apa = study.tests.apa;
   t.bf_prior_r = study.tests.bf_prior_r;
-  t.equivalence_by_evidence = true;  // the report's "≈" needs BF01 >= 3 or TOST (docs/findings.md)
   return t;
 }
 
@@ -412,6 +411,13 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   r.scores.path = "scores.csv";
   // Stage 7. The findings (docs/findings.md): what the study shows, and how strongly.
   r.findings = study_findings(r, t.metrics);
+  if (r.comparison && r.comparison->options.compare) {
+    const auto& [a, b] = *r.comparison->options.compare;
+    r.hypotheses = parse_hypotheses(study.settings.hypotheses, a, b);
+    for (auto& f : r.findings)
+      for (const auto& h : r.hypotheses)
+        if (f.hypothesis == h.id) f.confirmatory = h.confirmatory;
+  }
   return r;
 }
 

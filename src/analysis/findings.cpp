@@ -80,6 +80,83 @@ Strength classify(const stats::TestResult& d, const stats::TestResult* tost, con
   return Strength::no_evidence_either_way;
 }
 
+namespace {
+
+std::string test_name(const stats::TestResult& d) {
+  static const std::pair<const char*, const char*> names[] = {
+      {"one_sample_t", "one-sample t test"}, {"welch_t", "Welch t test"},
+      {"student_t", "Student t test"},       {"paired_t", "paired t test"},
+      {"wilcoxon_signed_rank", "Wilcoxon signed-rank test"},
+      {"mann_whitney", "Mann-Whitney test"}, {"anova", "F test"}, {"welch_anova", "Welch F test"},
+      {"kruskal_wallis", "Kruskal-Wallis test"}};
+  for (const auto& [id, name] : names)
+    if (d.test == id) return name;
+  return d.method.empty() ? d.test : d.method;
+}
+
+bool one_sample(const stats::TestResult& d) {
+  return d.test == "one_sample_t" || d.test == "wilcoxon_signed_rank";
+}
+
+std::optional<EffectSize> effect_size_of(const stats::TestResult& d) {
+  if (d.cohen_d && std::isfinite(*d.cohen_d))
+    return EffectSize{d.test == "paired_t" ? "d_z" : "d", *d.cohen_d, d.cohen_d_low, d.cohen_d_high};
+  if (d.rank_biserial && std::isfinite(*d.rank_biserial))
+    return EffectSize{"r_rb", *d.rank_biserial, d.rank_biserial_low, d.rank_biserial_high};
+  if (d.r_squared && std::isfinite(*d.r_squared))
+    return EffectSize{"eta2_p", *d.r_squared, d.eta_squared_low, d.eta_squared_high};
+  return std::nullopt;
+}
+
+}  // namespace
+
+void set_test_fields(Finding& f, const stats::TestResult& d, std::string_view lhs,
+                     std::string_view rhs) {
+  f.test = test_name(d);
+  f.conf_level = d.conf_level;
+  f.p = d.p_value;
+  f.p_adjusted = d.p_adjusted;
+  f.effect_size = effect_size_of(d);
+  // A one-sample estimate is a mean: its difference is from the reference.
+  const double shift = one_sample(d) ? d.mu.value_or(0.0) : 0.0;
+  if (d.mean1 && d.mean2) f.means = {{*d.mean1, *d.mean2}};
+  else if (d.mean1 && d.mu && one_sample(d)) f.means = {{*d.mean1, *d.mu}};
+  if (f.contrast.empty()) f.contrast = fmt::format("{} - {}", lhs, rhs);
+  if (d.estimate && std::isfinite(*d.estimate)) {
+    f.estimate = *d.estimate - shift;
+    if (d.conf_low && d.conf_high) {
+      f.ci_low = *d.conf_low - shift;
+      f.ci_high = *d.conf_high - shift;
+    }
+  } else if (d.rank_biserial) {
+    f.estimate.reset();
+  }
+  const double lean = f.estimate ? *f.estimate : d.rank_biserial.value_or(0.0);
+  if (f.estimate || d.rank_biserial)
+    f.direction = fmt::format("{} {} {}", lhs, lean > 0 ? ">" : lean < 0 ? "<" : "=", rhs);
+  if (d.log_bf10) {
+    f.bf10 = std::exp(*d.log_bf10);
+    if (!std::isfinite(*f.bf10)) {
+      f.bf10.reset();
+      f.bf_note = fmt::format("BF10 exceeds the largest double; ln BF10 = {:.1f}", *d.log_bf10);
+    }
+  } else if (f.bf_note.empty()) {
+    f.bf_note = d.test == "mann_whitney" || d.test == "wilcoxon_signed_rank" || d.test == "kruskal_wallis"
+                    ? "a rank test has no JZS Bayes factor; see the t test beside it"
+                    : "no Bayes factor for this test";
+  }
+}
+
+namespace {
+
+// The sides of a test for its direction: "M"/"R" style names are replaced by the caller's.
+std::pair<std::string, std::string> sides_of(const stats::TestResult& d) {
+  if (one_sample(d)) return {"mean", fmt::format("{:g}", d.mu.value_or(0.0))};
+  return {"A", "B"};
+}
+
+}  // namespace
+
 Finding difference_finding(std::string id, std::string hypothesis, std::string question,
                            std::string what, const stats::TestResult& d,
                            const stats::TestResult* tost, std::string source,
@@ -91,6 +168,8 @@ Finding difference_finding(std::string id, std::string hypothesis, std::string q
   f.source = std::move(source);
   f.strength = classify(d, tost, rules, &f.grade);
   f.evidence = evidence_text(f.strength, f.grade);
+  const auto [lhs, rhs] = sides_of(d);
+  set_test_fields(f, d, lhs, rhs);
   if (f.strength == Strength::not_computable) {
     f.sentence = fmt::format("{}: not computable ({}).", capitalised(what),
                              d.note.empty() ? std::string("no test result") : d.note);
@@ -98,15 +177,14 @@ Finding difference_finding(std::string id, std::string hypothesis, std::string q
   }
   f.statistics = tables::apa_string(d);
   std::string means;
-  if (d.test == "one_sample_t" && d.mean1 && d.mu)
+  if (one_sample(d) && d.mean1 && d.mu)
     means = fmt::format("M = {} against R = {}", number(*d.mean1), number(*d.mu));
   else if (d.mean1 && d.mean2)
     means = fmt::format("M = {} vs {}", number(*d.mean1), number(*d.mean2));
   std::string ci;
-  if (d.estimate && d.conf_low && d.conf_high && std::isfinite(*d.conf_low) && std::isfinite(*d.conf_high))
-    ci = fmt::format("difference {}, {:.0f}% CI [{}, {}]", number(*d.estimate - d.mu.value_or(0) * (d.test == "one_sample_t")),
-                     100 * d.conf_level, number(*d.conf_low - d.mu.value_or(0) * (d.test == "one_sample_t")),
-                     number(*d.conf_high - d.mu.value_or(0) * (d.test == "one_sample_t")));
+  if (f.estimate && f.ci_low && f.ci_high && std::isfinite(*f.ci_low) && std::isfinite(*f.ci_high))
+    ci = fmt::format("difference {}, {:.0f}% CI [{}, {}]", number(*f.estimate), 100 * d.conf_level,
+                     number(*f.ci_low), number(*f.ci_high));
   std::string basis;
   if (f.strength == Strength::evidence_for_no_difference && !(d.log_bf10 && std::exp(-*d.log_bf10) >= rules.bf_moderate))
     basis = fmt::format("; equivalent within \u00b1{:g} by TOST", rules.equivalence_margin.value_or(tost && tost->margin ? *tost->margin : 0));
@@ -184,6 +262,11 @@ Finding family_finding(std::string id, std::string hypothesis, std::string quest
     f.sentence += fmt::format("; smallest adjusted {} (test {})", tables::apa_p(*tests[smallest].p_adjusted), smallest + 1);
   f.sentence += ".";
   if (!diff.empty()) f.statistics = tables::apa_string(tests[diff.front()]);
+  if (smallest < tests.size()) {
+    const auto [lhs, rhs] = sides_of(tests[smallest]);
+    set_test_fields(f, tests[smallest], lhs, rhs);
+    f.member = fmt::format("test {}", smallest + 1);
+  }
   return f;
 }
 
@@ -218,6 +301,8 @@ std::vector<Finding> exposure_findings(const models::ExposureByCondition& e, con
     f.source = source;
     f.strength = classify(d, nullptr, rules, &f.grade);
     f.evidence = evidence_text(f.strength, f.grade);
+    f.measure = metric;
+    set_test_fields(f, d, a.condition + " slope", b.condition + " slope");
     auto slope_text = [](const models::ExposureSlope& s) {
       if (!s.test.computed || !s.test.estimate) return fmt::format("{}: not computable", s.condition);
       return fmt::format("{}: {:.3f} per exposure, {:g}% CI [{:.3f}, {:.3f}], n = {}", s.condition,
@@ -367,6 +452,34 @@ std::string findings_html(std::span<const Finding> findings) {
   return o + "</ul>\n";
 }
 
+namespace {
+
+std::string json_number(const std::optional<double>& v) {
+  return v && std::isfinite(*v) ? fmt::format("{}", *v) : "null";
+}
+
+// The structured fields (docs/findings.md "Fields"), as JSON members after the sentence's.
+std::string json_fields(const Finding& f) {
+  std::string es = "null";
+  if (f.effect_size)
+    es = fmt::format("{{\"name\": {}, \"value\": {}, \"ci_low\": {}, \"ci_high\": {}}}",
+                     json_string(f.effect_size->name), json_number(f.effect_size->value),
+                     json_number(f.effect_size->ci_low), json_number(f.effect_size->ci_high));
+  return fmt::format(
+      ", \"measure\": {}, \"contrast\": {}, \"direction\": {}, \"mean_a\": {}, \"mean_b\": {}, "
+      "\"estimate\": {}, \"ci_low\": {}, \"ci_high\": {}, \"conf_level\": {}, \"effect_size\": {}, "
+      "\"test\": {}, \"p\": {}, \"p_adjusted\": {}, \"bf10\": {}, \"bf_note\": {}, "
+      "\"confirmatory\": {}, \"member\": {}",
+      json_string(f.measure), json_string(f.contrast), json_string(f.direction),
+      json_number(f.means ? std::optional<double>(f.means->first) : std::nullopt),
+      json_number(f.means ? std::optional<double>(f.means->second) : std::nullopt), json_number(f.estimate),
+      json_number(f.ci_low), json_number(f.ci_high), json_number(f.conf_level), es, json_string(f.test),
+      json_number(f.p), json_number(f.p_adjusted), json_number(f.bf10), json_string(f.bf_note),
+      f.confirmatory ? "true" : "false", json_string(f.member));
+}
+
+}  // namespace
+
 std::string findings_json(std::span<const Finding> findings) {
   std::string o = "[";
   for (std::size_t i = 0; i < findings.size(); ++i) {
@@ -376,10 +489,11 @@ std::string findings_json(std::span<const Finding> findings) {
     warnings += "]";
     o += fmt::format(
         "{}\n  {{\"id\": {}, \"hypothesis\": {}, \"question\": {}, \"sentence\": {}, \"evidence\": {}, "
-        "\"strength\": {}, \"grade\": {}, \"statistics\": {}, \"source\": {}, \"warnings\": {}}}",
+        "\"strength\": {}, \"grade\": {}, \"statistics\": {}, \"source\": {}, \"warnings\": {}{}}}",
         i ? "," : "", json_string(f.id), json_string(f.hypothesis), json_string(f.question),
         json_string(f.sentence), json_string(f.evidence), json_string(to_string(f.strength)),
-        json_string(to_string(f.grade)), json_string(f.statistics), json_string(f.source), warnings);
+        json_string(to_string(f.grade)), json_string(f.statistics), json_string(f.source), warnings,
+        json_fields(f));
   }
   return o + (findings.empty() ? "]\n" : "\n]\n");
 }

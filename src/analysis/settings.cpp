@@ -77,8 +77,9 @@ std::string settings_toml(const AnalysisSettings& a) {
   t.str("on-error", s.on_error);
   t.str("time-unit", s.time_unit);
   t.text += "\n# Tables\n";
-  t.list("metric", a.metrics, "default: error=0.5 and confusion=0.95");
+  t.list("metric", a.metrics, "default: error=0.5 and confusion=0.95@raw");
   t.maybe("compare", a.compare, "no comparison of two conditions");
+  t.list("hypothesis", a.hypotheses, "the paper's H1 and H2");
   t.flag("var-equal", a.var_equal);
   t.flag("paired", a.paired);
   t.opt("equivalence", a.equivalence, "no equivalence test");

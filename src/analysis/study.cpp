@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "feint/error.hpp"
+#include "feint/analysis/hypotheses.hpp"
 #include "feint/io/trace.hpp"
 #include "feint/stats/reliability.hpp"
 
@@ -72,6 +73,10 @@ Study load_study(const std::string& folder, const AnalysisSettings& a, const std
   s.scoring = score_settings(a.scoring);
   s.tests = resolve_report_options(a.report);
   s.metrics = parse_metric_specs(a.metrics);
+  (void)parse_hypotheses(a.hypotheses, "A", "B");  // a bad [hypotheses] before any file is read
+  // One scale: refused here, before a log is read, not found as "reference outside the data".
+  tables::check_reference_scales(s.metrics, metrics::to_string(s.scoring.metrics.norm),
+                                 "the study's settings");
   if (!a.compare.empty()) {
     s.compare = parse_compare(a.compare);
     // A log without a condition column is then refused, not pooled.

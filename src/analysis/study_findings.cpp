@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include "condition_effect.hpp"
 #include "feint/error.hpp"
 #include "feint/models/exposure.hpp"
 #include "feint/models/model_relabelling.hpp"
@@ -31,6 +32,8 @@ stats::TestResult f_as_test(const models::AnovaTerm& t) {
   r.computed = t.computed;
   if (t.computed) {
     r.statistic = t.f;
+    r.df = t.num_df;
+    r.df2 = t.den_df;
     r.p_value = t.p;
   } else {
     r.note = t.note;
@@ -151,6 +154,8 @@ void add_iteration_findings(std::vector<Finding>& out, const StudyResults& r, co
       Finding f = family_finding("H1-iterations-" + m.column, "H1", question,
                                  fmt::format("per-iteration contrasts of {}, {} vs {}", m.column, g1, g2),
                                  std::move(tests), "comparison", rules, correction);
+      f.measure = m.column;
+      detail::name_conditions(f, g1, g2);
       if (correction.empty() && !why_not.empty())
         f.warnings.push_back(fmt::format("The per-iteration contrasts of {} are Holm-corrected, not "
                                          "maxT-adjusted: {}.", m.column, why_not));
@@ -252,23 +257,59 @@ void add_exposure_findings(std::vector<Finding>& out, const StudyResults& r,
   }
 }
 
-// H2: the questionnaire's t-tests, against the reference or (between) between the conditions.
+// The t test of the same item, condition(s) as a rank row (the questionnaire's secondary test).
+const stats::TestResult* t_row_of(const tables::LikertAnalysis& a, const tables::TidyRow& rank) {
+  for (const auto& row : a.rows)
+    if (is_t_test(row.result.test) && row.metric == rank.metric && row.group1 == rank.group1 &&
+        row.group2 == rank.group2)
+      return &row.result;
+  return nullptr;
+}
+
+// H2: the questionnaire, against the reference or (between) between the conditions. Each finding
+// rests on the primary rank test (Wilcoxon signed-rank / Mann-Whitney, rank-biserial r); the t
+// test beside it gives the means, their difference with its CI and the JZS Bayes factor, which the
+// strength uses as for every test (docs/findings.md "Questionnaire").
 void add_likert_findings(std::vector<Finding>& out, const std::optional<tables::LikertAnalysis>& a,
                          bool between, const WordingRules& rules) {
   if (!a) return;
   for (const auto& row : a->rows) {
-    if (!is_t_test(row.result.test)) continue;
+    if (row.result.test != "mann_whitney" && row.result.test != "wilcoxon_signed_rank") continue;
+    stats::TestResult primary = row.result;
+    const stats::TestResult* t = t_row_of(*a, row);
+    if (t) {
+      primary.mean1 = t->mean1;
+      primary.mean2 = t->mean2;
+      primary.mu = t->mu;
+      primary.estimate = t->estimate;
+      primary.conf_low = t->conf_low;
+      primary.conf_high = t->conf_high;
+      primary.conf_level = t->conf_level;
+      primary.log_bf10 = t->log_bf10;
+    }
     const std::string what =
         between ? fmt::format("{}: {} vs {}", row.metric, row.group1, row.group2)
                 : fmt::format("{}{} against the reference", row.metric,
                               row.group1.empty() ? std::string() : " (" + row.group1 + ")");
-    out.push_back(difference_finding(
+    Finding f = difference_finding(
         fmt::format("H2-{}-{}{}", between ? "compare" : "reference", row.metric,
                     row.group1.empty() || between ? std::string() : "-" + row.group1),
         "H2",
         between ? fmt::format("Do the conditions differ on {}?", row.metric)
                 : fmt::format("Does {} differ from the reference?", row.metric),
-        what, row.result, nullptr, between ? "questionnaire-compare" : "questionnaire", rules));
+        what, primary, nullptr, between ? "questionnaire-compare" : "questionnaire", rules);
+    f.measure = row.metric;
+    if (between) detail::name_conditions(f, row.group1, row.group2);
+    if (primary.log_bf10) {
+      f.bf_note = fmt::format("JZS Bayes factor of the {} on the same answers (secondary to the {})",
+                              t ? t->method : std::string("t test"), row.result.method);
+      // The sentence names the Bayes factor its strength rests on, and which test it belongs to.
+      const std::string bf = ", " + tables::apa_bayes_factor(*primary.log_bf10) + " of the t test";
+      f.statistics += bf;
+      if (f.sentence.size() > 2 && f.sentence.compare(f.sentence.size() - 2, 2, ").") == 0)
+        f.sentence.insert(f.sentence.size() - 2, bf);
+    }
+    out.push_back(std::move(f));
   }
 }
 
@@ -390,8 +431,7 @@ Relabelling relabel_family(const tables::MetricModel* any, const std::vector<Mod
 
 // The finding of test i of a metric's family, its p_adjusted already Holm-adjusted over the family.
 Finding model_test_finding(const ModelTest& mb, std::size_t i, std::size_t family_size, const std::string& metric,
-                           const Relabelling& rl, const WordingRules& rules) {
-  Finding f;
+                           const Relabelling& rl, const WordingRules& rules, Finding f) {
   f.id = mb.id;
   f.hypothesis = "H1";
   f.question = mb.question;
@@ -424,14 +464,18 @@ Finding model_test_finding(const ModelTest& mb, std::size_t i, std::size_t famil
                         p_text(*rl.p[i]), rl.words, family_size, metric, p_text(*mb.test.p_adjusted))
           : fmt::format("Holm-adjusted over the {} model tests of {}: {}", family_size, metric,
                         p_text(*mb.test.p_adjusted));
-  const std::string no_bf = f.strength == Strength::evidence_for_difference
-                                ? "no Bayes factor is available for this test"
-                                : "no Bayes factor is available for this test, so a non-significant "
-                                  "result is not evidence for no difference";
+  const std::string no_bf =
+      mb.test.log_bf10 ? fmt::format("{}, Welch t test on the participants' mean scores",
+                                     tables::apa_bayes_factor(*mb.test.log_bf10))
+      : f.strength == Strength::evidence_for_difference
+          ? "no Bayes factor is available for this test"
+          : "no Bayes factor is available for this test, so a non-significant result is not evidence "
+            "for no difference";
   if (mb.is_f) {
     f.statistics = mb.apa;
-    f.sentence = fmt::format("{} in the mixed model {}: {} ({}; {}; {}).", mb.what, mb.formula, f.evidence,
-                             mb.apa, holm, no_bf);
+    const std::string numbers = detail::effect_words(f);
+    f.sentence = fmt::format("{} in the mixed model {}: {} ({}{}{}; {}; {}).", mb.what, mb.formula, f.evidence,
+                             numbers, numbers.empty() ? "" : "; ", mb.apa, holm, no_bf);
   } else {
     const auto& t = mb.test;
     f.statistics = fmt::format("t({:.1f}) = {:.2f}, {}", *t.df, *t.statistic, p_text(*t.p_value));
@@ -455,7 +499,8 @@ std::vector<Finding> study_findings(const StudyResults& r, const std::vector<tab
   }
   // H1 from the mixed models (condition x iteration, the linear trend).
   for (auto& f : mixed_model_findings(r.model ? &*r.model : nullptr,
-                                      r.trend_model ? &*r.trend_model : nullptr, rules))
+                                      r.trend_model ? &*r.trend_model : nullptr, rules,
+                                      r.table1.options.bf_prior_r))
     out.push_back(std::move(f));
   add_exposure_findings(out, r, metrics, rules);
   // H2 after every H1 finding.
@@ -473,7 +518,7 @@ tables::ExposureTable exposure_table(const io::ScoresTable& scores, const std::v
 }
 
 std::vector<Finding> mixed_model_findings(const tables::ModelAnalysis* model, const tables::ModelAnalysis* trend,
-                                          const WordingRules& rules) {
+                                          const WordingRules& rules, double bf_prior_r) {
   std::vector<Finding> out;
   for (const auto& metric : modelled_metrics(model, trend)) {
     const tables::MetricModel* fm = model_of(model, metric);
@@ -491,7 +536,24 @@ std::vector<Finding> mixed_model_findings(const tables::ModelAnalysis* model, co
     const auto adj = stats::p_adjust(p, stats::PAdjustMethod::holm);
     for (std::size_t i = 0; i < family.size(); ++i) {
       family[i].test.p_adjusted = adj[i];
-      out.push_back(model_test_finding(family[i], i, family.size(), metric, rl, rules));
+      Finding numbers;
+      numbers.measure = metric;
+      if (fm && family[i].kind == ModelTest::Kind::condition) {
+        // Which way and how much, and a Bayes factor that the strength then uses.
+        family[i].test.log_bf10 =
+            detail::describe_condition_effect(numbers, *fm, model->options.conf_level, bf_prior_r);
+      }
+      Finding f = model_test_finding(family[i], i, family.size(), metric, rl, rules, std::move(numbers));
+      f.test = family[i].is_f ? "F test (mixed model)" : "t test (mixed model)";
+      f.p = family[i].test.p_value;
+      f.p_adjusted = family[i].test.p_adjusted;
+      if (!family[i].is_f && tm && tm->fit.group_levels.size() == 2)  // the slope of B minus A's
+        set_test_fields(f, family[i].test, tm->fit.group_levels[1], tm->fit.group_levels[0]);
+      if (f.bf_note.empty() && !f.bf10) f.bf_note = "no Bayes factor for this model term";
+      detail::add_model_effect_size(f, family[i].test, model ? model->options.conf_level : 0.95);
+      if (f.contrast.empty() && family[i].kind == ModelTest::Kind::interaction)
+        f.contrast = "condition \u00d7 iteration";  // an F of several df: a contrast, no direction
+      out.push_back(std::move(f));
     }
   }
   return out;

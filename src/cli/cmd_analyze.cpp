@@ -96,13 +96,14 @@ void add_analyze_command(CLI::App& app) {
   cmd->option_defaults()->group("Tables (see feint table)");
   one_per_use(cmd->add_option("--metric", args->s.metrics,
                               "NAME=REF: metric column and reference mean "
-                              "(default error=0.5 confusion=0.95)"));
+                              "(default error=0.5 confusion=0.95@raw)"));
   cmd->add_option("--compare", args->s.compare,
                   "A,B: also compare condition A with B (tables and "
                   "questionnaire), e.g. adaptive,random");
   cmd->add_flag("--var-equal", args->s.var_equal, "Student's t instead of Welch's");
   cmd->add_flag("--paired", args->s.paired, "Paired t (same participants in both)");
   cmd->add_option("--equivalence", args->s.equivalence, "TOST margin: '≈' must be earned");
+  one_per_use(cmd->add_option("--hypothesis", args->s.hypotheses, "ID:KEY=VALUE, e.g. H1:confirmatory=true"));
   cmd->option_defaults()->group("Questionnaire (see feint likert)");
   cmd->add_option("--questionnaire", args->s.questionnaire,
                   "Likert file, relative to STUDY "

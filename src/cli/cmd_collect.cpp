@@ -109,8 +109,7 @@ void add_collect_command(CLI::App& app) {
                   "IP address of a reverse proxy whose X-Forwarded-For gives the client's address "
                   "in the events log (repeatable; e.g. 127.0.0.1 for nginx on this computer)");
   cmd->add_option("--max-connections", args->o.max_connections,
-                  "Simultaneous connections (default and most: ulimit -n less a reserve for the "
-                  "files written); at the cap the connection quiet longest makes way for a new one");
+                  "Simultaneous connections (at most ulimit -n less a reserve); the quietest makes way");
   cmd->add_option("--idle-timeout", args->o.idle_timeout,
                   "Seconds a kept-alive connection may wait for its next request (default 10)")
       ->check(CLI::Range(1, 3600));

@@ -58,7 +58,7 @@ void add_plot_command(CLI::App& app) {
   cmd->option_defaults()->group("Scores figures (as feint table)");
   one_per_use(cmd->add_option("--metric", args->request.metrics,
                               "NAME=REF: metric column and reference mean (repeatable; default "
-                              "error=0.5 confusion=0.95)"));
+                              "error=0.5 confusion=0.95@raw)"));
   cmd->add_option("--compare", args->request.compare,
                   "A,B: mark the iterations where condition A differs from B");
   cmd->add_flag("--var-equal", args->request.var_equal,

@@ -19,7 +19,7 @@ void add_table_command(CLI::App& app) {
       ->required();
   cmd->add_option("--metric", args->o.metrics,
                   "Metric column and reference mean, NAME=REF (repeatable; default error=0.5 "
-                  "confusion=0.95)")
+                  "confusion=0.95@raw)")
       ->allow_extra_args(false);  // one value per --metric, so SCORES may follow it
   cmd->add_option(
       "--condition", args->o.condition,

@@ -147,8 +147,8 @@ void add_score_options(CLI::App& cmd, ScoreOptions& o, const std::string& group)
                  "delta are ignored, and the pad is on a side of 0.5 only beyond delta (default "
                  "0.05)");
   cmd.add_option("--confusion-norm", o.norm,
-                 "Confusion normalisation: 'speed' = moving fraction at the pad speed, in [0, 1] "
-                 "(default); 'raw' = the paper's eq. 4 as printed (unbounded)")
+                 "Confusion normalisation: 'raw' = the paper's eq. 4 as printed, the scale of its "
+                 "reference 0.95 (default); 'speed' = moving fraction at the pad speed, in [0, 1]")
       ->check(CLI::IsMember({"speed", "raw"}, CLI::ignore_case));
   cmd.add_option("--pad-speed", o.pad_speed,
                  "Pad speed v in pad units per second for every trial; replaces a pad_speed column "

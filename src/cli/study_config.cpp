@@ -23,7 +23,7 @@ bool is_own(const CLI::ConfigItem& item, SettingsSection section, const std::str
   if (section == SettingsSection::collect) return p.size() == 1 && p[0] == "collect";
   if (p.empty()) return true;
   if (p[0] == "collect") return false;  // feint collect's own
-  if (p.size() == 1 && p[0] == "analyze") return true;
+  if ((p.size() == 1 && p[0] == "analyze") || (p.size() == 2 && p[0] == "hypotheses")) return true;
   throw InvalidData(
       fmt::format("{}: section [{}] is not a feint analyze section", path, fmt::join(p, ".")));
 }
@@ -39,19 +39,22 @@ void apply_settings_file(CLI::App& cmd, const std::string& path, SettingsSection
   }
   const bool collect = section == SettingsSection::collect;
   const char* command = collect ? "collect" : "analyze";
+  const bool hypotheses_given = !collect && cmd.get_option_no_throw("--hypothesis")->count() > 0;
   for (const auto& item : items) {
     if (!is_own(item, section, path)) continue;
     if (item.name == "++" || item.name == "--") continue;  // section markers of CLI11's parser
-    CLI::Option* opt = cmd.get_option_no_throw("--" + item.name);
+    const bool hypothesis = !collect && item.parents.size() == 2;  // [hypotheses.ID] KEY = VALUE
+    CLI::Option* opt = cmd.get_option_no_throw(hypothesis ? "--hypothesis" : "--" + item.name);
     if (opt == nullptr || item.name == "config" || item.name == "help") {
       throw InvalidData(fmt::format(
           "{}: {}unknown setting '{}' (settings are the options of 'feint {} --help', without "
           "the dashes)",
           path, collect ? "[collect]: " : "", item.name, command));
     }
-    if (opt->count() > 0) continue;  // the command line wins
+    if (hypothesis ? hypotheses_given : opt->count() > 0) continue;  // the command line wins
     try {
-      opt->add_result(item.inputs);
+      if (!hypothesis) opt->add_result(item.inputs);
+      else opt->add_result(fmt::format("{}:{}={}", item.parents[1], item.name, fmt::join(item.inputs, ",")));
       opt->run_callback();
     } catch (const CLI::Error& e) {
       throw InvalidData(fmt::format("{}: {}setting '{}': {}", path, collect ? "[collect] " : "",

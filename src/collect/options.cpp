@@ -142,7 +142,7 @@ std::string study_toml(const Settings& s, std::string_view tool_version) {
       "# Confusion on the paper's scale (eq. 4 without normalisation), where the paper's reference\n"
       "# 0.95 lies: the scores and the reference are on one scale (docs/metrics.md).\n"
       "confusion-norm = \"raw\"\n"
-      "metric = [\"error=0.5\", \"confusion=0.95\"]\n\n"
+      "metric = [\"error=0.5\", \"confusion=0.95@raw\"]\n\n"
       "# The questionnaire's answers are whole numbers 1-7.\n"
       "likert-scale = \"1-7\"\n";
   return out;

@@ -31,7 +31,8 @@ inline std::string p_threshold(double alpha) {
 }
 
 inline std::string adjust_words(const std::string& p_adjust) {
-  return p_adjust.empty() || p_adjust == "none" ? "" : fmt::format(", {}", p_adjust);
+  // Marks from unadjusted p say so: the report's claims may rest on adjusted ones.
+  return p_adjust.empty() || p_adjust == "none" ? ", unadjusted" : fmt::format(", {}", p_adjust);
 }
 
 // Iteration ticks: 1 and round numbers up to the last iteration.

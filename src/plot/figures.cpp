@@ -157,7 +157,7 @@ Figure metric_figure(const MetricFigureData& d) {
   }
   const std::string adjust = adjust_words(d.p_adjust);
   f.legend.push_back({LegendEntry::Kind::marker,
-                      fmt::format("hollow: \u2248 R (p \u2265 {}{})", p_threshold(d.alpha), adjust),
+                      fmt::format("hollow: n.s. against R (p \u2265 {}{})", p_threshold(d.alpha), adjust),
                       Style{Colour{0.3, 0.3, 0.3}, Dash::solid, Marker::circle}, true});
   if (!d.group1.empty()) {
     f.legend.push_back(

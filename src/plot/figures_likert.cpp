@@ -76,7 +76,7 @@ Figure likert_means_figure(const LikertMeansData& d) {
   }
   f.legend.push_back(
       {LegendEntry::Kind::marker,
-       fmt::format("hollow: ≈ R (p ≥ {}{})", p_threshold(d.alpha), adjust_words(d.p_adjust)),
+       fmt::format("hollow: n.s. against R (p ≥ {}{})", p_threshold(d.alpha), adjust_words(d.p_adjust)),
        Style{Colour{0.3, 0.3, 0.3}, Dash::solid, Marker::circle}, true});
   for (std::size_t i = 0; i < items; ++i) {
     p.y.categories.emplace_back(static_cast<double>(items - 1 - i), d.names[i]);

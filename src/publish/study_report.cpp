@@ -9,6 +9,7 @@
 #include "feint/io/number.hpp"
 #include "feint/io/output.hpp"
 #include "feint/plot/html.hpp"
+#include "feint/publish/results_text.hpp"
 #include "feint/tables/writers.hpp"
 
 namespace feint::publish {
@@ -274,6 +275,18 @@ std::string reproduce_html(const analysis::StudyResults& r, const ReportContext&
       html_escape(c.command_line));
 }
 
+// The Results section: the paragraphs, then the findings engine's own list (docs/findings.md:
+// strength, sentence, link, warnings) in a <details> that opens on a click.
+std::string results_html(const analysis::StudyResults& r) {
+  std::string html = study_results_text(r, ResultsFormat::html);
+  if (!r.findings.empty()) {
+    html += fmt::format("<details id=\"findings\">\n<summary>Findings in detail: every test with its "
+                        "strength of evidence and its table ({})</summary>\n{}</details>\n",
+                        r.findings.size(), analysis::findings_html(r.findings));
+  }
+  return html;
+}
+
 }  // namespace
 
 std::string study_report_html(const analysis::StudyResults& r,
@@ -282,10 +295,8 @@ std::string study_report_html(const analysis::StudyResults& r,
   plot::HtmlReport page;
   page.title = title_of(r);
   page.subtitle = subtitle_of(r);
-  if (!r.findings.empty()) {
-    // the findings engine's own fragment (docs/findings.md): strength, sentence, link, warnings
-    page.sections.push_back({"findings", "Findings", analysis::findings_html(r.findings)});
-  }
+  // The page opens with the answers (one paragraph per hypothesis); every finding follows, folded.
+  page.sections.push_back({"results", "Results", results_html(r)});
   page.sections.push_back({"design", "Design", facts(design_rows(r, c))});
   page.sections.push_back({"accounting", "Accounting", accounting_html(r)});
   if (!figures.empty() || !notes.empty()) {
@@ -305,8 +316,9 @@ std::string study_report_markdown(const analysis::StudyResults& r,
                                   const std::vector<RenderedFigure>& figures,
                                   const ReportContext& c) {
   std::string o = fmt::format("# {}\n\n{}\n\n", title_of(r), subtitle_of(r));
+  o += "## Results\n\n" + study_results_text(r, ResultsFormat::markdown) + "\n";
   if (!r.findings.empty()) {
-    o += "## Findings\n\n";
+    o += "### Findings in detail\n\n";
     o += analysis::findings_markdown(r.findings);
     o += "\n";
   }

@@ -7,6 +7,7 @@
 #include "feint/io/output.hpp"
 #include "feint/plot/canvas.hpp"
 #include "feint/publish/output_folder.hpp"
+#include "feint/publish/results_text.hpp"
 #include "feint/publish/study_report.hpp"
 #include "feint/tables/writers.hpp"
 
@@ -88,6 +89,8 @@ WrittenStudy write_study(const analysis::Study& study, const analysis::StudyResu
   write("settings.toml", r.settings_toml);
   write("results.json", study_results_json(r));
   write("findings.json", analysis::findings_json(r.findings));
+  write("results-text.md", study_results_text(r, ResultsFormat::markdown));  // to paste in a paper
+  write("results-text.tex", study_results_text(r, ResultsFormat::latex));
 
   DrawnFigures drawn;
   if (!a.no_figures) drawn = draw_figures(r, a.figure_formats, out.staging().string());

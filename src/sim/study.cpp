@@ -112,7 +112,7 @@ std::string study_toml(const StudySettings& settings, std::string_view tool_vers
       "# Confusion on the paper's scale (eq. 4 without normalisation), where the paper's reference\n"
       "# 0.95 lies: the scores and the reference are on one scale (docs/metrics.md).\n"
       "confusion-norm = \"raw\"\n"
-      "metric = [\"error=0.5\", \"confusion=0.95\"]\n",
+      "metric = [\"error=0.5\", \"confusion=0.95@raw\"]\n",
       tool_version, settings.participants, settings.iterations,
       io::format_double(settings.lambda), settings.seed);
 }

@@ -219,11 +219,13 @@ std::string inference_label(const stats::TestResult& difference, double alpha,
     const double effect = difference.estimate.value_or(0.0) - difference.mu.value_or(0.0);
     return fmt::format("{}{}{}", lhs, effect > 0 ? ">" : "<", rhs);
   }
-  const std::string approx = fmt::format("{}{}{}", lhs, kApprox, rhs);
-  if (tost == nullptr) return approx;
+  if (difference.log_bf10 && -*difference.log_bf10 >= std::log(kBf01Equivalence)) {
+    return fmt::format("{}{}{}", lhs, kApprox, rhs);
+  }
+  if (tost == nullptr) return std::string(kNotSignificant);
   const auto tp = decision_p(*tost);
   if (!tost->computed || !tp) return std::string(kNotComputable);
-  return *tp < alpha ? approx : std::string(kInconclusive);
+  return *tp < alpha ? fmt::format("{}{}{}", lhs, kApprox, rhs) : std::string(kNotSignificant);
 }
 
 std::string one_sample_label(const stats::TestResult& difference, double alpha,

@@ -46,7 +46,8 @@ std::string rank_label(const stats::TestResult& r, double alpha, std::string_vie
   if (p && *p < alpha && r.rank_biserial && *r.rank_biserial != 0.0) {
     return fmt::format("{}{}{}", lhs, *r.rank_biserial > 0 ? ">" : "<", rhs);
   }
-  return fmt::format("{}{}{}", lhs, kApprox, rhs);
+  // A rank test has no Bayes factor or TOST: nothing here is evidence of no difference.
+  return std::string(kNotSignificant);
 }
 
 LikertSummary summarize(const std::string& name, bool composite, const std::string& group,
@@ -439,9 +440,10 @@ void add_method_notes(LikertAnalysis& a, const io::Questionnaire& q,
   }
   notes.push_back(fmt::format(
       "Labels: {0} when p < {1} (rank tests: direction of r; t-tests: of the mean difference); "
-      "{2} = not significantly different at alpha = {1}, which is not evidence of equality.",
+      "{2}: evidence for no difference (t-tests: BF01 ≥ {3:g}); n.s.: not significant at "
+      "alpha = {1} and not shown to be equal (rank tests have no Bayes factor, so never {2}).",
       a.two_sample ? "A>B / A<B" : "M>R / M<R", fmt_number(settings.alpha),
-      a.two_sample ? fmt::format("A{}B", kApprox) : fmt::format("M{}R", kApprox)));
+      a.two_sample ? fmt::format("A{}B", kApprox) : fmt::format("M{}R", kApprox), kBf01Equivalence));
   notes.push_back(fmt::format(
       "BF10 / BF01 of the t-tests: JZS Bayes factor (Rouder et al. 2009), Cauchy prior on the "
       "standardised effect, scale {}; docs/bayes-factors.md.",

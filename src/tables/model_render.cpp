@@ -118,7 +118,8 @@ std::string contrasts_note(const ModelOptions& o, const MetricModel& m) {
       "Contrasts A - B at each iteration from the model, as emmeans(m, pairwise ~ condition | "
       "iteration, lmer.df = \"{}\"){}; two-sided, {}% intervals; {}. A = {}, B = "
       "{}. "
-      "Labels at alpha = {}: A>B / A<B significant, A\u2248B not significantly different.",
+      "Labels at alpha = {}: A>B / A<B significant; n.s. not significant (a model contrast has "
+      "no Bayes factor or TOST here, so none is labelled \u2248).",
       kr ? "kenward-roger" : "satterthwaite", o.trend ? " at each observed iteration of the trend" : "", percent(o.conf_level), adj,
       m.group1, m.group2, io::format_double(o.alpha));
 }

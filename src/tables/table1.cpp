@@ -15,7 +15,31 @@
 
 namespace feint::tables {
 
-std::vector<MetricSpec> default_metrics() { return {{"error", 0.5}, {"confusion", 0.95}}; }
+std::vector<MetricSpec> default_metrics() {
+  return {{"error", 0.5, ""}, {"confusion", 0.95, "raw"}};
+}
+
+namespace {
+
+// "0.95@raw" -> scale "raw", text "0.95"; only confusion has scales.
+std::string take_scale(std::string_view text, std::string_view name, std::string_view& value) {
+  const auto at = value.find('@');
+  if (at == std::string_view::npos) return "";
+  const std::string scale = io::to_lower(io::trim(value.substr(at + 1)));
+  value = value.substr(0, at);
+  if (scale != "raw" && scale != "speed") {
+    throw UsageError(fmt::format("--metric '{}': scale '{}' is not a confusion normalisation; "
+                                 "expected raw or speed, e.g. confusion=0.95@raw",
+                                 text, scale));
+  }
+  if (io::to_lower(name) != "confusion") {
+    throw UsageError(fmt::format("--metric '{}': only confusion has scales (raw, speed); give {}={}",
+                                 text, name, io::trim(value)));
+  }
+  return scale;
+}
+
+}  // namespace
 
 MetricSpec parse_metric_spec(std::string_view text) {
   const auto eq = text.find('=');
@@ -25,18 +49,40 @@ MetricSpec parse_metric_spec(std::string_view text) {
   }
   if (eq == std::string_view::npos) {
     for (const auto& d : default_metrics()) {
-      if (io::to_lower(name) == d.column) return {name, d.reference};
+      if (io::to_lower(name) == d.column) return {name, d.reference, d.scale};
     }
     throw UsageError(fmt::format(
         "--metric '{}': no default reference mean for '{}'; give one as {}=REFERENCE", text, name,
         name));
   }
-  const auto ref = io::parse_double(text.substr(eq + 1));
+  std::string_view value = text.substr(eq + 1);
+  std::string scale = take_scale(text, name, value);
+  const auto ref = io::parse_double(value);
   if (!ref) {
-    throw UsageError(fmt::format("--metric '{}': reference '{}' is not a number", text,
-                                 text.substr(eq + 1)));
+    throw UsageError(fmt::format("--metric '{}': reference '{}' is not a number", text, value));
   }
-  return {name, *ref};
+  return {name, *ref, std::move(scale)};
+}
+
+std::string scores_scale(const io::ScoresProvenance& provenance) {
+  const std::string norm = io::to_lower(provenance.confusion_normalisation);
+  for (const char* s : {"raw", "speed"}) {
+    if (norm.rfind(s, 0) == 0) return s;
+  }
+  return "";
+}
+
+void check_reference_scales(const std::vector<MetricSpec>& metrics, std::string_view scale,
+                            std::string_view source) {
+  for (const auto& m : metrics) {
+    if (m.scale.empty() || scale.empty() || m.scale == scale) continue;
+    throw UsageError(fmt::format(
+        "{}: {} is on the {} scale but its reference {:g} is a value of the {} scale, so a test "
+        "against it would say nothing. Score on the reference's scale (--confusion-norm {}), or "
+        "give a reference on the scores' scale (--metric {}=VALUE@{}; docs/metrics.md \"One "
+        "scale\")",
+        source, m.column, scale, m.reference, m.scale, m.scale, m.column, scale));
+  }
 }
 
 namespace {
@@ -45,14 +91,7 @@ bool two_sample(const Table1Options& o) { return o.compare.has_value(); }
 
 std::string label_for(const Table1Options& o, const stats::TestResult& diff,
                       const stats::TestResult* tost) {
-  std::string label = two_sample(o) ? two_sample_label(diff, o.alpha, tost)
-                                    : one_sample_label(diff, o.alpha, tost);
-  if (!o.equivalence_by_evidence || label.find(kApprox) == std::string::npos) return label;
-  // "≈" from a non-significant p alone is not kept: it needs BF01 >= 3 or TOST.
-  const bool by_bf = diff.log_bf10 && -*diff.log_bf10 >= std::log(kBf01Equivalence);
-  const auto tp = tost ? decision_p(*tost) : std::nullopt;
-  const bool by_tost = tost && tost->computed && tp && *tp < o.alpha;
-  return by_bf || by_tost ? label : std::string(kInconclusive);
+  return two_sample(o) ? two_sample_label(diff, o.alpha, tost) : one_sample_label(diff, o.alpha, tost);
 }
 
 // p.adjust within a family of row indices (one metric column of one block).
@@ -364,6 +403,7 @@ Table1 build_table1(const io::ScoresTable& scores, const Table1Options& options)
   t.options = o;
   t.source = scores.path;
   t.provenance = io::read_scores_provenance(scores.path);
+  check_reference_scales(o.metrics, scores_scale(t.provenance), scores.path);
 
   const std::vector<int> metric_index = metric_columns(scores, o);
   t.blocks = table_blocks(scores, o);

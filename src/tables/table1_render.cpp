@@ -59,7 +59,8 @@ std::string file_name(const std::string& path) {
 std::string reference_means(const Table1Options& o) {
   std::string refs;
   for (const auto& m : o.metrics) {
-    refs += fmt::format("{}{} R = {}", refs.empty() ? "" : ", ", m.column, io::format_double(m.reference));
+    refs += fmt::format("{}{} R = {}{}", refs.empty() ? "" : ", ", m.column,
+                        io::format_double(m.reference), m.scale.empty() ? "" : " on the " + m.scale + " scale");
   }
   return refs;
 }
@@ -122,31 +123,16 @@ std::string labels_note(const Table1Options& o) {
   const std::string what = two ? "the mean of A is" : "the mean is";
   const std::string than = two ? "that of B" : "R";
   const std::string p_used = o.p_adjust == stats::PAdjustMethod::none ? "p" : "adjusted p";
-  if (o.equivalence_by_evidence) {
-    return fmt::format(
-        "{0}>{1} / {0}<{1}: {2} significantly greater / smaller than {3} ({4} < {5}). "
-        "{0}\u2248{1}: evidence for no difference, from the JZS Bayes factor BF01 \u2265 {6:g} "
-        "(bf01 in the CSV and JSON tables){7}; a non-significant p alone is not evidence of equivalence. "
-        "inconclusive: neither significantly different nor shown to be equivalent.",
-        lhs, rhs, what, than, p_used, io::format_double(o.alpha), kBf01Equivalence,
-        o.equivalence ? fmt::format(" or from TOST within \u00b1{} (two one-sided t-tests, {} < {}, "
-                                    "column \"p TOST\")",
-                                    io::format_double(*o.equivalence), p_used, io::format_double(o.alpha))
-                      : std::string());
-  }
-  if (!o.equivalence) {
-    return fmt::format(
-        "{0}>{1} / {0}<{1}: {2} significantly greater / smaller than {3} ({4} < {5}). "
-        "{0}\u2248{1}: not significantly different; this is not evidence that they are equal.",
-        lhs, rhs, what, than, p_used, io::format_double(o.alpha));
-  }
   return fmt::format(
       "{0}>{1} / {0}<{1}: {2} significantly greater / smaller than {3} ({4} < {5}). "
-      "{0}\u2248{1}: equivalent within \u00b1{6} by TOST (two one-sided t-tests, {4} < {5}, "
-      "column \"p TOST\"); inconclusive: neither significantly different nor shown to be "
-      "equivalent.",
-      lhs, rhs, what, than, p_used, io::format_double(o.alpha),
-      io::format_double(*o.equivalence));
+      "{0}\u2248{1}: evidence for no difference, from the JZS Bayes factor BF01 \u2265 {6:g} "
+      "(bf01 in the CSV and JSON tables){7}. n.s.: not significant and not shown to be equivalent "
+      "(a non-significant p alone is not evidence of equality).",
+      lhs, rhs, what, than, p_used, io::format_double(o.alpha), kBf01Equivalence,
+      o.equivalence ? fmt::format(" or from TOST within \u00b1{} (two one-sided t-tests, {} < {}, "
+                                  "column \"p TOST\")",
+                                  io::format_double(*o.equivalence), p_used, io::format_double(o.alpha))
+                    : std::string());
 }
 
 // Where the confusion metric's normalisation came from: the scores sidecar, when there is one.

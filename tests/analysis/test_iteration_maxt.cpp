@@ -30,7 +30,6 @@ analysis::StudyResults study(const std::vector<Row>& rows) {
   tables::Table1Options o;
   o.metrics = {{"error", 0.5}};
   o.compare = std::make_pair(std::string("a"), std::string("b"));
-  o.equivalence_by_evidence = true;
   r.comparison = tables::build_table1(r.scores, o);
   return r;
 }

@@ -142,7 +142,16 @@ TEST(StudyFindings, DemoMixedModelFindingsCarryTheModelTablesNumbers) {
     EXPECT_TRUE(contains(fc->sentence, "relabelling " + p_text(*rt.p_condition) + over)) << fc->sentence;
     EXPECT_TRUE(contains(ft->sentence, "relabelling " + p_text(*rt.p_slope_difference) + over)) << ft->sentence;
     expect_rule(*fi, *adj[0]);
-    expect_rule(*fc, *adj[1]);
+    // The condition effect has a Bayes factor (a Welch t test on the participants' mean scores) and
+    // the rule of every test with one: a difference needs the corrected p and BF10 >= 3.
+    ASSERT_TRUE(fc->bf10) << fc->bf_note;
+    EXPECT_TRUE(contains(fc->sentence, "Welch t test on the participants' mean scores")) << fc->sentence;
+    if (*adj[1] < 0.05 && *fc->bf10 >= 3)
+      EXPECT_EQ(fc->strength, Strength::evidence_for_difference) << fc->sentence;
+    else if (1 / *fc->bf10 >= 3)
+      EXPECT_EQ(fc->strength, Strength::evidence_for_no_difference) << fc->sentence;
+    else
+      EXPECT_EQ(fc->strength, Strength::no_evidence_either_way) << fc->sentence;
     EXPECT_EQ(fi->source, "model");
     EXPECT_EQ(ft->source, "model-trend");
     // The slope difference and its interval: the trend table's fixef row (CSV, full precision).

@@ -24,7 +24,8 @@ TEST(AnalyzeFindings, PrintedWrittenAndFirstInTheReport) {
   EXPECT_NE(r.out.find("Per-iteration contrasts of error, adaptive vs random (Westfall\u2013Young maxT-adjusted over 20 iterations"),
             std::string::npos) << r.out;
   // H1 from the mixed models and condition x exposure per strategy, before H2 (docs/findings.md).
-  const auto model = r.out.find("* [H1] Evidence for a difference: Main effect of condition on error in the mixed model");
+  // The condition effect now has a Bayes factor (participants' mean scores), so it is graded.
+  const auto model = r.out.find("* [H1] Moderate evidence for a difference: Main effect of condition on error in the mixed model");
   const auto exposure = r.out.find("Exposure slope (error) of strategy 'exaggerating'");
   const auto h2 = r.out.find("* [H2] ");
   EXPECT_NE(model, std::string::npos) << r.out;
@@ -44,7 +45,7 @@ TEST(AnalyzeFindings, PrintedWrittenAndFirstInTheReport) {
   EXPECT_NE(md.find("- **No evidence either way** (H1). Per-iteration contrasts of error"), std::string::npos);
   const std::string html = read_text(out / "report.html");
   EXPECT_NE(html.find("<li class=\"finding inconclusive\" id=\"finding-H1-iterations-error\">"), std::string::npos);
-  // Table 1 in the report: "≈" only with BF01 >= 3 (no --equivalence here), else "inconclusive".
+  // Table 1 in the report: "≈" only with BF01 >= 3 (no --equivalence here), else "n.s.".
   for (const char* stem : {"table1.csv", "table1_compare.csv"}) {
     feint::io::CsvReader csv((out / stem).string());
     const int label = csv.column("label"), bf01 = csv.column("bf01"), p = csv.column("p_value");
@@ -59,7 +60,7 @@ TEST(AnalyzeFindings, PrintedWrittenAndFirstInTheReport) {
         EXPECT_GE(*bf, 3.0) << stem << " " << l;
       } else if (*pv >= 0.05) {
         ++inconclusive;
-        EXPECT_EQ(l, "inconclusive") << stem;
+        EXPECT_EQ(l, "n.s.") << stem;
         EXPECT_LT(*bf, 3.0) << stem;
       }
     }

@@ -75,11 +75,11 @@ TEST(InputsAreSacred, TableRefusesToWriteOverItsInputByAnyName) {
   }
   EXPECT_TRUE(fs::is_symlink(dir / "link.csv"));
   // The scores' sidecar, read for the note, is an input too.
-  write_text(dir / "scores.csv.meta.json", "{\"confusion_normalisation\": \"speed\"}\n");
+  write_text(dir / "scores.csv.meta.json", "{\"confusion_normalisation\": \"raw\"}\n");
   const RunResult s =
       run_feint("table " + q(input) + " --format json -o " + q(dir / "scores.csv.meta.json"));
   EXPECT_EQ(s.exit_code, 64) << s.err;
-  EXPECT_EQ(read_text(dir / "scores.csv.meta.json"), "{\"confusion_normalisation\": \"speed\"}\n");
+  EXPECT_EQ(read_text(dir / "scores.csv.meta.json"), "{\"confusion_normalisation\": \"raw\"}\n");
   // Another output name is fine.
   EXPECT_EQ(run_feint("table " + q(input) + " -o " + q(dir / "t.txt")).exit_code, 0);
 }

@@ -102,7 +102,8 @@ TEST(ScoreCli, HelpExplainsEveryOptionWithUnits) {
 TEST(ScoreCli, ScoresWorkedExamplesAndWritesSidecar) {
   TempDir d;
   write_text(d / "log.csv", good_log());
-  const auto r = run_feint("score " + q(d / "log.csv") + " -o " + q(d / "scores.csv"));
+  // The worked examples' `speed` column (raw, the default, is checked below).
+  const auto r = run_feint("score " + q(d / "log.csv") + " --confusion-norm speed -o " + q(d / "scores.csv"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto rows = parse_scores(read_text(d / "scores.csv"));
   ASSERT_EQ(rows.size(), 3U);
@@ -162,7 +163,7 @@ TEST(ScoreCli, RawNormalisationTrimAndPadSpeedOptions) {
   EXPECT_NE(read_text(d / "t0.csv.meta.json").find("\"trim_start\": 0,"), std::string::npos);
 
   // --pad-speed 0.125: the pad (0.25/s) now overspeeds on every moving segment; m clamps to 1.
-  r = run_feint("score " + q(d / "log.csv") + " --pad-speed 0.125 -o " + q(d / "v.csv"));
+  r = run_feint("score " + q(d / "log.csv") + " --confusion-norm speed --pad-speed 0.125 -o " + q(d / "v.csv"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   rows = parse_scores(read_text(d / "v.csv"));
   EXPECT_NEAR(num(rows[0].at("confusion")), 217.0 / 360, 1e-12);
@@ -230,7 +231,7 @@ TEST(ScoreCli, ExitCodesForUsageAndIoErrors) {
 TEST(ScoreCli, SpeedNormalisationWithoutPadSpeedSaysHowToGiveIt) {
   TempDir d;
   write_text(d / "log.csv", "participant,iteration,target,t,pad\nP1,1,left,0,0.5\nP1,1,left,1,0.4\n");
-  auto r = run_feint("score " + q(d / "log.csv") + " -o " + q(d / "s.csv"));
+  auto r = run_feint("score " + q(d / "log.csv") + " --confusion-norm speed -o " + q(d / "s.csv"));
   EXPECT_EQ(r.exit_code, 64);
   EXPECT_NE(r.err.find("--pad-speed"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--confusion-norm raw"), std::string::npos) << r.err;
@@ -365,7 +366,7 @@ TEST(ScoreCli, ReadsDirectoriesGlobsGzipStdinMappedColumnsAndDelimiters) {
   write_text(d / "own.csv", own);
   r = run_feint("score " + q(d / "own.csv") + " --map participant=subject --map condition=Block "
                 "--map iteration=round --map target=goal --map t=time --map pad=knob "
-                "--delimiter ';' --pad-speed 0.25 -o " + q(d / "own_scores.csv"));
+                "--delimiter ';' --confusion-norm speed --pad-speed 0.25 -o " + q(d / "own_scores.csv"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   rows = parse_scores(read_text(d / "own_scores.csv"));
   ASSERT_EQ(rows.size(), 1U);
@@ -385,7 +386,8 @@ TEST(ScoreCli, ReadsDirectoriesGlobsGzipStdinMappedColumnsAndDelimiters) {
 TEST(ScoreCli, ExampleDataSetScores) {
   const fs::path example = fs::path(FEINT_SOURCE_DIR) / "data" / "example";
   if (!fs::exists(example)) GTEST_SKIP() << "data/example not present";
-  const auto r = run_feint("score " + q(example) + " -o -");
+  // `speed` confusion is bounded in [0, 1] (raw, the default, is not).
+  const auto r = run_feint("score " + q(example) + " --confusion-norm speed -o -");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto rows = parse_scores(r.out);
   EXPECT_GE(rows.size(), 80U);

@@ -154,7 +154,7 @@ TEST(SimulateStudyCli, TheStudyCarriesItsDesignAndIsAnalysedWithNoFlag) {
   const std::string toml = read_text(sim / "feint.toml");
   EXPECT_NE(toml.find("compare = \"adaptive,random\""), std::string::npos) << toml;
   EXPECT_NE(toml.find("confusion-norm = \"raw\""), std::string::npos) << toml;
-  EXPECT_NE(toml.find("metric = [\"error=0.5\", \"confusion=0.95\"]"), std::string::npos) << toml;
+  EXPECT_NE(toml.find("metric = [\"error=0.5\", \"confusion=0.95@raw\"]"), std::string::npos) << toml;
   const auto out = dir / "out";
   const auto r = run_feint("analyze " + shell_quote(sim.string()) + " -o " +
                            shell_quote(out.string()) + " --no-figures");

@@ -165,7 +165,9 @@ TEST(TableCli, NoteReadsTheScoresSidecar) {
   write_text(dir / "scores.csv.meta.json",
              "{\"tool\": \"feint score\", \"settings\": {\"confusion_norm\": \"speed\"}, "
              "\"units\": {\"confusion\": \"fraction of full-speed movement, [0, 1]\"}}\n");
-  const auto r = run_feint("table " + shell_quote(in.string()) + " --condition random --format markdown");
+  // Speed scores: the reference must be on the speed scale (docs/metrics.md "One scale").
+  const auto r = run_feint("table " + shell_quote(in.string()) +
+                           " --condition random --format markdown --metric error --metric confusion=0.5@speed");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("Confusion normalisation: speed (confusion in fraction of full-speed "
                        "movement, [0, 1]) (from "),

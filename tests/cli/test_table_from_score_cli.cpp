@@ -69,6 +69,43 @@ TEST(TableFromScoreCli, TabulatesWhatScoreWroteAndCitesItsSidecar) {
 
   const auto text = run_feint("table " + shell_quote((d / "scores.csv").string()));
   ASSERT_EQ(text.exit_code, 0) << text.err;
-  EXPECT_NE(text.out.find("Confusion normalisation: speed"), std::string::npos) << text.out;
+  // The default normalisation is raw, the scale of the default reference 0.95 (docs/metrics.md).
+  EXPECT_NE(text.out.find("Confusion normalisation: raw"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("confusion R = 0.95 on the raw scale"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("scores.csv.meta.json"), std::string::npos) << text.out;
+}
+
+// One scale (docs/metrics.md "One scale"): a reference of one confusion normalisation with scores
+// of the other is refused at load with the fix, never tested; a reference on the scores' own
+// scale, or one without a scale, is used.
+TEST(TableFromScoreCli, AReferenceOfAnotherScaleIsRefusedWithTheFix) {
+  TempDir d;
+  std::string log = "participant,condition,iteration,strategy,variant,target,t,pad,pad_speed\n";
+  for (int p = 0; p < 3; ++p) log += trial("P0" + std::to_string(p + 1), 1, 0.1 * (p + 1));
+  write_text(d / "log.csv", log);
+  const std::string scores = shell_quote((d / "speed.csv").string());
+  const auto scored = run_feint("score " + shell_quote((d / "log.csv").string()) +
+                                " --confusion-norm speed -o " + scores);
+  ASSERT_EQ(scored.exit_code, 0) << scored.err;
+
+  const auto by_default = run_feint("table " + scores);  // the default 0.95 is a raw value
+  EXPECT_EQ(by_default.exit_code, 64) << by_default.out;
+  EXPECT_NE(by_default.err.find("confusion is on the speed scale but its reference 0.95 is a value "
+                                "of the raw scale"),
+            std::string::npos)
+      << by_default.err;
+  EXPECT_NE(by_default.err.find("--confusion-norm raw"), std::string::npos) << by_default.err;
+  EXPECT_NE(by_default.err.find("--metric confusion=VALUE@speed"), std::string::npos) << by_default.err;
+  EXPECT_EQ(by_default.out, "");
+
+  const auto explicit_raw = run_feint("table " + scores + " --metric confusion=0.95@raw");
+  EXPECT_EQ(explicit_raw.exit_code, 64);
+  EXPECT_EQ(run_feint("table " + scores + " --metric confusion=0.3@speed").exit_code, 0);
+  EXPECT_EQ(run_feint("table " + scores + " --metric confusion=0.3").exit_code, 0);  // the scores' scale
+  const auto bad = run_feint("table " + scores + " --metric error=0.5@raw");
+  EXPECT_EQ(bad.exit_code, 64);
+  EXPECT_NE(bad.err.find("only confusion has scales"), std::string::npos) << bad.err;
+  const auto typo = run_feint("table " + scores + " --metric confusion=0.3@sped");
+  EXPECT_EQ(typo.exit_code, 64);
+  EXPECT_NE(typo.err.find("expected raw or speed"), std::string::npos) << typo.err;
 }

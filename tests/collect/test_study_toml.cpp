@@ -22,7 +22,7 @@ TEST(CollectStudyToml, NamesTheComparisonAndOneScaleAndNeverReplacesAFile) {
   const std::string toml = read_text(dir / "feint.toml");
   EXPECT_NE(toml.find("compare = \"adaptive,random\"\n"), std::string::npos) << toml;
   EXPECT_NE(toml.find("confusion-norm = \"raw\"\n"), std::string::npos) << toml;
-  EXPECT_NE(toml.find("metric = [\"error=0.5\", \"confusion=0.95\"]\n"), std::string::npos);
+  EXPECT_NE(toml.find("metric = [\"error=0.5\", \"confusion=0.95@raw\"]\n"), std::string::npos);
   EXPECT_NE(toml.find("likert-scale = \"1-7\"\n"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir / ".feint.toml.feint-tmp"));
   // A second start, or a study with its own settings: the file stays as it is.

@@ -16,7 +16,9 @@ int main(int argc, char** argv) {
   trial.pad_speed = 0.25;
   for (int i = 0; i <= 10; ++i) trial.times.push_back(i);
   trial.pads = {0.5, 0.25, 0, 0, 0, 0, 0, 0.25, 0.5, 0.75, 1};
-  const auto score = feint::metrics::score_trial(trial, feint::metrics::MetricSettings{});
+  feint::metrics::MetricSettings speed;  // worked example B's `speed` value (raw is the default)
+  speed.norm = feint::metrics::ConfusionNorm::speed;
+  const auto score = feint::metrics::score_trial(trial, speed);
   const std::vector<double> x{0.55, 0.61, 0.48, 0.7, 0.52};
   const auto t = feint::stats::t_test_one_sample(x, 0.5);
   std::printf("error %.15g confusion %.15g t %.15g\n", score.error, score.confusion, *t.statistic);

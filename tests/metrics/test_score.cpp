@@ -72,8 +72,10 @@ std::string example_e(const std::string& key) {
 TEST_F(ScoreLib, ScoreEachHandsOutEveryTrialWithItsScore) {
   const auto p = write("log.csv", kHeader + example_e("P1,adaptive,1") + example_e("P1,adaptive,2"));
   std::vector<double> errors, confusions;
+  ScoreSettings speed;  // worked example E's `speed` value (raw is the default)
+  speed.metrics.norm = feint::metrics::ConfusionNorm::speed;
   const auto summary = feint::metrics::score_each(
-      {p}, ScoreSettings{}, [&](const feint::io::Trial& t, const feint::metrics::TrialScore& s) {
+      {p}, speed, [&](const feint::io::Trial& t, const feint::metrics::TrialScore& s) {
         EXPECT_EQ(t.participant, "P1");
         errors.push_back(s.error);
         confusions.push_back(s.confusion);
@@ -267,6 +269,7 @@ TEST_F(ScoreLib, TimeUnitMsConvertsToSecondsAndIsRecorded) {
   }
   const auto in = write("ms.csv", log);
   ScoreSettings st;
+  st.metrics.norm = feint::metrics::ConfusionNorm::speed;  // example E's `speed` value
   st.time_unit = feint::metrics::TimeUnit::ms;
   std::vector<std::string> warnings;
   st.on_warning = [&](const std::string& w) { warnings.push_back(w); };
@@ -289,6 +292,7 @@ TEST_F(ScoreLib, TimeUnitMsConvertsToSecondsAndIsRecorded) {
   // naming the file, line, column and the option.
   got.clear();
   ScoreSettings secs;
+  secs.metrics.norm = feint::metrics::ConfusionNorm::speed;
   secs.on_warning = st.on_warning;
   try {
     feint::metrics::score_each({in}, secs, collect);
@@ -328,6 +332,7 @@ TEST_F(ScoreLib, TimeUnitMsConvertsToSecondsAndIsRecorded) {
 TEST_F(ScoreLib, TimeUnitMsOnALogInSecondsWarns) {
   const auto in = write("s.csv", kHeader + example_e("P1,A,1") + example_e("P2,A,1"));
   ScoreSettings st;
+  st.metrics.norm = feint::metrics::ConfusionNorm::speed;  // example E's `speed` value
   st.time_unit = feint::metrics::TimeUnit::ms;
   std::vector<std::string> warnings;
   st.on_warning = [&](const std::string& w) { warnings.push_back(w); };

@@ -112,6 +112,7 @@ TEST(Overspeed, SegmentsFasterThanThePadSpeedAreClampedAndCounted) {
 
 TEST(Validation, RejectsBadTraces) {
   MetricSettings s;
+  s.norm = ConfusionNorm::speed;  // the check that speed needs v (raw, the default, does not)
   const std::vector<double> t{0, 1, 2};
   EXPECT_THROW(score_trace(std::vector<double>{0}, std::vector<double>{0.5}, 1, 1, s),
                feint::InvalidData);

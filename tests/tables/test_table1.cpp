@@ -277,7 +277,9 @@ TEST(Table1OneSample, LabelsFollowPAndTheSignOfMMinusR) {
     if (!row.result.computed) continue;
     const double p = *row.result.p_value;
     const double diff = *row.result.estimate - *row.result.mu;
-    const std::string expected = p < 0.05 ? (diff > 0 ? "M>R" : "M<R") : "M\u2248R";
+    // "≈" only from BF01 >= 3 (docs/tables.md "Labels"), else "n.s.".
+    const bool bf01 = row.result.log_bf10 && -*row.result.log_bf10 >= std::log(3.0);
+    const std::string expected = p < 0.05 ? (diff > 0 ? "M>R" : "M<R") : bf01 ? "M\u2248R" : "n.s.";
     EXPECT_EQ(row.label, expected) << row.metric << " " << *row.iteration << " " << row.group1;
   }
   // Adaptive error at iteration 2 is far above 0.5 (R: p = 1.5e-10).
@@ -318,7 +320,9 @@ TEST(Table1TwoSample, HolmWithinEachMetricColumnMatchesPAdjust) {
   for (const auto& row : t.rows) {
     const double p = *row.result.p_adjusted;  // labels use the adjusted p
     const std::string expected =
-        p < 0.05 ? (*row.result.estimate > 0 ? "A>B" : "A<B") : "A\u2248B";
+        p < 0.05 ? (*row.result.estimate > 0 ? "A>B" : "A<B")
+        : row.result.log_bf10 && -*row.result.log_bf10 >= std::log(3.0) ? "A\u2248B"
+                                                                         : "n.s.";
     EXPECT_EQ(row.label, expected);
   }
 }
@@ -358,7 +362,8 @@ TEST(Table1Equivalence, TostEarnsApproxOtherwiseInconclusive) {
   t = build_table1(small_scores(), o);
   for (const auto& cell : t.blocks[0].cells) {
     const auto& d = t.rows[cell[0].difference_row];
-    EXPECT_EQ(d.label, *d.result.p_value < 0.05 ? "M>R" : "inconclusive");
+    const bool bf01 = d.result.log_bf10 && -*d.result.log_bf10 >= std::log(3.0);
+    EXPECT_EQ(d.label, *d.result.p_value < 0.05 ? "M>R" : bf01 ? "M\u2248R" : "n.s.");
   }
 }
 
@@ -521,13 +526,15 @@ TEST(Table1Render, ThePapersNumbersReadAsInThePaper) {
     blk.cells.push_back(cells);
   }
   t.blocks.push_back(blk);
+  // The paper's "≈" rows read "n.s." here: without a Bayes factor or TOST a non-significant test
+  // is not evidence of equality (docs/tables.md "Labels").
   const std::string text = render_table1(t, OutputFormat::text);
-  EXPECT_NE(text.find("        1    0.5703  0.0066  M>R          0.8504   0.2109  M\u2248R\n"),
+  EXPECT_NE(text.find("        1    0.5703  0.0066  M>R          0.8504   0.2109  n.s.\n"),
             std::string::npos)
       << text;
-  EXPECT_NE(text.find("        3    0.5112  0.7479  M\u2248R          0.7239   0.0201  M<R\n"),
+  EXPECT_NE(text.find("        3    0.5112  0.7479  n.s.         0.7239   0.0201  M<R\n"),
             std::string::npos);
-  EXPECT_NE(text.find("        4    0.5295  0.4494  M\u2248R          0.5426  1.5e-04  M<R\n"),
+  EXPECT_NE(text.find("        4    0.5295  0.4494  n.s.         0.5426  1.5e-04  M<R\n"),
             std::string::npos);
   EXPECT_NE(render_table1(t, OutputFormat::latex).find("$1.5 \\times 10^{-4}$ & $M < R$"),
             std::string::npos);

@@ -196,20 +196,20 @@ TEST(Labels, OneSampleBySignWhenSignificant) {
   below.estimate = 0.5426;
   below.mu = 0.95;
   EXPECT_EQ(one_sample_label(below, 0.05), "M<R");
-  EXPECT_EQ(one_sample_label(one_sample(0.0992), 0.05), "M\u2248R");
-  EXPECT_EQ(one_sample_label(one_sample(0.0499), 0.01), "M\u2248R");  // alpha matters
+  EXPECT_EQ(one_sample_label(one_sample(0.0992), 0.05), "n.s.");
+  EXPECT_EQ(one_sample_label(one_sample(0.0499), 0.01), "n.s.");  // alpha matters
 }
 
 TEST(Labels, UseTheAdjustedPWhenPresent) {
   auto r = one_sample(0.0066);
   r.p_adjusted = 0.132;
-  EXPECT_EQ(one_sample_label(r, 0.05), "M\u2248R");
+  EXPECT_EQ(one_sample_label(r, 0.05), "n.s.");
 }
 
 TEST(Labels, TwoSampleAandB) {
   EXPECT_EQ(two_sample_label(welch(0.1, 0.01), 0.05), "A>B");
   EXPECT_EQ(two_sample_label(welch(-0.1, 0.01), 0.05), "A<B");
-  EXPECT_EQ(two_sample_label(welch(0.01, 0.6), 0.05), "A\u2248B");
+  EXPECT_EQ(two_sample_label(welch(0.01, 0.6), 0.05), "n.s.");
 }
 
 TEST(Labels, EquivalenceIsEarnedByTost) {
@@ -217,11 +217,24 @@ TEST(Labels, EquivalenceIsEarnedByTost) {
   tost.test = "tost";
   EXPECT_EQ(one_sample_label(one_sample(0.4), 0.05, &tost), "M\u2248R");
   tost.p_value = 0.2;
-  EXPECT_EQ(one_sample_label(one_sample(0.4), 0.05, &tost), "inconclusive");
+  EXPECT_EQ(one_sample_label(one_sample(0.4), 0.05, &tost), "n.s.");
   // A significant difference wins regardless of TOST.
   EXPECT_EQ(one_sample_label(one_sample(0.001), 0.05, &tost), "M>R");
   const auto nc = TestResult::not_computable("tost", "TOST", "n < 2");
   EXPECT_EQ(one_sample_label(one_sample(0.4), 0.05, &nc), "not computable");
+}
+
+TEST(Labels, ApproxOnlyFromBf01AtLeast3) {
+  auto r = one_sample(0.4);
+  r.log_bf10 = -std::log(4.0);  // BF01 = 4: moderate evidence for no difference
+  EXPECT_EQ(one_sample_label(r, 0.05), "M\u2248R");
+  r.log_bf10 = -std::log(2.9);  // BF01 = 2.9: not enough
+  EXPECT_EQ(one_sample_label(r, 0.05), "n.s.");
+  r.log_bf10 = std::log(5.0);   // BF10 = 5 but p >= alpha: still not a difference
+  EXPECT_EQ(two_sample_label(r, 0.05), "n.s.");
+  auto sig = one_sample(0.001);
+  sig.log_bf10 = -std::log(4.0);  // significant wins: the label is the test's
+  EXPECT_EQ(one_sample_label(sig, 0.05), "M>R");
 }
 
 TEST(Labels, NotComputable) {

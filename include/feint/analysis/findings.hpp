@@ -8,6 +8,7 @@
 #pragma once
 
 #include <optional>
+#include <utility>
 #include <span>
 #include <string>
 #include <vector>
@@ -31,6 +32,14 @@ std::string to_string(Strength strength);
 enum class Grade { none, moderate, strong };
 std::string to_string(Grade grade);  ///< "", "moderate", "strong"
 
+/// An effect size with its interval (docs/findings.md "Fields"): d, d_z, g, rank-biserial r,
+/// partial eta squared, generalized eta squared.
+struct EffectSize {
+  std::string name;  ///< "d", "d_z", "g", "r_rb", "eta2_p", "eta2_G"
+  double value = 0.0;
+  std::optional<double> ci_low, ci_high;
+};
+
 /// One answered question of the study.
 struct Finding {
   std::string id;        ///< stable key, e.g. "H1-iteration-contrasts-error"
@@ -43,7 +52,32 @@ struct Finding {
   Grade grade = Grade::none;
   std::string statistics;              ///< the APA statistics it rests on
   std::vector<std::string> warnings;   ///< e.g. a reference outside the data's range
+
+  // What a Results paragraph needs, as numbers (docs/findings.md "Fields"). For a family (e.g. the
+  // per-iteration contrasts) these describe the member with the smallest adjusted p.
+  std::string measure;    ///< "error", "confusion", a questionnaire item
+  std::string contrast;   ///< "adaptive - random", "mean - 0.5": what `estimate` is the difference of
+  /// The observed direction in words, e.g. "adaptive > random" (whatever the strength: which way
+  /// the data lean; `evidence` says how sure); "" when there is no estimate.
+  std::string direction;
+  /// The means of the two sides (A and B; a one-sample test: the mean and the reference).
+  std::optional<std::pair<double, double>> means;
+  std::optional<double> estimate, ci_low, ci_high;  ///< the difference and its interval
+  double conf_level = 0.95;
+  std::optional<EffectSize> effect_size;
+  std::optional<double> p, p_adjusted;
+  std::optional<double> bf10;  ///< null only with bf_note
+  std::string bf_note;         ///< why there is no Bayes factor, or how it was computed
+  std::string test;            ///< the test the finding rests on, e.g. "Welch t", "Mann-Whitney"
+  bool confirmatory = false;   ///< a preregistered hypothesis's test (feint.toml [hypotheses])
+  std::string member;          ///< for a family: which member the numbers describe ("test 3")
 };
+
+/// Fills the structured fields (test, estimate and CI as a difference `lhs - rhs`, direction,
+/// effect size with CI, p, adjusted p, BF10 or bf_note) from the test a finding rests on. A
+/// one-sample estimate is reported as its difference from the reference.
+void set_test_fields(Finding& f, const stats::TestResult& test, std::string_view lhs,
+                     std::string_view rhs);
 
 /// The thresholds of docs/findings.md (settable, stated in the report).
 struct WordingRules {

@@ -12,6 +12,7 @@
 #include "feint/analysis/figure_data.hpp"
 #include "feint/tables/exposure_render.hpp"
 #include "feint/analysis/findings.hpp"
+#include "feint/analysis/hypotheses.hpp"
 #include "feint/io/diagnostic.hpp"
 #include "feint/io/participants.hpp"
 #include "feint/io/scores.hpp"
@@ -94,6 +95,9 @@ struct StudyResults {
   FigureData figures;
   Diagnostics diagnostics;
   std::vector<Finding> findings;  ///< filled by the findings engine (empty until then)
+  /// The hypotheses the findings answer (feint.toml [hypotheses], else the paper's H1 and H2, with
+  /// the compared conditions' names); empty without a comparison of two conditions.
+  std::vector<Hypothesis> hypotheses;
 };
 
 }  // namespace feint::analysis

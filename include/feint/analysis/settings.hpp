@@ -28,7 +28,7 @@ struct ScoreOptions {
   std::optional<double> trim, trim_start, trim_end;
   double deadband = 1e-9;
   double belief_deadband = 0.05;
-  std::string norm = "speed";
+  std::string norm = "raw";
   std::optional<double> pad_speed;
   std::vector<std::string> maps;  ///< NAME=COLUMN
   std::string delimiter;          ///< "" = detect
@@ -128,6 +128,9 @@ struct AnalysisSettings {
   bool var_equal = false;
   bool paired = false;
   std::optional<double> equivalence;
+  /// ID:KEY=VALUE changes to the study's hypotheses (feint.toml [hypotheses.ID]); default the
+  /// paper's H1 and H2 (analysis::parse_hypotheses).
+  std::vector<std::string> hypotheses;
   // Questionnaire (feint likert).
   std::string questionnaire;  ///< relative to the study; default questionnaire.csv when present
   LikertOptions likert;  ///< --likert-scale, --likert-reference, --layout, --items, ...

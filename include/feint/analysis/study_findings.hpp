@@ -43,9 +43,13 @@ std::vector<Finding> study_findings(const StudyResults& results,
 /// needs the corrected p below alpha (and, for the slope, its interval excluding 0); otherwise "no
 /// evidence either way", never "evidence for no difference". Sources: "model" and "model-trend".
 /// Either model may be null (left out of the study).
+/// The condition main effect also carries its numbers (detail::describe_condition_effect: the
+/// conditions' marginal means and difference, partial eta squared, and the JZS Bayes factor of a
+/// Welch t test on the participants' mean scores, which its strength then uses as every t test's).
 std::vector<Finding> mixed_model_findings(const tables::ModelAnalysis* model,
                                           const tables::ModelAnalysis* trend,
-                                          const WordingRules& rules = {});
+                                          const WordingRules& rules = {},
+                                          double bf_prior_r = 0.7071067811865476);
 
 /// The input of models::exposure_slopes_by_condition for one metric: each scored trial with a value
 /// of the metric, joined by (participant, iteration) to its label (strategy), with its exposure

@@ -54,7 +54,7 @@ struct MetricSettings {
   /// delta (pad units) of the belief-trace measures: flips smaller than this are ignored, and the
   /// pad counts as on a side of 1/2 only beyond it (time_deceived, final_belief_time). In [0, 1/2).
   double belief_deadband = 0.05;
-  ConfusionNorm norm = ConfusionNorm::speed;
+  ConfusionNorm norm = ConfusionNorm::raw;
   /// Pad speed v (pad units per second) for every trial; overrides Trial::pad_speed.
   std::optional<double> pad_speed;
 

@@ -35,7 +35,16 @@ struct DeceptivenessSettings {
   GoalObserver observer;              // beta, tau (used by the belief error/confusion), prior
   Goals goals;                        // the two goals' positions
   double pad_speed = 0.8;             // v (pad units per second) for confusion's `speed` norm
-  metrics::MetricSettings metric;     // trimming, dead band, norm (its pad_speed is ignored)
+  /// Trimming, dead band, norm (its pad_speed is ignored). The observer's belief is scored on the
+  /// `speed` scale, [0, 1] at the pad speed above: a trajectory's deceptiveness is a property of
+  /// the path, compared across paths, not a participant score tested against the paper's reference.
+  metrics::MetricSettings metric = speed_scale();
+
+  static metrics::MetricSettings speed_scale() {
+    metrics::MetricSettings m;
+    m.norm = metrics::ConfusionNorm::speed;
+    return m;
+  }
 };
 
 struct DeceptivenessMeasures {

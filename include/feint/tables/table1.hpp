@@ -19,22 +19,30 @@
 
 namespace feint::tables {
 
-/// BF01 >= 3: moderate evidence for no difference, the least that labels a row "≈" in the study
-/// report (docs/findings.md).
-inline constexpr double kBf01Equivalence = 3.0;
-
 /// A metric column and its reference mean (one-sample mode).
 struct MetricSpec {
   std::string column;
   double reference = 0.0;
+  /// The confusion normalisation the reference is a value of ("raw" or "speed"); "" = the scale of
+  /// the scores it is used with. Only confusion has scales (docs/metrics.md "One scale").
+  std::string scale = {};
 };
 
-/// The paper's defaults: error against 0.5, confusion against 0.95.
+/// The paper's defaults: error against 0.5, confusion against 0.95 on the raw scale.
 std::vector<MetricSpec> default_metrics();
 
-/// Parses `--metric NAME=REF` (REF a number) or `--metric NAME` (reference from the defaults, 0 for
-/// unknown names). Throws UsageError.
+/// Parses `--metric NAME=REF[@SCALE]` (REF a number; SCALE raw or speed, confusion only) or
+/// `--metric NAME` (reference and scale from the defaults). Throws UsageError.
 MetricSpec parse_metric_spec(std::string_view text);
+
+/// The normalisation the scores' provenance records ("raw", "speed"), "" when unknown.
+std::string scores_scale(const io::ScoresProvenance& provenance);
+
+/// Refuses (UsageError, exit 64) a reference whose scale is not the scores' own: a reference of
+/// one confusion normalisation tested against scores of another says nothing. `scale` is the
+/// scores' normalisation ("" = unknown: nothing to check); `source` names the scores.
+void check_reference_scales(const std::vector<MetricSpec>& metrics, std::string_view scale,
+                            std::string_view source);
 
 struct Table1Options {
   std::vector<MetricSpec> metrics = default_metrics();
@@ -49,11 +57,6 @@ struct Table1Options {
   stats::PAdjustMethod p_adjust = stats::PAdjustMethod::none;
   std::optional<double> equivalence;  ///< TOST margin delta (> 0)
   bool apa = false;                   ///< fill TidyRow::apa
-  /// The study report's labels (docs/findings.md): "≈" only from evidence of no
-  /// difference, BF01 >= 3 (the JZS Bayes factor of the difference test) or TOST within the
-  /// margin; a non-significant test without either is "inconclusive". False (`feint table`, the
-  /// paper's Table 1): "≈" for any non-significant test, with a note that it is not equivalence.
-  bool equivalence_by_evidence = false;
   /// Scale r of the JZS Bayes factor's Cauchy prior (sqrt(2)/2 = BayesFactor's "medium").
   double bf_prior_r = 0.7071067811865476;
 };

@@ -70,24 +70,29 @@ std::string apa_string(const stats::TestResult& result);
 std::optional<double> decision_p(const stats::TestResult& result) noexcept;
 
 inline constexpr std::string_view kApprox = "\u2248";  // "≈"
-inline constexpr std::string_view kInconclusive = "inconclusive";
+/// The label of a test that is neither significant nor evidence of no difference: the same word in
+/// every command, table format, figure legend and report (docs/tables.md "Labels").
+inline constexpr std::string_view kNotSignificant = "n.s.";
+/// BF01 >= 3: moderate evidence for no difference, the least that earns "≈" without TOST.
+inline constexpr double kBf01Equivalence = 3.0;
 inline constexpr std::string_view kNotComputable = "not computable";
 
 /// The inference label of a difference test, `lhs` and `rhs` being the two sides' names (`M`/`R`
 /// for one-sample tests against a reference, `A`/`B` for two conditions):
 ///  - not computed: "not computable";
 ///  - p (adjusted when present) < alpha: `lhs>rhs` or `lhs<rhs` by the sign of estimate - mu;
-///  - otherwise, without an equivalence test: `lhs≈rhs` ("not significantly different");
-///  - otherwise, with an equivalence test (`tost` non-null): `lhs≈rhs` when the TOST p (adjusted
-///    when present) < alpha, else "inconclusive" (or "not computable" when TOST could not be
-///    computed).
+///  - otherwise `lhs≈rhs` only from evidence of no difference: the test's JZS Bayes factor BF01 >= 3
+///    (`difference.log_bf10 <= -log 3`) or, with an equivalence test (`tost` non-null), its TOST p
+///    (adjusted when present) < alpha;
+///  - otherwise "n.s." (or "not computable" when the requested TOST could not be computed).
+/// "≈" therefore never means only "not significantly different".
 std::string inference_label(const stats::TestResult& difference, double alpha, std::string_view lhs,
                             std::string_view rhs, const stats::TestResult* tost = nullptr);
 
-/// One-sample labels: `M>R`, `M<R`, `M≈R`, "inconclusive".
+/// One-sample labels: `M>R`, `M<R`, `M≈R`, "n.s.".
 std::string one_sample_label(const stats::TestResult& difference, double alpha,
                              const stats::TestResult* tost = nullptr);
-/// Two-sample labels: `A>B`, `A<B`, `A≈B`, "inconclusive" (A = group 1, B = group 2).
+/// Two-sample labels: `A>B`, `A<B`, `A≈B`, "n.s." (A = group 1, B = group 2).
 std::string two_sample_label(const stats::TestResult& difference, double alpha,
                              const stats::TestResult* tost = nullptr);
 

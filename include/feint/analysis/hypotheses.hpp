@@ -1,0 +1,36 @@
+// feint/analysis/hypotheses.hpp - the study's hypotheses: what it was run to answer.
+//
+// A hypothesis names, in words, a comparison of the study's two conditions (A and B of `compare`),
+// the measures it is answered on, the expected direction and whether it was preregistered
+// (confirmatory). feint.toml declares them in [hypotheses]; without that, the paper's H1 and H2
+// (docs/findings.md "Hypotheses").
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace feint::analysis {
+
+struct Hypothesis {
+  std::string id;         ///< "H1", "H2", ... (the findings' `hypothesis`)
+  std::string statement;  ///< the hypothesis in words, as a paper states it
+  /// What it is answered on: "error", "confusion" (the per-trial metrics), "questionnaire".
+  std::vector<std::string> measures;
+  /// The expected direction of A relative to B: "greater", "less" or "two-sided".
+  std::string direction = "two-sided";
+  bool confirmatory = false;  ///< declared before the data (preregistered); else exploratory
+};
+
+/// The paper's hypotheses for conditions A and B: H1 (A deceives longer than B: higher error and
+/// confusion) and H2 (the questionnaire differs between A and B). Exploratory unless declared.
+std::vector<Hypothesis> default_hypotheses(const std::string& a, const std::string& b);
+
+/// The study's hypotheses: the defaults, changed and added to by `ID:KEY=VALUE` settings (feint.toml
+/// `[hypotheses.ID]` tables, `--hypothesis` on the command line). KEY is statement, measures (a
+/// comma-separated list of error, confusion, questionnaire), direction (greater, less, two-sided)
+/// or confirmatory (true, false). A new ID needs a statement and measures. Throws UsageError naming
+/// the setting and the fix.
+std::vector<Hypothesis> parse_hypotheses(const std::vector<std::string>& settings, const std::string& a,
+                                         const std::string& b);
+
+}  // namespace feint::analysis

@@ -1,0 +1,141 @@
+#include "condition_effect.hpp"
+
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "feint/error.hpp"
+#include "feint/models/emmeans.hpp"
+#include "feint/stats/bayes_factor.hpp"
+#include "feint/stats/effect_size.hpp"
+#include "feint/stats/ttest.hpp"
+
+namespace feint::analysis::detail {
+
+namespace {
+
+const models::AnovaTerm* term_of(const models::MixedModelFit& fit, const std::string& name) {
+  for (const auto& t : fit.anova)
+    if (t.term == name) return &t;
+  return nullptr;
+}
+
+// The participants' mean scores in each of the two conditions (each person one number, so the
+// Welch t test and its Bayes factor are on independent units).
+std::pair<std::vector<double>, std::vector<double>> participant_means(const models::LongData& d,
+                                                                      const std::string& a,
+                                                                      const std::string& b) {
+  std::map<std::string, std::pair<std::string, std::pair<double, std::size_t>>> per;
+  for (std::size_t i = 0; i < d.y.size(); ++i) {
+    auto& [group, sum] = per[d.participant[i]];
+    group = d.group[i];
+    sum.first += d.y[i];
+    ++sum.second;
+  }
+  std::pair<std::vector<double>, std::vector<double>> out;
+  for (const auto& [p, v] : per) {
+    const double mean = v.second.first / static_cast<double>(v.second.second);
+    if (v.first == a) out.first.push_back(mean);
+    if (v.first == b) out.second.push_back(mean);
+  }
+  return out;
+}
+
+std::string two(double v) { return fmt::format("{:.2f}", v); }
+
+// APA: a proportion has no leading zero (".13").
+std::string proportion(double v) {
+  std::string s = fmt::format("{:.2f}", v);
+  if (s.rfind("0.", 0) == 0) s.erase(0, 1);
+  return s;
+}
+
+}  // namespace
+
+std::optional<double> describe_condition_effect(Finding& f, const tables::MetricModel& m, double conf_level,
+                                                double bf_prior_r) {
+  const auto& fit = m.fit;
+  f.measure = m.metric;
+  f.conf_level = conf_level;
+  if (const auto* t = term_of(fit, fit.spec.group); t && t->computed) {
+    const auto e = stats::f_to_eta2(t->f, t->num_df, t->den_df, conf_level);
+    f.effect_size = EffectSize{"eta2_p", e.estimate, e.low, e.high};
+  }
+  if (fit.group_levels.size() != 2) return std::nullopt;
+  const std::string& a = fit.group_levels[0];
+  const std::string& b = fit.group_levels[1];
+  try {
+    const auto c = models::emm_contrasts(fit, models::EmmFamily::pairwise_condition, models::EmmAdjust::none,
+                                         conf_level);
+    if (c.size() == 1 && c[0].computed) {
+      // emmeans' label is "first - second" in the levels' order.
+      f.contrast = fmt::format("{} - {}", a, b);
+      f.estimate = c[0].estimate;
+      f.ci_low = c[0].conf_low;
+      f.ci_high = c[0].conf_high;
+      f.direction = fmt::format("{} {} {}", a, c[0].estimate > 0 ? ">" : c[0].estimate < 0 ? "<" : "=", b);
+    }
+    const auto means = models::estimated_means(fit, models::EmmTerm::condition, conf_level);
+    if (means.size() == 2) f.means = {means[0].estimate, means[1].estimate};
+  } catch (const Error&) {
+    // emmeans needs iteration as a factor; a model without it keeps its F test alone.
+  }
+  const auto [x, y] = participant_means(m.data, a, b);
+  stats::TestOptions o;
+  o.conf_level = conf_level;
+  stats::TestResult t = stats::t_test_welch(x, y, o);
+  stats::add_bayes_factor(t, bf_prior_r);
+  if (!t.computed || !t.log_bf10) {
+    f.bf_note = "no Bayes factor: the participants' mean scores cannot be compared";
+    return std::nullopt;
+  }
+  f.bf10 = std::exp(*t.log_bf10);
+  f.bf_note = fmt::format("JZS Bayes factor of a Welch t test on the participants' mean scores "
+                          "({} and {} participants; docs/findings.md)",
+                          x.size(), y.size());
+  if (!std::isfinite(*f.bf10)) f.bf10.reset();
+  return t.log_bf10;
+}
+
+std::string effect_words(const Finding& f) {
+  std::vector<std::string> parts;
+  if (f.means) parts.push_back(fmt::format("M = {} vs {}", two(f.means->first), two(f.means->second)));
+  if (f.estimate && f.ci_low && f.ci_high)
+    parts.push_back(fmt::format("difference {}, {:g}% CI [{}, {}]", two(*f.estimate), 100 * f.conf_level,
+                                two(*f.ci_low), two(*f.ci_high)));
+  if (f.effect_size && f.effect_size->name == "eta2_p") {
+    const auto& e = *f.effect_size;
+    parts.push_back(fmt::format("\u03b7p\u00b2 = {}{}", proportion(e.value),
+                                e.ci_low && e.ci_high ? fmt::format(" [{}, {}]", proportion(*e.ci_low),
+                                                                    proportion(*e.ci_high))
+                                                      : std::string()));
+  }
+  std::string out;
+  for (const auto& p : parts) out += (out.empty() ? "" : "; ") + p;
+  return out;
+}
+
+void add_model_effect_size(Finding& f, const stats::TestResult& test, double conf_level) {
+  if (f.effect_size || !test.computed || !test.statistic || !test.df) return;
+  const bool is_f = test.df2.has_value();
+  const double stat = is_f ? *test.statistic : *test.statistic * *test.statistic;
+  const double df1 = is_f ? *test.df : 1.0, df2 = is_f ? *test.df2 : *test.df;
+  if (!std::isfinite(stat) || !(df1 > 0) || !(df2 > 0)) return;
+  const auto e = stats::f_to_eta2(stat, df1, df2, conf_level);
+  f.effect_size = EffectSize{"eta2_p", e.estimate, e.low, e.high};
+}
+
+void name_conditions(Finding& f, const std::string& a, const std::string& b) {
+  auto swap = [&](std::string& s) {
+    if (s.size() < 5 || s[0] != 'A' || s[1] != ' ') return;
+    const auto pos = s.rfind(" B");
+    if (pos == std::string::npos || pos + 2 != s.size()) return;
+    s = a + s.substr(1, pos - 1) + " " + b;
+  };
+  swap(f.contrast);
+  swap(f.direction);
+}
+
+}  // namespace feint::analysis::detail
