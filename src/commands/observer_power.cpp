@@ -7,6 +7,7 @@
 
 #include "feint/analysis/settings.hpp"
 #include "feint/io/file_identity.hpp"
+#include "feint/io/progress.hpp"
 #include "feint/io/scores.hpp"
 #include "feint/metrics/score.hpp"
 #include "feint/tables/observer_render.hpp"
@@ -76,8 +77,16 @@ ObserverPowerPlan observer_power_plan(const ObserverPowerOptions& a, double alph
 std::string observer_power_report(const ObserverPowerOptions& options,
                                   const analysis::ResolvedReportOptions& r) {
   io::refuse_overwriting_inputs({options.pilot, options.observer_file}, {r.output});
-  const ObserverPowerPlan plan = observer_power_plan(options, r.alpha);
+  ObserverPowerPlan plan = observer_power_plan(options, r.alpha);
+  // On stderr, only when it is a terminal (as feint score's).
+  io::ProgressLine progress("feint power observer");
+  if (progress.active()) {
+    plan.settings.on_progress = [&progress](std::uint64_t done, std::uint64_t total) {
+      progress.update_count(done, total, "participants simulated");
+    };
+  }
   const auto result = sim::study_power(plan.settings);
+  progress.finish();
   return tables::render_study_power(result, plan.source, r.format, r.presentation);
 }
 

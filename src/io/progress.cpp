@@ -16,15 +16,31 @@ ProgressLine::ProgressLine(std::string what)
 
 ProgressLine::~ProgressLine() { finish(); }
 
-void ProgressLine::update(std::uint64_t rows, std::uint64_t bytes, std::uint64_t trials,
-                          std::uint64_t rejected) {
-  if (!active_) return;
+bool ProgressLine::due() {
+  if (!active_) return false;
   const auto now = std::chrono::steady_clock::now();
   if (now - start_ < std::chrono::seconds(1) || now - last_ < std::chrono::milliseconds(500)) {
-    return;
+    return false;
   }
   last_ = now;
-  const double secs = std::chrono::duration<double>(now - start_).count();
+  return true;
+}
+
+void ProgressLine::update_count(std::uint64_t done, std::uint64_t total, std::string_view unit) {
+  if (total == 0 || !due()) return;
+  const double secs = std::chrono::duration<double>(last_ - start_).count();
+  const double share = static_cast<double>(done) / static_cast<double>(total);
+  const double left = share > 0 ? secs * (1 - share) / share : 0;
+  fmt::print(stderr, "\r{}: {}/{} {} ({:.0f} %, about {:.0f} s left)\x1b[K", what_, done, total, unit,
+             100 * share, left);
+  std::fflush(stderr);
+  drawn_ = true;
+}
+
+void ProgressLine::update(std::uint64_t rows, std::uint64_t bytes, std::uint64_t trials,
+                          std::uint64_t rejected) {
+  if (!due()) return;
+  const double secs = std::chrono::duration<double>(last_ - start_).count();
   fmt::print(stderr, "\r{}: {:.1f} M rows ({:.1f} M rows/s, {:.0f} MB/s), {} trials scored, {} "
                      "rejected\x1b[K",
              what_, static_cast<double>(rows) / 1e6, static_cast<double>(rows) / 1e6 / secs,

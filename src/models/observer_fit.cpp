@@ -206,33 +206,20 @@ Likelihood evaluate(const Problem& p, const Theta& th) {
   return out;
 }
 
-/// Grid start, then Nelder-Mead. (A premature stop would show in the profile, which never finds a
-/// higher value than the maximum: see profile_interval.)
+/// The global maximum: the profile over tau scanned on a coarse grid (0.05 s), finer (0.01 s) where
+/// it is near its best, and its best local maxima refined (ScanPlan); beta restarted from 0.1-10 at
+/// tau 0, 0.25, 0.6 and 1.2 s. The profile over tau is rough: a local search from one start stops at
+/// a local maximum (or, started at tau = 0, on the bound).
 std::pair<Theta, double> global_max(const Problem& p, const Box& box, Theta base,
                                     const std::optional<Theta>& start) {
-  Theta best = base;
-  double vbest = -std::numeric_limits<double>::infinity();
-  // tau in the outer loop: the positions along the path are computed once per tau.
-  for (double t : {0.0, 0.25, 0.6, 1.2}) {
-    for (double b : {0.1, 0.3, 1.0, 3.0, 10.0}) {
-      Theta th = base;
-      if (box.free[kBeta]) th[kBeta] = std::min(b, box.hi[kBeta]);
-      if (box.free[kTau]) th[kTau] = std::min(t, box.hi[kTau]);
-      const double v = evaluate(p, th).loglik;
-      if (v > vbest) { vbest = v; best = th; }
-    }
-  }
-  // A start near the maximum (a pooled fit's, from its participants' fits) that beats the grid
-  // needs a smaller first simplex.
-  double step = 0.5;
-  if (start) {
-    const Theta th = clamp(*start, box);
-    const double v = evaluate(p, th).loglik;
-    if (v > vbest) { vbest = v; best = th; step = 0.1; }
-  }
   auto f = [&](const Theta& th) { return evaluate(p, th).loglik; };
-  auto r = nelder_mead(f, best, box, box.free, step, 3000);
-  return r;
+  ScanPlan plan;
+  plan.restarts = {0.1, 0.3, 1.0, 3.0, 10.0};
+  plan.anchors = {0.0, 0.25, 0.6, 1.2};
+  plan.h = {0.01 * box.scale[kBeta], 0.01 * box.scale[kTau], 0.05 * box.scale[kPrior], 0.05 * box.scale[kGamma]};
+  std::vector<Theta> starts;
+  if (start) starts.push_back(clamp(*start, box));
+  return scan_maximum(f, box, base, plan, starts);
 }
 
 Box make_box(const ObserverFitSettings& s, bool gamma) {
@@ -323,62 +310,65 @@ double observer_log_likelihood(std::span<const ObservedTrial> trials, const Obse
 
 namespace {
 
-/// The fit of the free parameters; CIs for all of them, or only for `ci_only` (the learning test
-/// needs gamma's alone; the others get NaN ends).
-ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, std::string unit, bool gamma,
-                        Theta base, std::size_t ntrials, std::size_t ci_only = kParams,
-                        const std::optional<Theta>& start = std::nullopt) {
-  const Box box = make_box(settings, gamma);
-  const Objective f = [&p](const Theta& x) { return evaluate(p, x).loglik; };
-  // The learning model starts from the pooled fit (gamma = 0), already near its maximum; beta0 and
-  // gamma are strongly correlated, so Nelder-Mead is restarted until it stops improving.
-  auto learning_max = [&] {
-    auto r = nelder_mead(f, base, box, box.free, 0.5, 3000);
-    for (int restart = 0; restart < 5; ++restart) {
-      auto r2 = nelder_mead(f, r.first, box, box.free, 0.2, 3000);
-      const bool better = r2.second > r.second + 1e-6;
-      if (r2.second > r.second) r = r2;
-      if (!better) break;
-    }
-    return r;
-  };
-  const auto [th, lmax] = gamma ? learning_max() : global_max(p, box, base, start);
-  ObserverFit fit;
-  fit.unit = std::move(unit);
-  fit.trials = ntrials;
-  fit.samples = p.samples;
-  const Likelihood at = evaluate(p, th);
-  fit.log_likelihood = at.loglik;
-  fit.sigma = at.sigma;
-  fit.phi = at.phi;
-  fit.prior_right = box.free[kPrior] ? logistic(th[kPrior]) : settings.prior_right;
+/// The learning model starts from the pooled fit (gamma = 0), already near its maximum; beta0 and
+/// gamma are strongly correlated, so Nelder-Mead is restarted until it stops improving.
+std::pair<Theta, double> learning_max(const Objective& f, const Box& box, const Theta& base) {
+  auto r = nelder_mead(f, base, box, box.free, 0.5, 3000);
+  for (int restart = 0; restart < 5; ++restart) {
+    auto r2 = nelder_mead(f, r.first, box, box.free, 0.2, 3000);
+    const bool better = r2.second > r.second + 1e-6;
+    if (r2.second > r.second) r = r2;
+    if (!better) break;
+  }
+  return r;
+}
+
+/// The CIs at the maximum (th, lmax) of every free parameter, or only of `ci_only` (the others get
+/// NaN ends); or the first point higher than lmax that a profile met.
+struct Intervals {
+  std::array<Interval, kParams> ci;
+  std::optional<std::pair<Theta, double>> higher;
+};
+
+Intervals intervals_at(const Objective& f, const Box& box, const Theta& th, double lmax, double level,
+                       std::size_t ci_only) {
+  Intervals out;
   const auto ses = standard_errors(f, box, th, lmax);
   for (std::size_t j = 0; j < kParams; ++j) {
-    if (!box.free[j]) {
-      if (j == kPrior) {
-        fit.parameters.push_back({"prior_right", settings.prior_right, settings.prior_right,
-                                  settings.prior_right, false, false});
-      }
-      continue;
+    out.ci[j] = Interval{std::nan(""), std::nan(""), false, false, false, std::nullopt};
+    if (!box.free[j] || (ci_only != kParams && ci_only != j)) continue;
+    out.ci[j] = profile_interval(f, box, th, lmax, j, level, ses);
+    if (out.ci[j].higher) {
+      out.higher = out.ci[j].higher;
+      return out;
     }
-    Interval ci{std::nan(""), std::nan(""), false, false, false};
-    if (ci_only == kParams || ci_only == j) {
-      ci = profile_interval(f, box, th, lmax, j, settings.level, ses);
-    }
-    if (ci.hull) {
-      fit.notes.push_back(fmt::format(
-          "{}: the profile likelihood of {} is not unimodal; its CI is the hull of the region within the "
-          "cut-off",
-          fit.unit, kNames[j]));
-    }
-    fit.parameters.push_back(estimate_of(j, th, ci));
   }
-  // Fixed prior: listed for completeness but not a fitted parameter.
-  if (!box.free[kPrior]) {
-    fit.parameters.erase(std::remove_if(fit.parameters.begin(), fit.parameters.end(),
-                                        [](const ParameterEstimate& e) { return e.name == "prior_right"; }),
-                         fit.parameters.end());
+  return out;
+}
+
+/// Refits that a fit may need before its profiles meet no higher point (each raises the maximum by
+/// more than kHigherTolerance; in practice one or two are ever needed).
+constexpr int kMaxRefits = 20;
+
+/// The maximum and the CIs there: when a profile meets a point higher than the maximum, the fit
+/// climbs from that point (Nelder-Mead, a small simplex) and the CIs are searched again.
+std::pair<std::pair<Theta, double>, Intervals> settle(const Objective& f, const Box& box,
+                                                      std::pair<Theta, double> top, double level,
+                                                      std::size_t ci_only) {
+  Intervals cis = intervals_at(f, box, top.first, top.second, level, ci_only);
+  for (int round = 0; cis.higher && round < kMaxRefits; ++round) {
+    top = nelder_mead(f, cis.higher->first, box, box.free, 0.05, 3000);
+    cis = intervals_at(f, box, top.first, top.second, level, ci_only);
   }
+  if (cis.higher) {  // not settled: the best point known, its CIs void (NaN)
+    top = *cis.higher;
+    for (auto& ci : cis.ci) ci = Interval{std::nan(""), std::nan(""), false, false, false, std::nullopt};
+  }
+  return {top, cis};
+}
+
+/// The notes on estimates at a bound of their range.
+void bound_notes(ObserverFit& fit, const Theta& th, const ObserverFitSettings& settings) {
   const double btol = 1e-3;
   if (th[kBeta] >= settings.beta_max - btol) {
     fit.notes.push_back(fmt::format(
@@ -393,7 +383,43 @@ ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, s
   if (th[kTau] >= settings.tau_max - btol) {
     fit.notes.push_back(fmt::format("{}: tau is at the upper bound {} s; its CI is closed at the bound",
                                     fit.unit, settings.tau_max));
+  } else if (th[kTau] == 0) {
+    fit.notes.push_back(fmt::format("{}: tau is at its lower bound 0 s (the likelihood falls as the delay "
+                                    "grows); its CI is closed at the bound",
+                                    fit.unit));
   }
+}
+
+/// The fit of the free parameters; CIs for all of them, or only for `ci_only` (the learning test
+/// needs gamma's alone; the others get NaN ends).
+ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, std::string unit, bool gamma,
+                        Theta base, std::size_t ntrials, std::size_t ci_only = kParams,
+                        const std::optional<Theta>& start = std::nullopt) {
+  const Box box = make_box(settings, gamma);
+  const Objective f = [&p](const Theta& x) { return evaluate(p, x).loglik; };
+  const auto found = gamma ? learning_max(f, box, base) : global_max(p, box, base, start);
+  const auto [top, cis] = settle(f, box, found, settings.level, ci_only);
+  const Theta& th = top.first;
+  ObserverFit fit;
+  fit.unit = std::move(unit);
+  fit.trials = ntrials;
+  fit.samples = p.samples;
+  const Likelihood at = evaluate(p, th);
+  fit.log_likelihood = at.loglik;
+  fit.sigma = at.sigma;
+  fit.phi = at.phi;
+  fit.prior_right = box.free[kPrior] ? logistic(th[kPrior]) : settings.prior_right;
+  for (std::size_t j = 0; j < kParams; ++j) {
+    if (!box.free[j]) continue;  // a fixed prior is not a fitted parameter
+    if (cis.ci[j].hull) {
+      fit.notes.push_back(fmt::format(
+          "{}: the profile likelihood of {} is not unimodal; its CI is the hull of the region within the "
+          "cut-off",
+          fit.unit, kNames[j]));
+    }
+    fit.parameters.push_back(estimate_of(j, th, cis.ci[j]));
+  }
+  bound_notes(fit, th, settings);
   fit.evaluations = p.evaluations;
   return fit;
 }

@@ -97,7 +97,7 @@ std::pair<Theta, double> nelder_mead(const Objective& f, Theta start, const Box&
 /// spaced `h` around the warm start (a few evaluations when the warm start is close, as it is along a
 /// profile); nullopt when the points are not concave (the caller falls back to Brent).
 std::optional<std::pair<Theta, double>> parabolic_max(const Objective& f, Theta th, std::size_t k, double h,
-                                                      const Box& box) {
+                                                      const Box& box, double settle, double* curvature) {
   auto point = [&](double x) { Theta y = th; y[k] = std::clamp(x, box.lo[k], box.hi[k]); return y; };
   auto at = [&](double x) { const Theta y = point(x); return std::pair{y, f(y)}; };
   auto best = at(th[k]);
@@ -118,6 +118,7 @@ std::optional<std::pair<Theta, double>> parabolic_max(const Objective& f, Theta 
     const double d01 = (f1 - f0) / (x1 - x0), d12 = (f2 - f1) / (x2 - x1);
     const double curv = (d12 - d01) / (x2 - x0);  // half the second derivative
     if (!(curv < 0)) return std::nullopt;
+    if (curvature) *curvature = 2 * curv;
     // Vertex of the parabola through the three points, kept within 3 h of the centre.
     const double xv = std::clamp((x0 + x1) / 2 - d01 / (2 * curv), b - 3 * h, b + 3 * h);
     auto cand = at(xv);
@@ -125,7 +126,7 @@ std::optional<std::pair<Theta, double>> parabolic_max(const Objective& f, Theta 
       if (q.second > cand.second) cand = {point(q.first), q.second};
     const double moved = std::abs(cand.first[k] - b);
     if (cand.second >= best.second) best = cand;
-    if (moved < 0.05 * h) return best;
+    if (moved < settle * h) return best;
     h = std::max(moved, 0.1 * h);
   }
   return best;
@@ -223,6 +224,13 @@ constexpr int kHullScanSteps = 400;
 
 namespace {
 
+/// Thrown by a profile search that meets a point higher than the maximum (caught in
+/// profile_interval, which returns it): the CI of a maximum that is not the global one is void.
+struct FoundHigher {
+  Theta th;
+  double value;
+};
+
 /// One end of a profile interval (side -1: low, +1: high) of parameter j. Each end solves
 /// s(v) = z for s(v) = side * r(v), the signed root deviance r(v) = sign(v - th_j) sqrt(2 (lmax -
 /// l_p(v))) seen outward; the secant search, the probes beyond an end and the hull scan share the
@@ -271,7 +279,8 @@ class ProfileEnd {
       x[k] = std::clamp(warm_[k] + move, box_.lo[k], box_.hi[k]);
     }
     const auto r = maximise(f_, box_, x, j_, true, step_);
-    if (r.second > lmax_) return 0.0;  // a higher maximum along the profile: inside the interval
+    if (r.second > lmax_ + kHigherTolerance) throw FoundHigher{r.first, r.second};
+    if (r.second > lmax_) return 0.0;  // within the maximum's tolerance: inside the interval
     warm_ = r.first;
     return std::sqrt(2 * (lmax_ - r.second));
   }
@@ -335,6 +344,7 @@ class ProfileEnd {
       Theta x = warm_;
       x[j_] = v;
       const double l_fixed = f_(x);
+      if (l_fixed > lmax_ + kHigherTolerance) throw FoundHigher{x, l_fixed};
       const double s_fixed = l_fixed > lmax_ ? 0.0 : std::sqrt(2 * (lmax_ - l_fixed));
       const double sv = s_fixed < z_ || s_fixed > z_ + 1 ? s_fixed : s_of(v);
       if (sv < z_) {
@@ -399,10 +409,184 @@ Interval profile_interval(const Objective& f, const Box& box, const Theta& th, d
       continue;
     }
     ProfileEnd pe(f, box, th, lmax, j, side, z, se, step, ses);
-    end = pe.locate(out.hull);
+    try {
+      end = pe.locate(out.hull);
+    } catch (const FoundHigher& h) {
+      out.higher = std::pair{h.th, h.value};
+      return out;
+    }
     at_bound = pe.at_bound();
   }
   return out;
+}
+
+namespace {
+
+/// One point of the profile over the scanned parameter: its value v, the others' maximiser and
+/// the log-likelihood there.
+struct ScanPoint {
+  double v;
+  Theta th;
+  double value;
+};
+
+class Scan {
+ public:
+  Scan(const Objective& f, const Box& box, const ScanPlan& plan) : f_(f), box_(box), plan_(plan), h_(plan.h) {}
+
+  /// The profile at v from the warm start (its j set to v). Quick (on the grids): parabolas that
+  /// settle to half a step, enough to rank the grid's points; otherwise (the refinement) to 5 %.
+  /// At an anchor, coordinate k is also restarted from each of plan.restarts that starts higher.
+  ScanPoint at(double v, Theta warm, bool quick) {
+    warm[plan_.j] = std::clamp(v, box_.lo[plan_.j], box_.hi[plan_.j]);
+    auto r = quick ? quick_max(warm) : maximise(f_, box_, warm, plan_.j, true, h_);
+    const bool anchor = std::any_of(plan_.anchors.begin(), plan_.anchors.end(),
+                                    [&](double a) { return std::abs(a - v) < plan_.coarse / 2; });
+    if (anchor && box_.free[plan_.k]) {
+      for (double restart : plan_.restarts) {
+        Theta y = warm;
+        y[plan_.k] = std::clamp(restart, box_.lo[plan_.k], box_.hi[plan_.k]);
+        if (f_(y) <= r.second) continue;
+        const auto r2 = maximise(f_, box_, y, plan_.j, true, h_);
+        if (r2.second > r.second) r = r2;
+      }
+    }
+    return {warm[plan_.j], r.first, r.second};
+  }
+
+  /// The coarse grid over j's range, each point started where the last two predict (linearly).
+  std::vector<ScanPoint> coarse(const Theta& base) {
+    const double lo = box_.lo[plan_.j], hi = box_.hi[plan_.j];
+    const int n = std::max(1, static_cast<int>(std::ceil((hi - lo) / plan_.coarse - 1e-9)));
+    std::vector<ScanPoint> out;
+    for (int i = 0; i <= n; ++i) {
+      const double v = std::min(hi, lo + i * plan_.coarse);
+      Theta guess = out.empty() ? base : out.back().th;
+      if (out.size() >= 2) {
+        const ScanPoint &p1 = out[out.size() - 1], &p2 = out[out.size() - 2];
+        for (std::size_t k = 0; k < kParams; ++k) {
+          if (k == plan_.j || !box_.free[k]) continue;
+          const double move = (p1.th[k] - p2.th[k]) * (v - p1.v) / (p1.v - p2.v);
+          guess[k] = std::clamp(p1.th[k] + std::clamp(move, -3 * h_[k], 3 * h_[k]), box_.lo[k], box_.hi[k]);
+        }
+      }
+      out.push_back(at(v, guess, true));
+    }
+    return out;
+  }
+
+  /// The fine grid inside every coarse interval near the best (see ScanPlan); each point started
+  /// between its interval's ends' maximisers.
+  std::vector<ScanPoint> fine(const std::vector<ScanPoint>& coarse) {
+    std::vector<ScanPoint> pts;
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < coarse.size(); ++i)
+      if (coarse[i].value > coarse[best].value) best = i;
+    for (std::size_t i = 0; i + 1 < coarse.size(); ++i) {
+      const double top = std::max(coarse[i].value, coarse[i + 1].value);
+      if (top < coarse[best].value - plan_.near && i != best && i + 1 != best) continue;
+      const ScanPoint &a = coarse[i], &b = coarse[i + 1];
+      const int m = static_cast<int>(std::ceil((b.v - a.v) / plan_.fine - 1e-9));
+      for (int k = 1; k < m; ++k) {
+        const double w = static_cast<double>(k) / m;
+        Theta guess = a.th;
+        for (std::size_t q = 0; q < kParams; ++q) guess[q] = a.th[q] + w * (b.th[q] - a.th[q]);
+        pts.push_back(at(a.v + w * (b.v - a.v), guess, true));
+      }
+    }
+    return pts;
+  }
+
+  /// Brent's method on the profile between lo and hi, from the warm start th; the best point seen.
+  ScanPoint brent(double lo, double hi, const ScanPoint& from) {
+    ScanPoint best = from;
+    Theta warm = from.th;
+    auto g = [&](double v) {
+      const ScanPoint p = at(v, warm, false);
+      warm = p.th;
+      if (p.value > best.value) best = p;
+      return -p.value;
+    };
+    std::uintmax_t iters = 40;
+    boost::math::tools::brent_find_minima(g, lo, hi, 14, iters);
+    return best;
+  }
+
+  /// The re-maximised parameters at p's value of j to within ~1e-6 of the profile: parabolas a
+  /// fifth of a step wide (less bias from the profile's third derivative) until they move less
+  /// than 0.2 % of that, twice over.
+  ScanPoint polish(ScanPoint p) {
+    for (int cycle = 0; cycle < 2; ++cycle) {
+      for (std::size_t k = 0; k < kParams; ++k) {
+        if (k == plan_.j || !box_.free[k]) continue;
+        const auto r = parabolic_max(f_, p.th, k, 0.2 * h_[k], box_, 0.002);
+        if (r && r->second > p.value) {
+          p.th = r->first;
+          p.value = r->second;
+        }
+      }
+    }
+    return p;
+  }
+
+ private:
+  // Parabolas per re-maximised parameter until one moves less than half a step, the step the last
+  // parabola's conditional SE (1 / sqrt(-l'')); the full search where a parabola is not concave.
+  std::pair<Theta, double> quick_max(Theta x) {
+    double fx = 0;
+    for (std::size_t k = 0; k < kParams; ++k) {
+      if (k == plan_.j || !box_.free[k]) continue;
+      double curv = 0;
+      const auto r = parabolic_max(f_, x, k, h_[k], box_, 0.5, &curv);
+      if (!r) return maximise(f_, box_, x, plan_.j, true, h_);
+      x = r->first;
+      fx = r->second;
+      h_[k] = std::clamp(1 / std::sqrt(-curv), 1e-4 * box_.scale[k], 0.5 * box_.scale[k]);
+    }
+    return {x, fx};
+  }
+
+  const Objective& f_;
+  const Box& box_;
+  const ScanPlan& plan_;
+  Theta h_;
+};
+
+}  // namespace
+
+std::pair<Theta, double> scan_maximum(const Objective& f, const Box& box, const Theta& base, const ScanPlan& plan,
+                                      const std::vector<Theta>& starts) {
+  Scan scan(f, box, plan);
+  std::vector<ScanPoint> pts = scan.coarse(base);
+  const std::vector<ScanPoint> fine = scan.fine(pts);
+  pts.insert(pts.end(), fine.begin(), fine.end());
+  for (const Theta& s : starts) pts.push_back(scan.at(s[plan.j], s, true));
+  std::sort(pts.begin(), pts.end(), [](const ScanPoint& a, const ScanPoint& b) { return a.v < b.v; });
+  double top = -std::numeric_limits<double>::infinity();
+  for (const auto& p : pts) top = std::max(top, p.value);
+  // The grid's local maxima near the best, highest first.
+  std::vector<std::size_t> peaks;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const bool left = i == 0 || pts[i].value >= pts[i - 1].value;
+    const bool right = i + 1 == pts.size() || pts[i].value >= pts[i + 1].value;
+    if (left && right && pts[i].value >= top - plan.refine_within) peaks.push_back(i);
+  }
+  if (peaks.empty()) {  // only when every value is NaN: no point is better than another
+    return {pts.front().th, pts.front().value};
+  }
+  std::sort(peaks.begin(), peaks.end(), [&](std::size_t a, std::size_t b) { return pts[a].value > pts[b].value; });
+  if (peaks.size() > static_cast<std::size_t>(plan.max_refined)) peaks.resize(static_cast<std::size_t>(plan.max_refined));
+  // Each side of a peak separately: two maxima can sit within one grid step, one on either side.
+  ScanPoint best = pts[peaks.front()];
+  for (std::size_t i : peaks) {
+    for (std::size_t n : {i - 1, i + 1}) {
+      if (n >= pts.size() || pts[n].v == pts[i].v) continue;  // (i - 1 wraps at i = 0)
+      const ScanPoint r = scan.brent(std::min(pts[i].v, pts[n].v), std::max(pts[i].v, pts[n].v), pts[i]);
+      if (r.value > best.value) best = r;
+    }
+  }
+  best = scan.polish(best);
+  return {best.th, best.value};
 }
 
 }  // namespace feint::models::detail::observer

@@ -9,6 +9,7 @@
 #include <functional>
 #include <optional>
 #include <utility>
+#include <vector>
 
 namespace feint::models::detail::observer {
 
@@ -34,10 +35,12 @@ Theta clamp(Theta th, const Box& b);
 std::pair<Theta, double> nelder_mead(const Objective& f, Theta start, const Box& box,
                                      const std::array<bool, kParams>& free, double step_factor, int max_evals);
 
-/// Maximises f over coordinate k by successive parabolas through points spaced h around th;
-/// nullopt when the points are not concave.
+/// Maximises f over coordinate k by successive parabolas through points spaced h around th, until
+/// one moves less than `settle` h; nullopt when the points are not concave. `curvature`, if given,
+/// receives the last parabola's second derivative.
 std::optional<std::pair<Theta, double>> parabolic_max(const Objective& f, Theta th, std::size_t k, double h,
-                                                      const Box& box);
+                                                      const Box& box, double settle = 0.05,
+                                                      double* curvature = nullptr);
 
 /// Maximises f over the box's free parameters except `fixed` (kParams: none). Warm (a start near
 /// the maximum, steps h): parabolas; otherwise Brent (one parameter) or Nelder-Mead.
@@ -60,10 +63,39 @@ struct Interval {
   double low = 0, high = 0;
   bool low_at_bound = false, high_at_bound = false;
   bool hull = false;  // the profile fell below the cut-off again beyond a first crossing
+  /// A point the profile met whose log-likelihood exceeds lmax by more than kHigherTolerance: the
+  /// maximum was not the global one, and the fit starts again from here (the ends are then void).
+  std::optional<std::pair<Theta, double>> higher;
 };
 
-/// Profile-likelihood interval at `level` of parameter j around the maximum (th, lmax).
+/// How much higher than the maximum a profile point must be to count as a higher maximum (below
+/// it, Nelder-Mead's and the parabolas' tolerances, ~1e-5, explain the difference).
+constexpr double kHigherTolerance = 1e-4;
+
+/// Profile-likelihood interval at `level` of parameter j around the maximum (th, lmax); stops at
+/// the first point higher than lmax (Interval::higher).
 Interval profile_interval(const Objective& f, const Box& box, const Theta& th, double lmax, std::size_t j,
                           double level, const StandardErrors& ses);
+
+/// The global search over parameter j (tau), the others re-maximised at each value (the profile
+/// l_p): a coarse grid over j's range; a fine grid in every coarse interval with an end within
+/// `near` of the best coarse value (and both beside the best); then every local maximum of the
+/// grid within `refine_within` of the best (at most `max_refined`) refined by Brent's method
+/// between its neighbours. At the `anchors` values of j, coordinate k is also restarted from each
+/// of `restarts` (the profile over k need not be unimodal).
+struct ScanPlan {
+  std::size_t j = kTau;
+  double coarse = 0.05, fine = 0.01;
+  double near = 3, refine_within = 1;
+  int max_refined = 3;
+  std::size_t k = kBeta;
+  std::vector<double> restarts, anchors;
+  Theta h{};  // parabola steps of the re-maximised parameters
+};
+
+/// The best point the scan found, and its value; `starts` (e.g. a pooled fit's participants'
+/// mean) are profile points added to the grid.
+std::pair<Theta, double> scan_maximum(const Objective& f, const Box& box, const Theta& base, const ScanPlan& plan,
+                                      const std::vector<Theta>& starts);
 
 }  // namespace feint::models::detail::observer

@@ -36,7 +36,7 @@ TEST(StudyPower, WithoutLearningTheConditionsDoNotDifferAndTheTestHoldsItsLevel)
 }
 
 TEST(StudyPower, TheCalibratedLearnerGivesAdaptiveTheEdgeAndPowerGrowsWithN) {
-  // measured with 400 studies: 0.43 at n = 10, 0.88 at n = 30 (docs/paper-scale.md)
+  // measured with 400 studies: 0.41 at n = 10, 0.845 at n = 30 (docs/paper-scale.md)
   const auto r = study_power(settings({6, 30}, 150));
   ASSERT_EQ(r.points.size(), 2u);
   EXPECT_GT(r.points[0].mean_difference, 0.015);

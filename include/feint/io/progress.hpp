@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 namespace feint::io {
 
@@ -18,11 +19,15 @@ class ProgressLine {
   /// Redraws at most every 0.5 s, and not before 1 s has passed (short runs stay quiet).
   void update(std::uint64_t rows, std::uint64_t bytes, std::uint64_t trials,
               std::uint64_t rejected);
+  /// The same for a run that counts units of work: "WHAT: done/total UNIT (P %, about S s left)".
+  void update_count(std::uint64_t done, std::uint64_t total, std::string_view unit);
   /// Erases the line (before the summary is printed).
   void finish();
   bool active() const noexcept { return active_; }
 
  private:
+  bool due();  // active, past the first second and 0.5 s since the last redraw
+
   std::string what_;
   bool active_ = false;
   bool drawn_ = false;

@@ -14,11 +14,13 @@
 // on samples thinned to one per `thin` seconds far enough apart.
 //
 // beta in [0, beta_max], tau in [0, tau_max] (and prior_right in (0, 1) when fitted, on the logit
-// scale) maximise the log-likelihood: a start on a coarse grid, then Nelder & Mead (1965) in the box.
+// scale) maximise the log-likelihood: the profile over tau (the others re-maximised) is rough, so it
+// is scanned on a coarse grid, finer near its best, and its best local maxima refined.
 // CIs are profile-likelihood intervals, {theta_j : 2 (l_max - l_p(theta_j)) <= chi2_1(level)}: each
 // end solves sign(v - theta_j) sqrt(2 (l_max - l_p(v))) = +-z by safeguarded secant steps from the
 // Wald end, the other parameters re-maximised at each step; an end that reaches a bound is reported
-// as the bound and flagged.
+// as the bound and flagged (with a note). A profile that meets a point higher than the maximum makes
+// the fit climb from there and search the CIs again (docs/observer.md, "Estimation and CIs").
 #pragma once
 
 #include <optional>
@@ -100,9 +102,8 @@ struct ObserverFit {
 std::optional<std::string> trial_problem(const ObservedTrial& trial);
 
 /// The maximum-likelihood fit of beta, tau (and the prior) to `trials` (all must pass
-/// trial_problem). Throws InvalidData when `trials` is empty. `start`, if given, is tried besides the
-/// grid of starting points (fit_study gives a pooled fit its participants' mean); when it is the
-/// best of them, Nelder-Mead starts from it with a smaller simplex.
+/// trial_problem). Throws InvalidData when `trials` is empty. `start`, if given, is added to the
+/// scan's grid (fit_study gives a pooled fit its participants' mean).
 ObserverFit fit_observer(std::span<const ObservedTrial> trials, const ObserverFitSettings& settings,
                          std::string unit, const std::optional<GoalObserver>& start = std::nullopt);
 

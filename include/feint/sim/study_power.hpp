@@ -7,12 +7,16 @@
 // `from_iteration`..N, adaptive against random by Welch's t, one-sided (adaptive greater). Power is
 // the share of studies with p < alpha, with its Monte Carlo standard error sqrt(P (1 - P) / studies).
 //
-// Reproducible: study s of size n uses the seed SplitMix64-mix(seed, n, s), and participant i of it
-// Rng::stream(that seed, i), so the result depends on the seed only, not on the number of threads.
+// Every size is analysed on the same simulated people (common random numbers): study s is simulated
+// once at the largest size, with the seed SplitMix64(SplitMix64(seed) xor s); its participant k of condition c
+// (0 adaptive, 1 random) draws from Rng::stream(that seed, 2k + c); the study of size n is the first
+// n of each condition. The work is that of the largest size alone, and the result depends on the
+// seed only, not on the number of threads.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -29,6 +33,9 @@ struct StudyPowerSettings {
   double alpha = 0.05;
   int from_iteration = 5;           ///< the "later iterations": from_iteration .. study.iterations
   double target_power = 0.8;
+  /// Called now and then from the calling thread with the participants simulated so far and in
+  /// all (for a progress line); may be empty.
+  std::function<void(std::uint64_t done, std::uint64_t total)> on_progress;
 };
 
 struct StudyPowerPoint {
@@ -49,7 +56,8 @@ struct StudyPowerResult {
 /// (0, 1), from_iteration outside 1..iterations, invalid observer or geometry).
 StudyPowerResult study_power(const StudyPowerSettings& settings);
 
-/// One simulated study's test: the one-sided Welch p and the mean difference (for tests).
+/// One simulated study's test: the one-sided Welch p and the mean difference (for tests); its
+/// participant i is simulate_participant(study, i).
 struct StudyTest {
   double p_value = 1;
   double difference = 0;
