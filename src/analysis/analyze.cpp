@@ -316,6 +316,22 @@ void analyze_questionnaire(const Study& study, const Comparison& compare, StudyR
   }
 }
 
+// Stage 5b. The yes/no questions (questionnaire_yesno.csv), compared as the logs are.
+void analyze_yes_no_answers(const Study& study, const Comparison& compare, StudyResults& r) {
+  if (!study.yes_no_answers) return;
+  tables::YesNoSettings s;
+  s.load = tables::yes_no_load_options();
+  s.test.conf_level = study.tests.test.conf_level;
+  s.alpha = study.tests.alpha;
+  const auto groups = study.yes_no_answers->condition_names();
+  // Compared only when both conditions answered; otherwise described per condition.
+  if (compare && study.yes_no_answers->has_condition &&
+      std::find(groups.begin(), groups.end(), compare->first) != groups.end() &&
+      std::find(groups.begin(), groups.end(), compare->second) != groups.end())
+    s.compare = compare;
+  r.yes_no = tables::analyze_yes_no(*study.yes_no_answers, s);
+}
+
 // Stage 6. Figure data: the strategies shown (from the scores), the mean pad traces (the logs,
 // streamed once more), condition x exposure per strategy (the wear-off of a strategy, H1) with
 // its table, and the mixed model's fitted trend.
@@ -391,6 +407,25 @@ Comparison decide_comparison(const Study& study, StudyResults& r) {
   return c;
 }
 
+// The one-sided tests of the confirmatory hypotheses with a direction: H1 on the comparison of
+// the metrics, H2 on the questionnaire between the conditions (the findings' hypotheses).
+void one_sided_tests(const Study& study, StudyResults& r) {
+  for (const auto& h : r.hypotheses) {
+    if (!h.confirmatory || (h.direction != "greater" && h.direction != "less")) continue;
+    const stats::Alternative alt = stats::parse_alternative(h.direction);
+    if (h.id == "H1" && r.comparison) {
+      tables::Table1Options c = r.comparison->options;
+      c.test.alternative = alt;
+      r.comparison_one_sided = tables::build_table1(r.scores, c);
+    }
+    if (h.id == "H2" && r.likert_compare && study.answers) {
+      tables::LikertSettings lc = r.likert_compare->settings;
+      lc.test.alternative = alt;
+      r.likert_compare_one_sided = tables::analyze_likert(*study.answers, lc);
+    }
+  }
+}
+
 }  // namespace
 
 StudyResults analyze(const Study& study, const std::string& tool_version) {
@@ -407,17 +442,20 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   build_tables(study, compare, t, r);
   fit_models(study, compare, metrics, scored.prefix, r);
   analyze_questionnaire(study, compare, r);
+  analyze_yes_no_answers(study, compare, r);
   collect_figure_data(study, scored, t, metrics, r);
   r.scores.path = "scores.csv";
-  // Stage 7. The findings (docs/findings.md): what the study shows, and how strongly.
-  r.findings = study_findings(r, t.metrics);
+  // Stage 7. The findings (docs/findings.md): what the study shows, and how strongly. A
+  // confirmatory hypothesis with a direction is tested one-sided, in that direction.
   if (r.comparison && r.comparison->options.compare) {
     const auto& [a, b] = *r.comparison->options.compare;
     r.hypotheses = parse_hypotheses(study.settings.hypotheses, a, b);
-    for (auto& f : r.findings)
-      for (const auto& h : r.hypotheses)
-        if (f.hypothesis == h.id) f.confirmatory = h.confirmatory;
+    one_sided_tests(study, r);
   }
+  r.findings = study_findings(r, t.metrics);
+  for (auto& f : r.findings)
+    for (const auto& h : r.hypotheses)
+      if (f.hypothesis == h.id) f.confirmatory = h.confirmatory;
   return r;
 }
 

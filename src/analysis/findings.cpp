@@ -51,7 +51,24 @@ std::string capitalised(std::string s) {
 
 std::string number(double v) { return fmt::format("{:.2f}", v); }
 
+// "[0.01, 0.05]"; a one-sided interval as R gives it, open at its infinite end: "[0.01, ∞)".
+std::string interval_text(double low, double high) {
+  const std::string lo = std::isinf(low) ? "(\u2212\u221e" : "[" + number(low);
+  const std::string hi = std::isinf(high) ? "\u221e)" : number(high) + "]";
+  return lo + ", " + hi;
+}
+
 }  // namespace
+
+std::string apa_df(double df) {
+  std::string s = fmt::format("{:.1f}", df);
+  if (s.size() > 2 && s.compare(s.size() - 2, 2, ".0") == 0) s.erase(s.size() - 2);
+  return s;
+}
+
+std::string apa_f(double num_df, double den_df, double f, double p) {
+  return fmt::format("F({}, {}) = {:.2f}, {}", apa_df(num_df), apa_df(den_df), f, tables::apa_p(p));
+}
 
 Strength classify(const stats::TestResult& d, const stats::TestResult* tost, const WordingRules& rules,
                   Grade* grade) {
@@ -113,6 +130,8 @@ std::optional<EffectSize> effect_size_of(const stats::TestResult& d) {
 void set_test_fields(Finding& f, const stats::TestResult& d, std::string_view lhs,
                      std::string_view rhs) {
   f.test = test_name(d);
+  f.alternative = d.alternative;
+  if (d.alternative != stats::Alternative::two_sided) f.test = "one-sided " + f.test;
   f.conf_level = d.conf_level;
   f.p = d.p_value;
   f.p_adjusted = d.p_adjusted;
@@ -182,9 +201,9 @@ Finding difference_finding(std::string id, std::string hypothesis, std::string q
   else if (d.mean1 && d.mean2)
     means = fmt::format("M = {} vs {}", number(*d.mean1), number(*d.mean2));
   std::string ci;
-  if (f.estimate && f.ci_low && f.ci_high && std::isfinite(*f.ci_low) && std::isfinite(*f.ci_high))
-    ci = fmt::format("difference {}, {:.0f}% CI [{}, {}]", number(*f.estimate), 100 * d.conf_level,
-                     number(*f.ci_low), number(*f.ci_high));
+  if (f.estimate && f.ci_low && f.ci_high && !std::isnan(*f.ci_low) && !std::isnan(*f.ci_high))
+    ci = fmt::format("difference {}, {:.0f}% CI {}", number(*f.estimate), 100 * d.conf_level,
+                     interval_text(*f.ci_low, *f.ci_high));
   std::string basis;
   if (f.strength == Strength::evidence_for_no_difference && !(d.log_bf10 && std::exp(-*d.log_bf10) >= rules.bf_moderate))
     basis = fmt::format("; equivalent within \u00b1{:g} by TOST", rules.equivalence_margin.value_or(tost && tost->margin ? *tost->margin : 0));
@@ -469,13 +488,14 @@ std::string json_fields(const Finding& f) {
       ", \"measure\": {}, \"contrast\": {}, \"direction\": {}, \"mean_a\": {}, \"mean_b\": {}, "
       "\"estimate\": {}, \"ci_low\": {}, \"ci_high\": {}, \"conf_level\": {}, \"effect_size\": {}, "
       "\"test\": {}, \"p\": {}, \"p_adjusted\": {}, \"bf10\": {}, \"bf_note\": {}, "
-      "\"confirmatory\": {}, \"member\": {}",
+      "\"confirmatory\": {}, \"member\": {}, \"alternative\": {}",
       json_string(f.measure), json_string(f.contrast), json_string(f.direction),
       json_number(f.means ? std::optional<double>(f.means->first) : std::nullopt),
       json_number(f.means ? std::optional<double>(f.means->second) : std::nullopt), json_number(f.estimate),
       json_number(f.ci_low), json_number(f.ci_high), json_number(f.conf_level), es, json_string(f.test),
       json_number(f.p), json_number(f.p_adjusted), json_number(f.bf10), json_string(f.bf_note),
-      f.confirmatory ? "true" : "false", json_string(f.member));
+      f.confirmatory ? "true" : "false", json_string(f.member),
+      json_string(stats::to_string(f.alternative)));
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "feint/analysis/hypotheses.hpp"
 #include "feint/io/trace.hpp"
 #include "feint/stats/reliability.hpp"
+#include "feint/tables/yes_no.hpp"
 
 namespace feint::analysis {
 
@@ -52,6 +53,7 @@ std::vector<std::string> Study::inputs() const {
   for (const auto& p : {questionnaire, config}) {
     if (!p.empty()) v.push_back(p);
   }
+  if (yes_no_answers) v.push_back(yes_no_answers->source);
   return v;
 }
 
@@ -62,10 +64,12 @@ Study load_study(const std::string& folder, const AnalysisSettings& a, const std
   }
   Study s;
   s.folder = folder;
-  s.name = study.lexically_normal().filename().empty()
-               ? study.lexically_normal().parent_path().filename().string()
-               : study.lexically_normal().filename().string();
-  if (s.name.empty() || s.name == ".") s.name = fs::absolute(study).lexically_normal().filename().string();
+  // The folder's own name, also for "." or "data/demo/" (absolute "/x/demo/." normalises to
+  // "/x/demo/", whose filename() is empty).
+  fs::path named = fs::absolute(study).lexically_normal();
+  if (named.filename().empty()) named = named.parent_path();
+  s.name = named.filename().string();
+  if (s.name.empty()) s.name = "study";  // the root folder
   s.config = config;
   s.settings = a;
 
@@ -109,6 +113,12 @@ Study load_study(const std::string& folder, const AnalysisSettings& a, const std
 
   s.likert = likert_settings(a.likert, s.tests);
   if (!s.questionnaire.empty()) s.answers = io::load_questionnaire(s.questionnaire, s.likert.load);
+  if (fs::exists(study / "questionnaire_yesno.csv")) {
+    io::QuestionnaireOptions o = tables::yes_no_load_options();
+    o.id_column = s.likert.load.id_column;
+    o.condition_column = s.likert.load.condition_column;
+    s.yes_no_answers = io::load_questionnaire((study / "questionnaire_yesno.csv").string(), o);
+  }
   return s;
 }
 

@@ -41,6 +41,11 @@ stats::TestResult f_as_test(const models::AnovaTerm& t) {
   return r;
 }
 
+// A model term's F as the findings print it (apa_f: the df of docs/findings.md).
+std::string term_apa(const models::AnovaTerm& t) {
+  return t.computed ? apa_f(t.num_df, t.den_df, t.f, t.p) : tables::anova_apa(t);
+}
+
 std::string evidence_text(Strength s, Grade g) {
   const std::string grade = to_string(g);
   return grade.empty() ? to_string(s) : grade + " " + to_string(s);
@@ -59,6 +64,12 @@ std::string thousands(std::uint64_t n) {  // 10000 -> "10,000"
   return s;
 }
 
+// ", one-sided (adaptive > random)" for a one-sided test of A against B; "" for a two-sided one.
+std::string one_sided_words(stats::Alternative alternative, const std::string& a, const std::string& b) {
+  if (alternative == stats::Alternative::two_sided) return {};
+  return fmt::format(", one-sided ({} {} {})", a, alternative == stats::Alternative::greater ? ">" : "<", b);
+}
+
 bool is_t_test(const std::string& test) {
   return test == "one_sample_t" || test == "welch_t" || test == "student_t" || test == "paired_t";
 }
@@ -68,10 +79,10 @@ bool is_t_test(const std::string& test) {
 /// participant relabelled between the two conditions with all of their iterations. Fills the
 /// tests' p_adjusted and returns the words for the sentence; returns "" (Holm then) where the
 /// design does not allow relabelling whole participants, with the reason in `why_not`.
-std::string maxt_over_iterations(const StudyResults& r, const std::string& metric,
+std::string maxt_over_iterations(const StudyResults& r, const tables::Table1& comparison, const std::string& metric,
                                  const std::vector<long long>& iterations, std::vector<stats::TestResult>& tests,
                                  std::string& why_not) {
-  const auto& o = r.comparison->options;
+  const auto& o = comparison.options;
   if (!o.compare) return {};
   if (o.paired) {
     why_not = "paired tests";
@@ -138,10 +149,12 @@ void add_iteration_findings(std::vector<Finding>& out, const StudyResults& r, co
   const std::string question =
       fmt::format("Does {} differ between the conditions, iteration by iteration?", m.column);
   if (r.comparison) {
+    // A confirmatory H1 with a direction: its one-sided tests (and maxT over their one-sided t).
+    const tables::Table1& comparison = r.comparison_one_sided ? *r.comparison_one_sided : *r.comparison;
     std::vector<stats::TestResult> tests;
     std::vector<long long> iterations;
     std::string g1, g2;
-    for (const auto& row : r.comparison->rows) {
+    for (const auto& row : comparison.rows) {
       if (row.metric != m.column || !is_t_test(row.result.test)) continue;
       tests.push_back(row.result);
       iterations.push_back(row.iteration.value_or(0));
@@ -150,9 +163,10 @@ void add_iteration_findings(std::vector<Finding>& out, const StudyResults& r, co
     }
     if (!tests.empty()) {
       std::string why_not;
-      const std::string correction = maxt_over_iterations(r, m.column, iterations, tests, why_not);
+      const std::string correction = maxt_over_iterations(r, comparison, m.column, iterations, tests, why_not);
       Finding f = family_finding("H1-iterations-" + m.column, "H1", question,
-                                 fmt::format("per-iteration contrasts of {}, {} vs {}", m.column, g1, g2),
+                                 fmt::format("per-iteration contrasts of {}, {} vs {}{}", m.column, g1, g2,
+                                             one_sided_words(comparison.options.test.alternative, g1, g2)),
                                  std::move(tests), "comparison", rules, correction);
       f.measure = m.column;
       detail::name_conditions(f, g1, g2);
@@ -288,7 +302,8 @@ void add_likert_findings(std::vector<Finding>& out, const std::optional<tables::
       primary.log_bf10 = t->log_bf10;
     }
     const std::string what =
-        between ? fmt::format("{}: {} vs {}", row.metric, row.group1, row.group2)
+        between ? fmt::format("{}: {} vs {}{}", row.metric, row.group1, row.group2,
+                              one_sided_words(row.result.alternative, row.group1, row.group2))
                 : fmt::format("{}{} against the reference", row.metric,
                               row.group1.empty() ? std::string() : " (" + row.group1 + ")");
     Finding f = difference_finding(
@@ -309,6 +324,58 @@ void add_likert_findings(std::vector<Finding>& out, const std::optional<tables::
       if (f.sentence.size() > 2 && f.sentence.compare(f.sentence.size() - 2, 2, ").") == 0)
         f.sentence.insert(f.sentence.size() - 2, bf);
     }
+    out.push_back(std::move(f));
+  }
+}
+
+// The yes/no questions between the conditions: each finding rests on Fisher's exact test, with
+// the proportions of yes and the conditional maximum-likelihood odds ratio (docs/yes-no.md). No
+// Bayes factor exists here, so a large p is never evidence for no difference.
+void add_yes_no_findings(std::vector<Finding>& out, const std::optional<tables::YesNoAnalysis>& a,
+                         const WordingRules& rules) {
+  if (!a) return;
+  for (const auto& row : a->rows) {
+    if (row.result.test != "fisher_exact") continue;
+    const stats::TestResult& r = row.result;
+    const std::string what = fmt::format("{} (yes/no): {} vs {}", row.metric, row.group1, row.group2);
+    std::string title = what;  // a sentence starts with a capital, as every finding's
+    if (!title.empty() && title[0] >= 'a' && title[0] <= 'z') title[0] = static_cast<char>(title[0] - 'a' + 'A');
+    Finding f = difference_finding("H2-yesno-" + row.metric, "H2",
+                                   fmt::format("Do the conditions differ in how often they answer yes to {}?", row.metric),
+                                   what, r, nullptr, "yes-no", rules);
+    f.measure = row.metric;
+    detail::name_conditions(f, row.group1, row.group2);
+    f.test = "Fisher's exact test";
+    if (!r.computed || !r.mean1 || !r.mean2) {
+      out.push_back(std::move(f));
+      continue;
+    }
+    f.direction = fmt::format("{} {} {}", row.group1, *r.mean1 > *r.mean2 ? ">" : *r.mean1 < *r.mean2 ? "<" : "=",
+                              row.group2);
+    // The difference of the proportions of yes with its interval (prop.test's, beside Fisher's);
+    // the odds ratio, whose null value is 1, is the effect size.
+    f.estimate.reset();
+    f.ci_low.reset();
+    f.ci_high.reset();
+    for (const auto& other : a->rows)
+      if (other.metric == row.metric && other.result.test == "prop_test" && other.result.computed) {
+        f.estimate = other.result.estimate;
+        f.ci_low = other.result.conf_low;
+        f.ci_high = other.result.conf_high;
+      }
+    if (r.estimate) f.effect_size = EffectSize{"odds_ratio", *r.estimate, r.conf_low, r.conf_high};
+    const std::string odds =
+        r.estimate && r.conf_low && r.conf_high
+            ? fmt::format("; odds ratio {:.2f}, {:.0f}% CI [{:.2f}, {}]", *r.estimate, 100 * r.conf_level, *r.conf_low,
+                          std::isinf(*r.conf_high) ? std::string("inf") : fmt::format("{:.2f}", *r.conf_high))
+            : std::string();
+    f.statistics = "Fisher's exact test, " + tables::apa_p(*r.p_value);
+    f.sentence = fmt::format(
+        "{}: {} (yes {:.0f}% of {} vs {:.0f}% of {}{}; {}{}).", title, f.evidence, 100 * *r.mean1, r.n1,
+        100 * *r.mean2, r.n2, odds, f.statistics,
+        f.strength == Strength::evidence_for_difference
+            ? ""
+            : "; no Bayes factor is available for this test, so a non-significant result is not evidence for no difference");
     out.push_back(std::move(f));
   }
 }
@@ -350,13 +417,13 @@ void add_factor_model_tests(std::vector<ModelTest>& family, const tables::Metric
     family.push_back({"H1-model-interaction-" + metric,
                       fmt::format("Does the course of {} over the iterations differ between the conditions?", metric),
                       fmt::format("Condition \u00d7 iteration interaction of {}", metric), "model", m.formula + " (iteration as a factor)",
-                      tables::anova_apa(*t), f_as_test(*t), true, m.fit.singular, ModelTest::Kind::interaction});
+                      term_apa(*t), f_as_test(*t), true, m.fit.singular, ModelTest::Kind::interaction});
   }
   if (const auto* t = find_term(m.fit, spec.group)) {
     family.push_back({"H1-model-condition-" + metric,
                       fmt::format("Does {} differ between the conditions, over all iterations?", metric),
                       fmt::format("Main effect of condition on {}", metric), "model", m.formula + " (iteration as a factor)",
-                      tables::anova_apa(*t), f_as_test(*t), true, m.fit.singular, ModelTest::Kind::condition});
+                      term_apa(*t), f_as_test(*t), true, m.fit.singular, ModelTest::Kind::condition});
   }
 }
 
@@ -384,14 +451,25 @@ void add_trend_model_tests(std::vector<ModelTest>& family, const tables::MetricM
 struct Relabelling {
   std::string why_not;                     // "" when p holds the relabelling p-values
   std::vector<std::optional<double>> p;    // per test of the family
-  std::string words;                       // how many labellings, for the sentences
+  std::vector<std::string> words;          // per test: how many labellings, for the sentences
 };
+
+// How test k's relabelling p-value was counted (docs/findings.md): over every labelling, over the
+// drawn ones until h of them reached the statistic (p = h / drawn), or over all that were drawn.
+std::string labelling_words(const models::RelabelledConditionTests& rt, std::uint64_t counted, bool stopped) {
+  if (rt.exact) return fmt::format(" over all {} labellings of the participants", thousands(counted));
+  if (stopped)
+    return fmt::format(" (sequential: {} of {} labellings of the participants drawn at random reached the statistic)",
+                       rt.exceedances, thousands(counted - 1));
+  return fmt::format(" over {} labellings of the participants drawn at random", thousands(counted));
+}
 
 // Relabelling p-values (docs/findings.md, "Mixed models: relabelling p-values"): whole
 // participants relabelled between the two conditions, both models refitted each time.
 Relabelling relabel_family(const tables::MetricModel* any, const std::vector<ModelTest>& family) {
   Relabelling rl;
   rl.p.resize(family.size());
+  rl.words.resize(family.size());
   if (!any || any->data.y.empty()) {
     rl.why_not = "the trials were not given to relabel";
   } else if (any->fit.group_levels.size() != 2) {
@@ -412,16 +490,15 @@ Relabelling relabel_family(const tables::MetricModel* any, const std::vector<Mod
         const std::optional<double>& pr = mb.kind == K::interaction ? rt.p_interaction
                                           : mb.kind == K::condition ? rt.p_condition
                                                                     : rt.p_slope_difference;
+        rl.words[i] = mb.kind == K::interaction ? labelling_words(rt, rt.labellings_interaction, rt.stopped_interaction)
+                      : mb.kind == K::condition ? labelling_words(rt, rt.labellings_condition, rt.stopped_condition)
+                                                : labelling_words(rt, rt.labellings_slope, rt.stopped_slope);
         if (!mb.test.computed || !mb.test.statistic) continue;
         if (!s || std::fabs(*s - *mb.test.statistic) > 1e-6 * std::max(1.0, std::fabs(*mb.test.statistic)))
           rl.why_not = fmt::format("the {} could not be reproduced from the trials", mb.kind == K::slope ? "slope difference's t" : "F");
         else
           rl.p[i] = pr;
       }
-      if (rl.why_not.empty())
-        rl.words = rt.exact ? fmt::format("all {} labellings of the participants", thousands(rt.labellings))
-                            : fmt::format("{} labellings of the participants drawn at random",
-                                          thousands(rt.labellings));
     } catch (const Error& e) {  // InvalidData or UsageError: the data cannot be relabelled
       rl.why_not = e.what();
     }
@@ -460,8 +537,8 @@ Finding model_test_finding(const ModelTest& mb, std::size_t i, std::size_t famil
         metric, rl.why_not));
   const std::string holm =
       rl.why_not.empty()
-          ? fmt::format("relabelling {} over {}; Holm-adjusted over the {} model tests of {}: {}",
-                        p_text(*rl.p[i]), rl.words, family_size, metric, p_text(*mb.test.p_adjusted))
+          ? fmt::format("relabelling {}{}; Holm-adjusted over the {} model tests of {}: {}",
+                        p_text(*rl.p[i]), rl.words[i], family_size, metric, p_text(*mb.test.p_adjusted))
           : fmt::format("Holm-adjusted over the {} model tests of {}: {}", family_size, metric,
                         p_text(*mb.test.p_adjusted));
   const std::string no_bf =
@@ -478,7 +555,7 @@ Finding model_test_finding(const ModelTest& mb, std::size_t i, std::size_t famil
                              numbers, numbers.empty() ? "" : "; ", mb.apa, holm, no_bf);
   } else {
     const auto& t = mb.test;
-    f.statistics = fmt::format("t({:.1f}) = {:.2f}, {}", *t.df, *t.statistic, p_text(*t.p_value));
+    f.statistics = fmt::format("t({}) = {:.2f}, {}", apa_df(*t.df), *t.statistic, p_text(*t.p_value));
     f.sentence = fmt::format("{} in the mixed model {}: {} (b = {:.4f} per iteration, {:g}% CI [{:.4f}, "
                              "{:.4f}], {}; {}; {}).",
                              mb.what, mb.formula, f.evidence, *t.estimate, 100 * t.conf_level, *t.conf_low,
@@ -505,7 +582,9 @@ std::vector<Finding> study_findings(const StudyResults& r, const std::vector<tab
   add_exposure_findings(out, r, metrics, rules);
   // H2 after every H1 finding.
   add_likert_findings(out, r.likert, false, rules);
-  add_likert_findings(out, r.likert_compare, true, rules);
+  add_likert_findings(out, r.likert_compare_one_sided ? r.likert_compare_one_sided : r.likert_compare, true,
+                      rules);
+  add_yes_no_findings(out, r.yes_no, rules);
   return out;
 }
 

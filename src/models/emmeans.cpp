@@ -11,6 +11,7 @@
 #include <tuple>
 #include <numbers>
 #include <optional>
+#include <vector>
 
 #include "feint/error.hpp"
 #include "feint/models/studentized_range.hpp"
@@ -100,14 +101,16 @@ Grid model_grid(const MixedModelFit& fit) {
   grid.groups = fit.group_levels;
   for (const double t : fit.time_levels) grid.times.push_back(level_text(t));
   grid.time_name = fit.spec.time;
-  grid.test = [&fit](const std::string& label, const std::string& by, const Eigen::VectorXd& w,
-                     double conf_level) {
+  // The design rows of the G x K cells, once per grid (a family has up to hundreds of contrasts).
+  const std::size_t K = fit.time_levels.size();
+  auto rows = std::make_shared<std::vector<Eigen::VectorXd>>();
+  for (std::size_t c = 0; c < grid.G() * K; ++c)
+    rows->push_back(fit.cell_row(c / K, fit.time_levels[c % K]));
+  grid.test = [&fit, rows](const std::string& label, const std::string& by,
+                           const Eigen::VectorXd& w, double conf_level) {
     Eigen::VectorXd L = Eigen::VectorXd::Zero(fit.beta.size());
-    const std::size_t K = fit.time_levels.size();
     for (Eigen::Index c = 0; c < w.size(); ++c)
-      if (w(c) != 0)
-        L += w(c) * fit.cell_row(static_cast<std::size_t>(c) / K,
-                                 fit.time_levels[static_cast<std::size_t>(c) % K]);
+      if (w(c) != 0) L += w(c) * (*rows)[static_cast<std::size_t>(c)];
     EmmRow r;
     r.label = label;
     r.by = by;

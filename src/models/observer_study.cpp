@@ -10,6 +10,10 @@
 
 #include "feint/error.hpp"
 #include "feint/models/observer_fit.hpp"
+#include "feint/stats/bayes_factor.hpp"
+#include "feint/stats/effect_size.hpp"
+#include "feint/stats/rank_tests.hpp"
+#include "feint/stats/ttest.hpp"
 
 namespace feint::models {
 
@@ -197,6 +201,35 @@ AgreementRow agreement_row(const AgreementSums::key_type& key, const std::array<
 
 }  // namespace
 
+std::vector<ObserverComparison> compare_conditions(std::span<const ObserverFit> participants,
+                                                   const std::string& a, const std::string& b,
+                                                   double level) {
+  std::vector<ObserverComparison> out;
+  for (const std::string parameter : {"beta", "tau"}) {
+    ObserverComparison c{parameter == "beta" ? "log beta" : "tau", a, b, {}, {}, 0};
+    std::vector<double> xa, xb;
+    for (const auto& f : participants) {
+      if (f.condition != a && f.condition != b) continue;
+      const auto& p = f.parameter(parameter);
+      const double v = parameter == "beta" ? std::log(p.estimate) : p.estimate;
+      if (!std::isfinite(v)) continue;  // beta = 0 has no log: a participant who never infers
+      (f.condition == a ? xa : xb).push_back(v);
+      // An estimate on the range's edge (tau = 0, beta at --beta-max) is kept but counted.
+      if (p.conf_low == p.estimate && p.low_at_bound) ++c.at_bound;
+      else if (p.conf_high == p.estimate && p.high_at_bound) ++c.at_bound;
+    }
+    if (xa.size() < 2 || xb.size() < 2) return {};
+    const stats::TestOptions options{stats::Alternative::two_sided, level};
+    c.welch = stats::t_test_welch(xa, xb, options);
+    stats::add_effect_size_intervals(c.welch);
+    stats::add_bayes_factor(c.welch);
+    c.rank = stats::mann_whitney(xa, xb, options);
+    stats::add_effect_size_intervals(c.rank);
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
 StudyObserverFit fit_study(std::vector<ObservedTrial> trials, const ObserverFitSettings& settings) {
   settings.validate();
   StudyObserverFit out;
@@ -209,6 +242,9 @@ StudyObserverFit fit_study(std::vector<ObservedTrial> trials, const ObserverFitS
   const auto fitted = fit_participants(good, settings, out);
   // 4. Pooled per condition (and the learning test).
   fit_conditions(good, settings, out);
+  if (out.conditions.size() == 2)
+    out.comparisons = compare_conditions(out.participants, out.conditions[0].condition,
+                                         out.conditions[1].condition, settings.level);
   // 5. Agreement: the model's trace at each participant's fitted parameters against the pad.
   for (const auto& [key, g] : agreement_sums(good, fitted, settings, out))
     out.agreement.push_back(agreement_row(key, g));

@@ -482,7 +482,8 @@ Layout make_layout(cairo_t* cr, const Figure& f, Width width,
     for (const auto& l : scales[i].second.labels) ytick = std::max(ytick, text_width(cr, l));
     ylabel = ylabel || !f.panels[i].y.label.empty();
     xlabel = xlabel || !f.panels[i].x.label.empty();
-    title = title || !f.panels[i].title.empty();
+    // A note sits in the title's band: without that room it runs into the legend above.
+    title = title || !f.panels[i].title.empty() || !f.panels[i].note.empty();
     marks = marks || !f.panels[i].marks.empty();
   }
   L.left = (ylabel ? kFontSize + 4 : 0) + ytick + kTick + 3;

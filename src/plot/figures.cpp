@@ -46,13 +46,17 @@ void iteration_axis(Axis& a, long long first, long long last) {
 }  // namespace
 
 MetricRange metric_range(const std::string& metric) {
-  if (metric == "error" || metric == "confusion") return {0.0, 1.0};
+  if (metric == "error") return {0.0, 1.0};
+  // Confusion is >= 0 on both scales, and unbounded above on the raw one, the default
+  // (docs/metrics.md "One scale"): a [0, 1] axis would clip a raw score of 1.8.
+  if (metric == "confusion") return {0.0, std::numeric_limits<double>::infinity()};
   return {};
 }
 
 std::string metric_axis_label(const std::string& metric) {
   if (metric == "error") return "Error (pad units)";
-  if (metric == "confusion") return "Confusion (0\u20131)";
+  if (metric == "confusion") return "Confusion";  // its scale (raw or speed) is the scores'
+
   std::string s = metric;
   if (!s.empty()) s[0] = static_cast<char>(std::toupper(static_cast<unsigned char>(s[0])));
   return s;

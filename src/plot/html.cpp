@@ -156,6 +156,9 @@ pre { background: #f6f6f6; border: 1px solid #e2e2e2; padding: 8px 10px; overflo
 figure { margin: 16px 0 24px; break-inside: avoid; page-break-inside: avoid; }
 figure svg { display: block; width: 100%; height: auto; max-width: 880px; }
 figure.narrow svg { max-width: 560px; }
+/* Each figure is drawn two-column wide and one-column wide: the one-column drawing on a phone. */
+div.fig-narrow { display: none; }
+div.fig-narrow svg { max-width: 520px; }
 figcaption { font-size: 14px; color: #333; max-width: 80ch; margin-top: 4px; }
 figcaption .files { color: #666; font-size: 12.5px; }
 div.table { overflow-x: auto; margin: 8px 0 4px; }
@@ -177,6 +180,8 @@ dd, figcaption, pre { overflow-wrap: anywhere; }
   h2 { font-size: 18px; }
   dl.facts { grid-template-columns: 1fr; gap: 0; }
   dl.facts dd { margin-bottom: 6px; }
+  div.fig-wide { display: none; }
+  div.fig-narrow { display: block; }
 }
 @media print {
   @page { size: A4; margin: 14mm 12mm; }
@@ -185,6 +190,8 @@ dd, figcaption, pre { overflow-wrap: anywhere; }
   nav { display: none; }
   h2 { break-after: avoid; page-break-after: avoid; }
   figure svg { max-width: 100%; }
+  div.fig-wide { display: block; }
+  div.fig-narrow { display: none; }
   div.table { overflow: visible; }
   table { font-size: 7.5pt; }
   th, td { padding: 1px 4px; }

@@ -10,6 +10,7 @@
 #include "feint/plot/figures.hpp"
 #include "feint/publish/study_report.hpp"
 #include "feint/stats/p_adjust.hpp"
+#include "report_details.hpp"
 
 namespace feint::publish {
 
@@ -41,9 +42,8 @@ class FigureWriter {
         d.files.push_back("figures/" + file);
         if (format == plot::FileFormat::svg) svg = std::move(bytes);
       }
-      if (width == plot::Width::two_column) {
-        d.svg = svg.empty() ? plot::render(figure, width, plot::FileFormat::svg) : svg;
-      }
+      std::string& page = width == plot::Width::two_column ? d.svg : d.svg_narrow;
+      page = svg.empty() ? plot::render(figure, width, plot::FileFormat::svg) : std::move(svg);
     }
     out.figures.push_back(std::move(d));
   }
@@ -131,7 +131,9 @@ void add_model_trend_figures(FigureWriter& w, const analysis::StudyResults& r,
 }
 
 // The exposure figure's caption, with the scored trials it left out for want of a label.
-std::string exposure_caption(const metrics::ExposureTrend& e, const std::string& level) {
+// The seed paper is cited only for a study of its design (detail::paper_design); another design is
+// described as it is.
+std::string exposure_caption(const metrics::ExposureTrend& e, const std::string& level, bool paper) {
   const std::string unmatched =
       e.unmatched > 0 ? fmt::format(" {} without a strategy label left out.",
                                     e.unmatched == 1 ? std::string("1 scored trial")
@@ -142,10 +144,13 @@ std::string exposure_caption(const metrics::ExposureTrend& e, const std::string&
       "strategy, 2 = the second, ...), one panel per strategy, per condition, with "
       "{} t intervals (at exposures with at least 5 trials), and each condition's "
       "least-squares line with its {} band from participant-clustered (CR1) standard "
-      "errors. A strategy that wears off rises (error) as it is seen again; the "
-      "paper's claim is that it wears off under the random algorithm and not under "
-      "the adaptive one. Descriptive: the mixed model is the inference.{}",
-      e.metric, level, level, unmatched);
+      "errors. A strategy that wears off rises (error) as it is seen again{}. "
+      "Descriptive: the mixed model is the inference.{}",
+      e.metric, level, level,
+      paper ? "; the paper's claim is that it wears off under the random algorithm and not under the "
+              "adaptive one"
+            : "",
+      unmatched);
 }
 
 // The figures of the trials' strategy labels: which strategies were shown, each metric against
@@ -153,16 +158,20 @@ std::string exposure_caption(const metrics::ExposureTrend& e, const std::string&
 void add_strategy_figures(FigureWriter& w, const analysis::StudyResults& r,
                           const std::string& level) {
   const double conf_level = r.table1.options.test.conf_level;
+  const bool paper = detail::paper_design(r);
   const plot::Occurrence occurrence = plot::strategy_occurrence(r.figures.labels);
   w.add("strategies", "Strategies shown", plot::alt_text(occurrence),
-        "Share of participants who saw each strategy, per iteration and condition (the logs' "
-        "strategy column, as scored). The paper's Fig. 5/7 show the selection algorithms' "
-        "expectation; this is what the study's participants actually saw.",
+        std::string("Share of participants who saw each strategy, per iteration and condition (the logs' "
+                    "strategy column, as scored). ") +
+            (paper ? "The paper's Fig. 5/7 show the selection algorithms' expectation; this is what the "
+                     "study's participants actually saw."
+                   : "This is what the study's participants actually saw, not what a selection "
+                     "algorithm expects."),
         plot::occurrence_figure(occurrence));
   for (const auto& e : r.figures.exposure) {
     w.add("exposure-" + e.metric,
           fmt::format("{} by exposure to the strategy, per condition", capitalised(e.metric)),
-          plot::alt_text(e), exposure_caption(e, level), plot::exposure_figure(e));
+          plot::alt_text(e), exposure_caption(e, level, paper), plot::exposure_figure(e));
   }
   if (r.figures.traces.empty()) {
     w.out.notes.push_back("No trace figure: no scored trial was found again in the logs.");
@@ -180,7 +189,7 @@ void add_strategy_figures(FigureWriter& w, const analysis::StudyResults& r,
 }
 
 // The questionnaire: the answers' distribution and the means against the reference.
-void add_likert_figures(FigureWriter& w, const tables::LikertAnalysis& l) {
+void add_likert_figures(FigureWriter& w, const tables::LikertAnalysis& l, bool paper) {
   const plot::LikertDistribution ld = plot::likert_distribution_data(l);
   w.add("likert", "Questionnaire answers", plot::alt_text(ld),
         fmt::format("Answers per item and condition as diverging stacked bars centred on the "
@@ -191,10 +200,11 @@ void add_likert_figures(FigureWriter& w, const tables::LikertAnalysis& l) {
   const plot::LikertMeansData lm = plot::likert_means_data(l);
   w.add("likert-means", "Questionnaire means", plot::alt_text(lm),
         fmt::format("Mean rating per item and condition with its {:g}% t interval, against "
-                    "the reference R = {:g} (the paper's Fig. 11). Filled markers: the "
+                    "the reference R = {:g}{}. Filled markers: the "
                     "one-sample t-test differs from R (p < {:g}, {}); the Wilcoxon "
                     "signed-rank test is the primary analysis (table below).",
-                    l.settings.test.conf_level * 100, l.reference, l.settings.alpha,
+                    l.settings.test.conf_level * 100, l.reference, paper ? " (the paper's Fig. 11)" : "",
+                    l.settings.alpha,
                     adjustment_words(l.settings.p_adjust)),
         plot::likert_means_figure(lm));
 }
@@ -213,7 +223,7 @@ DrawnFigures draw_figures(const analysis::StudyResults& r, const std::vector<std
     w.out.notes.push_back(fmt::format("No strategy figures: {}", r.figures.labels_note));
   }
   if (!r.figures.labels.empty()) add_strategy_figures(w, r, level);
-  if (r.likert) add_likert_figures(w, *r.likert);
+  if (r.likert) add_likert_figures(w, *r.likert, detail::paper_design(r));
   return std::move(w.out);
 }
 

@@ -62,13 +62,16 @@ struct Style {
     if (format == ResultsFormat::latex) return "$" + s.tex + "$";
     return format == ResultsFormat::html ? s.html : s.md;
   }
-  // "95% CI [0.01, 0.11]".
+  // "95% CI [0.01, 0.11]"; a one-sided interval open at its infinite end, as R gives it: "[0.01, ∞)".
   std::string ci(double level, const std::string& low, const std::string& high) const {
     const std::string pct = fmt::format("{:g}{} CI", 100 * level, format == ResultsFormat::latex ? "\\%" : "%");
-    if (format == ResultsFormat::latex) return fmt::format("{} $[{}, {}]$", pct, low, high);
+    const bool tex = format == ResultsFormat::latex;
+    const std::string lo = low.empty() ? (tex ? "(-\\infty" : "(\u2212\u221e") : "[" + low;
+    const std::string hi = high.empty() ? (tex ? "\\infty)" : "\u221e)") : high + "]";
+    if (tex) return fmt::format("{} ${}, {}$", pct, lo, hi);
     if (format == ResultsFormat::html)
-      return fmt::format("{:g}%\u00a0CI\u00a0[{},\u00a0{}]", 100 * level, low, high);
-    return fmt::format("{} [{}, {}]", pct, low, high);
+      return fmt::format("{:g}%\u00a0CI\u00a0{},\u00a0{}", 100 * level, lo, hi);
+    return fmt::format("{} {}, {}", pct, lo, hi);
   }
   std::string minus_between(std::string_view lhs, std::string_view rhs) const {
     if (format == ResultsFormat::latex) return text(lhs) + " $-$ " + text(rhs);
@@ -77,6 +80,8 @@ struct Style {
 };
 
 bool finite(const std::optional<double>& v) { return v && std::isfinite(*v); }
+// An interval's bound: finite, or the infinite end of a one-sided interval.
+bool bound(const std::optional<double>& v) { return v && !std::isnan(*v); }
 
 std::string capitalised(std::string s) {
   if (!s.empty() && s[0] >= 'a' && s[0] <= 'z') s[0] = static_cast<char>(s[0] - 'a' + 'A');
@@ -247,12 +252,14 @@ std::string effect_size(const Style& st, const Finding& f) {
   Sym sym = italic(e.name);
   if (e.name == "d_z") sym = {"*d*z", "<i>d</i><sub>z</sub>", "d_z"};
   if (e.name == "r_rb") lead = "rank-biserial ", sym = italic("r");
+  if (e.name == "odds_ratio") lead = "odds ratio ", sym = {"OR", "OR", "\\mathrm{OR}"};
   if (e.name == "eta2_p") lead = "partial ";
   if (e.name == "eta2_G") lead = "generalized ";
   if (e.name.rfind("eta2", 0) == 0) sym = {"*\u03b7*\u00b2", "<i>\u03b7</i>\u00b2", "\\eta^2"};
   std::string o = lead + st.eq(sym, "", "=", value(e.value));
-  if (finite(e.ci_low) && finite(e.ci_high))
-    o += ", " + st.ci(f.conf_level, value(*e.ci_low), value(*e.ci_high));
+  if (bound(e.ci_low) && bound(e.ci_high) && (finite(e.ci_low) || finite(e.ci_high)))
+    o += ", " + st.ci(f.conf_level, finite(e.ci_low) ? value(*e.ci_low) : "",
+                      finite(e.ci_high) ? value(*e.ci_high) : "");
   return o;
 }
 
@@ -304,8 +311,9 @@ std::string measure_sentence(const Style& st, const std::string& measure, const 
     std::string d = "difference";
     if (!lhs.empty()) d += " (" + st.minus_between(lhs, rhs) + ")";
     d += " " + value(*f->estimate);
-    if (finite(f->ci_low) && finite(f->ci_high))
-      d += ", " + st.ci(f->conf_level, st.number(*f->ci_low, dec), st.number(*f->ci_high, dec));
+    if (bound(f->ci_low) && bound(f->ci_high) && (finite(f->ci_low) || finite(f->ci_high)))
+      d += ", " + st.ci(f->conf_level, finite(f->ci_low) ? st.number(*f->ci_low, dec) : "",
+                        finite(f->ci_high) ? st.number(*f->ci_high, dec) : "");
     parts.push_back(d);
   }
   if (auto e = effect_size(st, *f); !e.empty()) parts.push_back(e);
@@ -336,10 +344,15 @@ int headline_rank(const Finding& f) {
 
 const Finding* headline_of(const std::vector<const Finding*>& fs) {
   const bool confirmatory = std::any_of(fs.begin(), fs.end(), [](const Finding* f) { return f->confirmatory; });
+  // A confirmatory hypothesis with a direction speaks through its one-sided tests.
+  const bool one_sided = std::any_of(fs.begin(), fs.end(), [](const Finding* f) {
+    return f->confirmatory && f->alternative != stats::Alternative::two_sided && f->strength != Strength::not_computable;
+  });
   const Finding* best = nullptr;
   int best_rank = 5;
   for (const Finding* f : fs) {
     if (confirmatory && !f->confirmatory) continue;
+    if (one_sided && f->alternative == stats::Alternative::two_sided) continue;
     const int r = headline_rank(*f);
     if (r < best_rank) best = f, best_rank = r;
   }

@@ -8,9 +8,11 @@
 #include "feint/io/html_escape.hpp"
 #include "feint/io/number.hpp"
 #include "feint/io/output.hpp"
+#include "feint/plot/canvas.hpp"
 #include "feint/plot/html.hpp"
 #include "feint/publish/results_text.hpp"
 #include "feint/tables/writers.hpp"
+#include "report_details.hpp"
 
 namespace feint::publish {
 
@@ -31,6 +33,7 @@ using tables::OutputFormat;
 // A table of the report: its anchor, heading, Markdown and CSV renderings, and its files' stem.
 struct ReportTable {
   std::string id, heading, stem, markdown, csv;
+  std::string tests_html = {};  // the tests' statistics under the paper-shaped table (HTML)
 };
 
 std::vector<ReportTable> tables(const analysis::StudyResults& r) {
@@ -50,13 +53,16 @@ std::vector<ReportTable> tables(const analysis::StudyResults& r) {
       return tables::render_anova(*r.anova, f, r.table1.options.apa);
     });
   }
+  // The models' "Singular fit" notes name their metric (a boundary note about one model).
   if (r.model) {
-    add("model", "Mixed model (condition x iteration)", "model",
-        [&](OutputFormat f) { return tables::render_model(*r.model, f); });
+    add("model", "Mixed model (condition x iteration)", "model", [&](OutputFormat f) {
+      return detail::name_singular_notes(tables::render_model(*r.model, f), *r.model);
+    });
   }
   if (r.trend_model) {
-    add("model-trend", "Mixed model (linear trend over the iterations)", "model_trend",
-        [&](OutputFormat f) { return tables::render_model(*r.trend_model, f); });
+    add("model-trend", "Mixed model (linear trend over the iterations)", "model_trend", [&](OutputFormat f) {
+      return detail::name_singular_notes(tables::render_model(*r.trend_model, f), *r.trend_model);
+    });
   }
   if (!r.exposure.empty()) {
     add("exposure", "Condition \u00d7 exposure per strategy", "exposure_by_condition",
@@ -69,6 +75,17 @@ std::vector<ReportTable> tables(const analysis::StudyResults& r) {
   if (r.likert_compare) {
     add("questionnaire-compare", "Questionnaire between the conditions", "likert_compare",
         [&](OutputFormat f) { return tables::render_likert(*r.likert_compare, f); });
+  }
+  if (r.yes_no) {
+    add("yes-no", r.yes_no->rows.empty() ? "Yes/no questions" : "Yes/no questions between the conditions", "yes_no",
+        [&](OutputFormat f) { return tables::render_yes_no(*r.yes_no, f); });
+  }
+  // The paper-shaped tables show M, p and the label; t, df, d [CI] and BF (the CSV's) go under them.
+  for (auto& x : t) {
+    if (x.stem == "table1") x.tests_html = detail::tests_html(r.table1, false);
+    if (x.stem == "table1_compare") x.tests_html = detail::tests_html(*r.comparison, true);
+    if (x.stem == "likert") x.tests_html = detail::likert_tests_html(*r.likert);
+    if (x.stem == "likert_compare") x.tests_html = detail::likert_tests_html(*r.likert_compare);
   }
   return t;
 }
@@ -109,22 +126,19 @@ std::vector<std::pair<std::string, std::string>> design_rows(const analysis::Stu
         fmt::format("{} ({})", cond.empty() ? "(none)" : cond, count(n, "participant")));
   }
   const auto its = r.scores.iterations();
-  std::vector<std::string> metrics;
-  for (const auto& m : r.table1.options.metrics) {
-    metrics.push_back(fmt::format("{} against {:g}", m.column, m.reference));
-  }
   return {
       {"Study folder", c.study_folder},
       {"Conditions", fmt::format("{}", fmt::join(per_condition, ", "))},
       {"Iterations",
        its.empty() ? "none" : fmt::format("{} ({} to {})", its.size(), its.front(), its.back())},
-      {"Metrics and references", fmt::format("{}", fmt::join(metrics, "; "))},
+      {"Metrics and references", detail::references_text(r)},
       {"Comparison", r.comparison ? fmt::format("{} against {}{}", r.comparison->blocks.front().group1,
                                                 r.comparison->blocks.front().group2,
                                                 r.comparison_note.empty() ? ""
                                                     : " (" + r.comparison_note + ")")
                                   : "none (set compare = \"A,B\")"},
-      {"Questionnaire", c.questionnaire.empty() ? "none" : c.questionnaire},
+      {"Questionnaire", (c.questionnaire.empty() ? std::string("none") : c.questionnaire) +
+                            (r.yes_no ? "; yes/no questions: questionnaire_yesno.csv" : "")},
       {"Settings file", c.config.empty() ? "none" : c.config},
   };
 }
@@ -180,14 +194,36 @@ std::vector<std::string> diagnostics_lines(const analysis::Diagnostics& d) {
         "only in the questionnaire.",
         c.in_both, c.only_in_logs.size(), c.only_in_questionnaire.size()));
   }
-  if (d.exclusions.empty()) {
+  if (d.exclusions.empty() && d.warnings.empty()) {
     lines.emplace_back("Nothing was excluded and there was no warning.");
   }
   for (const auto& e : d.exclusions) lines.push_back(exclusion_text(e));
+  if (d.exclusions.empty())
+    for (const auto& w : d.warnings) lines.push_back("warning: " + w);
   return lines;
 }
 
 namespace {
+
+// The Accounting's list: the data's exclusions and warnings, what the findings left out of an
+// analysis (never "nothing was excluded" beside them), and the reference check.
+std::vector<std::string> accounting_lines(const analysis::StudyResults& r) {
+  std::vector<std::string> lines = diagnostics_lines(r.diagnostics);
+  const std::vector<std::string> left_out = detail::left_out_lines(r);
+  const std::size_t warned = detail::other_warned_findings(r);
+  static const std::string kNothing = "Nothing was excluded and there was no warning.";
+  if (!lines.empty() && lines.back() == kNothing && (!left_out.empty() || warned > 0)) {
+    lines.pop_back();
+    if (left_out.empty()) lines.emplace_back("Nothing was excluded from the data read.");
+  }
+  lines.insert(lines.end(), left_out.begin(), left_out.end());
+  if (warned > 0)
+    lines.push_back(fmt::format("{} {} a warning of {} own (Findings in detail, under Results).",
+                                count(warned, "finding"), warned == 1 ? "carries" : "carry",
+                                warned == 1 ? "its" : "their"));
+  lines.push_back(detail::reference_check_line(r));
+  return lines;
+}
 
 // The Accounting section: what was read, scored and rejected, and every exclusion and warning.
 std::string accounting_html(const analysis::StudyResults& r) {
@@ -215,7 +251,7 @@ std::string accounting_html(const analysis::StudyResults& r) {
   html += fmt::format("<p>rows read = rows scored + rows rejected: {} = {} + {}.</p>\n",
                       s.rows_read, s.rows_scored, s.rows_rejected);
   html += "<h3>Excluded and warned about</h3>\n<ul class=\"diagnostics\">\n";
-  for (const auto& l : diagnostics_lines(r.diagnostics)) {
+  for (const auto& l : accounting_lines(r)) {
     html += "<li>" + html_escape(l) + "</li>\n";
   }
   html += "</ul>\n";
@@ -235,10 +271,19 @@ std::string figures_html(const std::vector<RenderedFigure>& figures,
       links += fmt::format("<a href=\"{0}\">{1}</a>", html_escape(f),
                            html_escape(fs::path(f).filename().string()));
     }
+    // The one-column drawing on a narrow screen (CSS in plot::render_html): its text stays >= 9 px.
+    // data-min-font-pt: the drawings' smallest text (pt, their viewBox units), for the browser check.
+    const std::string wide = plot::inline_svg(d.svg, fmt::format("f{}-", i + 1), d.alt);
+    const std::string drawings =
+        d.svg_narrow.empty()
+            ? wide
+            : fmt::format("<div class=\"fig-wide\" data-min-font-pt=\"{2:g}\">{0}</div>\n<div class=\"fig-narrow\" "
+                          "data-min-font-pt=\"{2:g}\">{1}</div>",
+                          wide, plot::inline_svg(d.svg_narrow, fmt::format("f{}n-", i + 1), d.alt), plot::kTickFontSize);
     html += fmt::format(
         "<figure id=\"fig-{0}\">\n{1}\n<figcaption><strong>Figure {2}. {3}.</strong> {4}{5}"
         "</figcaption>\n</figure>\n",
-        html_escape(d.name), plot::inline_svg(d.svg, fmt::format("f{}-", i + 1), d.alt), i + 1,
+        html_escape(d.name), drawings, i + 1,
         html_escape(d.title), html_escape(d.caption),
         links.empty() ? "" : "<br><span class=\"files\">Files: " + links + "</span>");
   }
@@ -304,7 +349,7 @@ std::string study_report_html(const analysis::StudyResults& r,
   }
   for (const auto& t : tables(r)) {
     page.sections.push_back(
-        {t.id, t.heading, plot::markdown_to_html(t.markdown) + csv_link(t, c.csv_beside)});
+        {t.id, t.heading, plot::markdown_to_html(t.markdown) + t.tests_html + csv_link(t, c.csv_beside)});
   }
   page.sections.push_back({"settings", "Settings", settings_html(r)});
   page.sections.push_back({"reproduce", "Reproduce", reproduce_html(r, c)});
@@ -325,7 +370,7 @@ std::string study_report_markdown(const analysis::StudyResults& r,
   o += "## Design\n\n";
   for (const auto& [k, v] : design_rows(r, c)) o += fmt::format("- {}: {}\n", k, v);
   o += "\n## Accounting: data read, excluded and warned about\n\n";
-  for (const auto& l : diagnostics_lines(r.diagnostics)) o += "- " + l + "\n";
+  for (const auto& l : accounting_lines(r)) o += "- " + l + "\n";
   if (!figures.empty()) {
     o += "\n## Figures\n\n";
     for (std::size_t i = 0; i < figures.size(); ++i) {
@@ -415,6 +460,7 @@ std::string study_results_json(const analysis::StudyResults& r) {
     else if (t.stem == "exposure_by_condition") json = tables::render_exposure(r.exposure, OutputFormat::json);
     else if (t.stem == "likert") json = tables::render_likert(*r.likert, OutputFormat::json);
     else if (t.stem == "likert_compare") json = tables::render_likert(*r.likert_compare, OutputFormat::json);
+    else if (t.stem == "yes_no") json = tables::render_yes_no(*r.yes_no, OutputFormat::json);
     o += fmt::format(",\n  {}: {}", q(t.stem), trimmed(json));
   }
   o += fmt::format(",\n  \"settings_toml\": {}\n}}\n", q(r.settings_toml));

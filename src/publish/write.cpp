@@ -64,9 +64,7 @@ WrittenStudy write_study(const analysis::Study& study, const analysis::StudyResu
       return tables::render_anova(*r.anova, f, r.table1.options.apa, wide);
     });
   }
-  if (r.model) {
-    write_all("model", [&](tables::OutputFormat f) { return tables::render_model(*r.model, f); });
-  }
+  if (r.model) write_all("model", [&](tables::OutputFormat f) { return tables::render_model(*r.model, f); });
   if (r.trend_model) {
     write_all("model_trend",
               [&](tables::OutputFormat f) { return tables::render_model(*r.trend_model, f); });
@@ -86,6 +84,7 @@ WrittenStudy write_study(const analysis::Study& study, const analysis::StudyResu
       return tables::render_likert(*r.likert_compare, f, presentation);
     });
   }
+  if (r.yes_no) write_all("yes_no", [&](tables::OutputFormat f) { return tables::render_yes_no(*r.yes_no, f); });
   write("settings.toml", r.settings_toml);
   write("results.json", study_results_json(r));
   write("findings.json", analysis::findings_json(r.findings));

@@ -82,6 +82,7 @@ ParticipantRecord simulate_participant(const StudySettings& settings, int index)
   const double e = p.mean_error - 0.45;
   p.likert = {likert(5.9 + 2.0 * e + 0.7 * rng.normal()), likert(4.7 + 6.0 * e + 0.8 * rng.normal()),
               likert(6.3 + 2.0 * e + 0.6 * rng.normal()), likert(2.4 - 3.0 * e + 0.8 * rng.normal())};
+  p.intentional = rng.uniform() < 1 / (1 + std::exp(-(p.likert[1] - 4.5)));
   return p;
 }
 
@@ -191,6 +192,10 @@ std::vector<ParticipantRecord> write_study(const StudySettings& settings, const 
                      p.likert[2], p.likert[3]);
   }
   io::write_file_atomically(folder.path("questionnaire.csv"), q);
+  std::string yes_no = "participant,condition,intentional\n";
+  for (const auto& p : all)
+    yes_no += fmt::format("{},{},{}\n", p.id, to_string(p.condition), p.intentional ? "yes" : "no");
+  io::write_file_atomically(folder.path("questionnaire_yesno.csv"), yes_no);
   io::write_file_atomically(folder.path("feint.toml"), study_toml(settings, tool_version));
   folder.commit(tool_version);
   return all;

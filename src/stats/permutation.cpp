@@ -120,15 +120,30 @@ double choose_capped(std::size_t n, std::size_t k, double cap) {
 
 }  // namespace
 
+bool every_labelling(std::size_t participants, std::size_t members, std::uint64_t permutations) {
+  if (members == 0 || members >= participants) return true;
+  const double cap = static_cast<double>(permutations) + 1;
+  return choose_capped(participants, members, cap) <= cap;
+}
+
 Labellings for_each_labelling(std::size_t participants, std::span<const std::size_t> members,
                               std::uint64_t permutations, std::uint64_t seed,
                               const std::function<void(std::span<const std::size_t>)>& visit) {
+  return for_each_labelling_while(participants, members, permutations, seed,
+                                  [&](std::span<const std::size_t> g) {
+                                    visit(g);
+                                    return true;
+                                  });
+}
+
+Labellings for_each_labelling_while(std::size_t participants, std::span<const std::size_t> members,
+                                    std::uint64_t permutations, std::uint64_t seed,
+                                    const std::function<bool(std::span<const std::size_t>)>& visit) {
   const std::size_t P = participants, k = members.size();
   if (permutations == 0) throw UsageError("for_each_labelling: permutations must be >= 1");
   if (k == 0 || k >= P) throw UsageError("for_each_labelling: both groups need at least one participant");
   Labellings out;
-  const double all = choose_capped(P, k, static_cast<double>(permutations) + 1);
-  if (all <= static_cast<double>(permutations) + 1) {
+  if (every_labelling(P, k, permutations)) {
     // Every labelling with k participants in group 1, in lexicographic order.
     out.exact = true;
     std::vector<std::size_t> g(k);
@@ -144,8 +159,8 @@ Labellings for_each_labelling(std::size_t participants, std::span<const std::siz
     }
     return out;
   }
-  visit(members);  // the observed labelling counts once
-  out.total = 1;
+  out.total = 1;  // the observed labelling counts once
+  if (!visit(members)) return out;
   std::vector<std::size_t> labels(P);
   std::iota(labels.begin(), labels.end(), std::size_t{0});
   Rng rng(seed);
@@ -155,10 +170,25 @@ Labellings for_each_labelling(std::size_t participants, std::span<const std::siz
       const std::size_t j = i + rng.bounded(static_cast<std::uint32_t>(P - i));
       std::swap(labels[i], labels[j]);
     }
-    visit(std::span<const std::size_t>(labels.data(), k));
     ++out.total;
+    if (!visit(std::span<const std::size_t>(labels.data(), k))) break;
   }
   return out;
+}
+
+SequentialPValue::SequentialPValue(std::uint64_t h, std::uint64_t n) : h_(h), n_(n) {
+  if (n < 2) throw UsageError("SequentialPValue: needs n >= 2 (at least one sampled labelling)");
+}
+
+void SequentialPValue::add(bool reaches) {
+  if (done()) return;
+  ++sampled_;
+  if (reaches) ++reached_;
+}
+
+double SequentialPValue::p() const {
+  if (stopped_early()) return static_cast<double>(h_) / static_cast<double>(sampled_);
+  return static_cast<double>(reached_ + 1) / static_cast<double>(sampled_ + 1);
 }
 
 MaxTResult maxt_step_down(std::span<const double> values, std::size_t columns, std::span<const int> group,

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "feint/io/number.hpp"
+#include "feint/tables/writers.hpp"
 
 namespace feint::tables {
 
@@ -19,6 +20,33 @@ std::string num(double x, int digits = 3) {
 std::string ci_text(const models::ParameterEstimate& p) {
   return fmt::format("{} [{}{}, {}{}]", num(p.estimate), p.low_at_bound ? "<=" : "",
                      num(p.conf_low), num(p.conf_high), p.high_at_bound ? "(bound)" : "");
+}
+
+/// The two conditions compared on the participants' fits: which way, how much, how sure.
+std::string comparisons_text(const models::StudyObserverFit& r) {
+  if (r.comparisons.empty()) return "";
+  const auto& first = r.comparisons.front();
+  std::string out = fmt::format("\nConditions compared on the participants' fits ({} against {}; Welch t test with d "
+                                "and the JZS Bayes factor, Mann-Whitney test with r_rb):\n",
+                                first.condition_a, first.condition_b);
+  for (const auto& c : r.comparisons) {
+    const auto& w = c.welch;
+    if (!w.computed) {
+      out += fmt::format("  {}: {}\n", c.parameter, w.note);
+      continue;
+    }
+    const bool log_beta = c.parameter == "log beta";
+    // A difference of log betas is the log of a ratio: state the ratio of geometric means.
+    const std::string size =
+        log_beta ? fmt::format("beta ratio {:.2f} [{:.2f}, {:.2f}] (geometric means {:.3f} vs {:.3f} /m)",
+                               std::exp(*w.estimate), std::exp(*w.conf_low), std::exp(*w.conf_high),
+                               std::exp(*w.mean1), std::exp(*w.mean2))
+                 : fmt::format("difference {:.3f} s [{:.3f}, {:.3f}] (means {:.3f} vs {:.3f} s)", *w.estimate,
+                               *w.conf_low, *w.conf_high, *w.mean1, *w.mean2);
+    out += fmt::format("  {}: {}; {}; {}{}\n", c.parameter, size, apa_string(w), apa_string(c.rank),
+                       c.at_bound ? fmt::format(" ({} estimate(s) at the range's bound, kept)", c.at_bound) : "");
+  }
+  return out;
 }
 
 std::string render_text(const models::StudyObserverFit& r, const models::ObserverFitSettings& a,
@@ -76,6 +104,7 @@ std::string render_text(const models::StudyObserverFit& r, const models::Observe
         num(g.human_confusion), num(g.model_confusion), num(g.confusion_r, 2),
         num(g.confusion_rmse), num(g.trace_r, 2), num(g.trace_rmse));
   }
+  out += comparisons_text(r);
   if (!r.issues.empty()) {
     out += "\nLeft out or flagged:\n";
     for (const auto& i : r.issues) out += fmt::format("  {}: {}\n", i.label, i.reason);
@@ -138,6 +167,21 @@ std::string render_json(const models::StudyObserverFit& r, const models::Observe
         io::json_number(g.model_confusion), io::json_number(g.confusion_r),
         io::json_number(g.confusion_rmse), io::json_number(g.trace_r),
         io::json_number(g.trace_rmse));
+  }
+  out += "],\n  \"comparisons\": [";
+  for (std::size_t i = 0; i < r.comparisons.size(); ++i) {
+    const auto& c = r.comparisons[i];
+    const std::vector<std::string_view> columns{"test", "group1", "group2", "n1", "n2", "mean1", "mean2",
+                                                "estimate", "conf_low", "conf_high", "statistic", "df",
+                                                "p_value", "cohen_d", "cohen_d_low", "cohen_d_high",
+                                                "bf10", "rank_biserial", "rank_biserial_low",
+                                                "rank_biserial_high", "note"};
+    TidyRow w{c.parameter, std::nullopt, c.condition_a, c.condition_b, c.welch, "", std::nullopt, ""};
+    TidyRow k{c.parameter, std::nullopt, c.condition_a, c.condition_b, c.rank, "", std::nullopt, ""};
+    std::string tests = write_json(columns, tidy_records(std::vector<TidyRow>{w, k}, columns));
+    while (!tests.empty() && tests.back() == '\n') tests.pop_back();
+    out += fmt::format("{}\n    {{\"parameter\": {}, \"at_bound\": {}, \"tests\": {}}}", i ? "," : "",
+                       io::json_quote(c.parameter), c.at_bound, tests);
   }
   out += "],\n  \"issues\": [";
   for (std::size_t i = 0; i < r.issues.size(); ++i) {

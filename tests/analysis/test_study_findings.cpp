@@ -116,31 +116,49 @@ TEST(StudyFindings, DemoMixedModelFindingsCarryTheModelTablesNumbers) {
     models::RelabellingOptions ro;
     ro.permutations = analysis::kModelPermutations;
     const auto rt = models::relabel_condition_tests(d, fit.group_levels, ro);
-    EXPECT_EQ(rt.labellings, 10000u);
+    // At most 10,000 labellings (the observed one and 9,999 drawn); each test's sequential
+    // p-value stops once 50 drawn ones reach its statistic: p = 50 / drawn, else (reached + 1) / 10,000.
+    EXPECT_FALSE(rt.exact);
+    EXPECT_EQ(rt.exceedances, 50u);
+    EXPECT_EQ(rt.labellings, std::max({rt.labellings_interaction, rt.labellings_condition, rt.labellings_slope}));
+    EXPECT_LE(rt.labellings, 10000u);
     EXPECT_NEAR(*rt.interaction_f, inter.f, 1e-6 * inter.f);
     EXPECT_NEAR(*rt.condition_f, cond.f, 1e-6 * cond.f);
     EXPECT_NEAR(*rt.slope_difference_t, *c.test.statistic, 1e-6);
     const std::vector<std::optional<double>> ps = {rt.p_interaction, rt.p_condition, rt.p_slope_difference};
     const auto adj = stats::p_adjust(ps, stats::PAdjustMethod::holm);
-    const std::string over = " over 10,000 labellings of the participants drawn at random; Holm-adjusted";
+    auto comma = [](std::uint64_t n) { return n < 1000 ? fmt::format("{}", n) : fmt::format("{},{:03}", n / 1000, n % 1000); };
+    auto relabelled = [&](const std::optional<double>& p, std::uint64_t n, bool stopped) {
+      EXPECT_DOUBLE_EQ(*p, stopped ? 50.0 / static_cast<double>(n - 1) : std::round(*p * 10000) / 10000) << metric;
+      if (!stopped) {
+        EXPECT_EQ(n, 10000u) << metric;
+      }
+      return "relabelling " + p_text(*p) +
+             (stopped ? fmt::format(" (sequential: 50 of {} labellings of the participants drawn at random reached "
+                                    "the statistic)", comma(n - 1))
+                      : " over 10,000 labellings of the participants drawn at random") +
+             "; Holm-adjusted";
+    };
 
     const Finding* fi = by_id(r.findings, "H1-model-interaction-" + metric);
     const Finding* fc = by_id(r.findings, "H1-model-condition-" + metric);
     const Finding* ft = by_id(r.findings, "H1-model-trend-" + metric);
     ASSERT_TRUE(fi && fc && ft) << metric;
-    // The F statistics are the model table's APA strings, in the table and in the sentence.
+    // The F statistics are the model table's terms (F, df, p) with the findings' df (whole df
+    // without a decimal: docs/findings.md "Degrees of freedom"), in the table and in the sentence.
     const std::string table = tables::render_model(*r.model, tables::OutputFormat::markdown);
-    EXPECT_EQ(fi->statistics, tables::anova_apa(inter));
-    EXPECT_EQ(fc->statistics, tables::anova_apa(cond));
+    EXPECT_EQ(fi->statistics, analysis::apa_f(inter.num_df, inter.den_df, inter.f, inter.p));
+    EXPECT_EQ(fc->statistics, analysis::apa_f(cond.num_df, cond.den_df, cond.f, cond.p));
+    EXPECT_EQ(fc->statistics.find(".0) ="), std::string::npos) << fc->statistics;
     EXPECT_TRUE(contains(fi->sentence, fi->statistics));
     EXPECT_TRUE(contains(fi->sentence, fmt::format("{:.2f}", inter.f)));
     EXPECT_TRUE(contains(table, fmt::format("{:.2f}", inter.f))) << table.substr(0, 600);
     EXPECT_TRUE(contains(fi->sentence, "Holm-adjusted over the 3 model tests of " + metric + ": " + p_text(*adj[0])))
         << fi->sentence;
     EXPECT_TRUE(contains(fc->sentence, p_text(*adj[1]))) << fc->sentence;
-    EXPECT_TRUE(contains(fi->sentence, "relabelling " + p_text(*rt.p_interaction) + over)) << fi->sentence;
-    EXPECT_TRUE(contains(fc->sentence, "relabelling " + p_text(*rt.p_condition) + over)) << fc->sentence;
-    EXPECT_TRUE(contains(ft->sentence, "relabelling " + p_text(*rt.p_slope_difference) + over)) << ft->sentence;
+    EXPECT_TRUE(contains(fi->sentence, relabelled(rt.p_interaction, rt.labellings_interaction, rt.stopped_interaction))) << fi->sentence;
+    EXPECT_TRUE(contains(fc->sentence, relabelled(rt.p_condition, rt.labellings_condition, rt.stopped_condition))) << fc->sentence;
+    EXPECT_TRUE(contains(ft->sentence, relabelled(rt.p_slope_difference, rt.labellings_slope, rt.stopped_slope))) << ft->sentence;
     expect_rule(*fi, *adj[0]);
     // The condition effect has a Bayes factor (a Welch t test on the participants' mean scores) and
     // the rule of every test with one: a difference needs the corrected p and BF10 >= 3.

@@ -61,6 +61,25 @@ for (const el of document.body.querySelectorAll('*')) {
 return out;
 """
 
+# The smallest text of each figure as drawn (px): the drawing's smallest font (data-min-font-pt, in
+# the SVG's viewBox units, pt) times the drawing's scale. Hidden drawings (the one-column drawing
+# at 1280 px, the two-column one on a phone) are not seen and not counted.
+FONT_JS = """
+const out = [];
+for (const fig of document.querySelectorAll('figure')) {
+  for (const s of fig.querySelectorAll('svg')) {
+    if (s.getClientRects().length === 0) continue;
+    const vb = s.viewBox && s.viewBox.baseVal;
+    if (!vb || !vb.width) continue;
+    // 7 pt: the plot module's tick labels (plot::kTickFontSize), when the page does not say.
+    const holder = s.closest('[data-min-font-pt]');
+    const pt = parseFloat(holder ? holder.getAttribute('data-min-font-pt') : '7');
+    out.push([fig.id, pt * s.getBoundingClientRect().width / vb.width]);
+  }
+}
+return out;
+"""
+
 # Figures (inline SVG) need a non-empty <title> (their accessible name); images need alt.
 ALT_JS = """
 let missing = 0;
@@ -200,6 +219,18 @@ def main():
             for o in js(OVERFLOW_JS) or []:
                 failures.append(f"at {width} px, {o} reaches past the right edge outside a "
                                 f"scrolling box of its own")
+            # Readable on a phone: every figure's smallest text drawn at 9 px or more.
+            fonts = js(FONT_JS) or []
+            if len(fonts) != expected_figures:
+                failures.append(f"at {width} px, {len(fonts)} figure drawings shown, "
+                                f"{expected_figures} expected")
+            for fig_id, px in fonts:
+                if px < 9:
+                    failures.append(f"at {width} px, {fig_id}'s smallest text is drawn at "
+                                    f"{px:.1f} px (< 9 px)")
+            if width == 390:
+                print(f"at 390 px the figures' smallest text is {min(p for _, p in fonts):.1f} px"
+                      if fonts else "at 390 px no figure is shown")
             if args.screenshot_dir:
                 js("window.scrollTo(0, 0); return 0")
                 d.s("POST", "/window/rect", {"width": width, "height": 1400 if width > 500 else 1600})
@@ -218,6 +249,7 @@ def main():
         if missing_alt:
             failures.append(f"{missing_alt} figure(s) or image(s) without alt text")
         sizes = js("return Array.from(document.querySelectorAll('figure svg'))"
+                   ".filter(s => s.getClientRects().length > 0)"
                    ".map(s => [s.getBoundingClientRect().width, s.getBoundingClientRect().height])")
         if len(sizes) != expected_figures or expected_figures == 0:
             failures.append(f"{len(sizes)} inline SVG figures shown, {expected_figures} expected")

@@ -144,7 +144,7 @@ TEST(ModelCli, TextReportShowsAnovaRandomEffectsContrastsAndNote) {
         "24 participants (10 in adaptive, 14 "
         "in random), 86 trials.",
         "10 participant x iteration trials without a value of error",
-        "ICC = ", "condition: F(1, 22.0) = 0.65, p = .430"})
+        "ICC = ", "condition: F(1, 22) = 0.65, p = .430"})
     EXPECT_NE(r.out.find(want), std::string::npos) << want << "\n" << r.out;
 }
 

@@ -212,7 +212,10 @@ TEST(ObserverFitCli, ALabsLogsReadWithMapGiveTheSameFitAsFeintsFormat) {
                 " -f json --no-learning --map participant=subject --map t=time_ms --time-unit ms");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::vector<double> lab = estimates(r.out);
-  ASSERT_EQ(own.size(), 12u);  // beta and tau of 4 participants and 2 conditions
+  // beta and tau of 4 participants and 2 conditions (12), then the conditions compared on log beta
+  // and on tau (Welch's estimate, and the rank test's, which has none: 0).
+  ASSERT_EQ(own.size(), 16u);
+  EXPECT_NE(r.out.find("\"comparisons\": [\n    {\"parameter\": \"log beta\""), std::string::npos) << r.out;
   ASSERT_EQ(lab.size(), own.size()) << r.out;
   for (std::size_t i = 0; i < own.size(); ++i)
     EXPECT_NEAR(lab[i], own[i], 1e-6 * std::max(1.0, std::abs(own[i]))) << i << "\n" << r.out;

@@ -14,6 +14,7 @@
 #include "feint/models/emmeans.hpp"
 
 #include "golden_csv.hpp"
+#include "accuracy.hpp"
 
 namespace {
 
@@ -26,7 +27,8 @@ using feint::test::read_csv;
 WideDesign design(const std::string& c) {
   std::vector<Observation> obs;
   std::uint64_t line = 1;
-  for (const auto& r : read_csv(kDir + "anova_data.csv")) {
+  // The strong effect (p-values below 1e-6) has its own file, made by anova_emm_golden.R.
+  for (const auto& r : read_csv(kDir + (c == "strong_effect" ? "anova_emm_strong.csv" : "anova_data.csv"))) {
     ++line;
     if (r[0] != c) continue;
     Observation o;
@@ -63,15 +65,30 @@ void check(const std::string& c) {
       const std::string n = r_name(r, it_by);
       const std::string w = c + " " + label + " " + n;
       ASSERT_TRUE(g.at(label + ".estimate").count(n)) << w;
-      EXPECT_NEAR(r.estimate, g.at(label + ".estimate").at(n), 1e-9) << w;
-      EXPECT_NEAR(r.std_error, g.at(label + ".SE").at(n), 1e-9) << w;
+      const std::string fam = tukey ? "emmeans on afex, Tukey" : "emmeans on afex";
+      for (const char* q : {"estimate", "SE", "lower", "upper", "t", "p"}) {
+        if (means && (q[0] == 't' || q[0] == 'p')) continue;
+        const double got = q[0] == 'e' ? r.estimate : q[0] == 'S' ? r.std_error : q[0] == 'l' ? r.conf_low
+                           : q[0] == 'u' ? r.conf_high : q[0] == 't' ? r.statistic : r.p_value;
+        feint::test::record(fam + " " + q, got, g.at(label + "." + q).at(n), w + " " + q);
+      }
+      // Closed forms (cell means, the pooled covariance, pt): 1e-10 relative, 1e-14 absolute for
+      // values at 0 (measured: 9e-13 relative, 6e-15 absolute). Tukey bounds use R's qtukey,
+      // which stops at |dq| < 1e-4 but is good to 2e-9 absolute here.
+      const auto near = [&](double got, double want, double rel, const char* q, double floor = 1e-14) {
+        EXPECT_LE(std::abs(got - want), rel * std::abs(want) + floor)
+            << w << " " << q << ": feint " << got << ", R " << want;
+      };
+      near(r.estimate, g.at(label + ".estimate").at(n), 1e-10, "estimate");
+      near(r.std_error, g.at(label + ".SE").at(n), 1e-10, "SE");
       EXPECT_EQ(r.df, g.at(label + ".df").at(n)) << w;
-      const double ci = tukey ? 1e-4 * r.std_error : 1e-9;
-      EXPECT_NEAR(r.conf_low, g.at(label + ".lower").at(n), ci) << w;
-      EXPECT_NEAR(r.conf_high, g.at(label + ".upper").at(n), ci) << w;
+      near(r.conf_low, g.at(label + ".lower").at(n), 1e-10, "lower", tukey ? 3e-9 : 1e-14);
+      near(r.conf_high, g.at(label + ".upper").at(n), 1e-10, "upper", tukey ? 3e-9 : 1e-14);
       if (!means) {
-        EXPECT_NEAR(r.statistic, g.at(label + ".t").at(n), 1e-8 * std::max(1.0, std::abs(r.statistic))) << w;
-        EXPECT_NEAR(r.p_value, g.at(label + ".p").at(n), 1e-6 * std::max(1e-3, g.at(label + ".p").at(n))) << w;
+        near(r.statistic, g.at(label + ".t").at(n), 1e-10, "t");
+        // Relative only; R's Tukey p (1 - ptukey) are off by up to 1.3e-11 absolute (a p of
+        // 3.9355e-9 given as 3.9287e-9): 2e-11 absolute for those.
+        near(r.p_value, g.at(label + ".p").at(n), 1e-10, "p", tukey ? 2e-11 : 0);
       }
     }
   };
@@ -88,5 +105,6 @@ void check(const std::string& c) {
 TEST(AnovaEmmeansGolden, BalancedSpherical) { check("balanced_spherical"); }
 TEST(AnovaEmmeansGolden, UnbalancedNonSpherical) { check("unbalanced_nonspherical"); }
 TEST(AnovaEmmeansGolden, ParticipantsExcludedForMissingTrials) { check("missing_trials"); }
+TEST(AnovaEmmeansGolden, StrongEffectWithPValuesBelowOneInAMillion) { check("strong_effect"); }
 
 }  // namespace

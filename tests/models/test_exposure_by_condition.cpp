@@ -9,6 +9,7 @@
 #include "feint/models/exposure.hpp"
 
 #include "golden_csv.hpp"
+#include "accuracy.hpp"
 
 namespace {
 using feint::test::read_csv;
@@ -38,7 +39,7 @@ feint::models::ExposureByCondition fit(const Data& d, std::vector<std::string> c
                                                      std::move(conditions));
 }
 
-bool near(double a, double b, double tol) { return std::fabs(a - b) <= tol * std::max(1.0, std::fabs(b)); }
+bool near_rel(double a, double b, double tol) { return std::fabs(a - b) <= tol * std::fabs(b); }
 
 }  // namespace
 
@@ -62,19 +63,26 @@ TEST(ExposureByCondition, SlopesAndTheirDifferenceMatchLmAndTTest) {
     EXPECT_EQ(r.participants, std::stoul(g[3]));
     EXPECT_EQ(r.left_out, std::stoul(g[4]));
     EXPECT_EQ(r.test.test, slope ? "one_sample_t" : "welch_t");
-    EXPECT_NEAR(*r.test.estimate, std::stod(g[5]), 1e-10);
-    EXPECT_NEAR(r.std_error, std::stod(g[6]), 1e-10);
-    EXPECT_PRED3(near, *r.test.df, std::stod(g[7]), 1e-10);
-    EXPECT_PRED3(near, *r.test.statistic, std::stod(g[8]), 1e-10);
-    EXPECT_NEAR(*r.test.p_value, std::stod(g[9]), 1e-10);
-    EXPECT_NEAR(*r.test.conf_low, std::stod(g[10]), 1e-10);
-    EXPECT_NEAR(*r.test.conf_high, std::stod(g[11]), 1e-10);
+    for (const auto& [q, got, col] : {std::tuple{"estimate", *r.test.estimate, 5}, {"SE", r.std_error, 6},
+                                      {"df", *r.test.df, 7}, {"t", *r.test.statistic, 8},
+                                      {"p", *r.test.p_value, 9}, {"lower", *r.test.conf_low, 10},
+                                      {"upper", *r.test.conf_high, 11}})
+      feint::test::record(std::string("exposure slopes (lm, t.test) ") + q, got, std::stod(g[col]));
+    // Closed forms: 1e-10 relative (measured 1e-14).
+    EXPECT_PRED3(near_rel, *r.test.estimate, std::stod(g[5]), 1e-10);
+    EXPECT_PRED3(near_rel, r.std_error, std::stod(g[6]), 1e-10);
+    EXPECT_PRED3(near_rel, *r.test.df, std::stod(g[7]), 1e-10);
+    EXPECT_PRED3(near_rel, *r.test.statistic, std::stod(g[8]), 1e-10);
+    EXPECT_PRED3(near_rel, *r.test.p_value, std::stod(g[9]), 1e-10);
+    EXPECT_PRED3(near_rel, *r.test.conf_low, std::stod(g[10]), 1e-10);
+    EXPECT_PRED3(near_rel, *r.test.conf_high, std::stod(g[11]), 1e-10);
     if (slope) {
       EXPECT_FALSE(r.test.log_bf10.has_value());
     } else {
-      // the exact integral; feint's JZS integration agrees to 1e-6 (docs/bayes-factors.md)
+      // the exact integral (R's integrate at rel.tol 1e-12); measured 4e-16
       ASSERT_TRUE(r.test.log_bf10.has_value());
-      EXPECT_NEAR(*r.test.log_bf10, std::stod(g[12]), 1e-6);
+      feint::test::record("exposure log BF", *r.test.log_bf10, std::stod(g[12]));
+      EXPECT_NEAR(*r.test.log_bf10, std::stod(g[12]), 1e-12);
       EXPECT_TRUE(r.test.cohen_d.has_value() && r.test.cohen_d_low.has_value());
     }
     if (r.left_out > 0) {

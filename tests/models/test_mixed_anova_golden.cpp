@@ -11,6 +11,7 @@
 
 #include "feint/models/mixed_anova.hpp"
 #include "stats/golden_csv.hpp"
+#include "accuracy.hpp"
 
 namespace feint::models {
 namespace {
@@ -41,6 +42,7 @@ void expect_rel(std::optional<double> actual, std::optional<double> expected,
                 const std::string& what) {
   ASSERT_EQ(actual.has_value(), expected.has_value()) << what;
   if (!expected) return;
+  feint::test::record("mixed ANOVA (afex)", *actual, *expected, what);
   const double tol = 1e-10 * std::max(std::abs(*expected), 1e-300);
   EXPECT_NEAR(*actual, *expected, tol) << what;
 }

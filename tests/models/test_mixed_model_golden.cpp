@@ -14,6 +14,7 @@
 #include "feint/stats/p_adjust.hpp"
 
 #include "golden_csv.hpp"
+#include "accuracy.hpp"
 
 namespace {
 
@@ -60,6 +61,9 @@ std::map<std::string, std::map<std::string, std::map<std::string, double>>>& gol
 }
 
 void expect_rel(double got, double want, const std::string& what, double tol = kTol) {
+  const bool rescaled = what.find(" at ") != std::string::npos;
+  const std::string quantity = rescaled ? what.substr(0, what.find(' ')) : what.substr(what.find(' ') + 1, what.find(' ', what.find(' ') + 1) - what.find(' ') - 1);
+  feint::test::record((rescaled ? "mixed model, rescaled y " : "mixed model (lme4/lmerTest) ") + quantity, got, want, what);
   const double scale = std::max(std::abs(want), 1e-12);
   EXPECT_LE(std::abs(got - want) / scale, tol) << what << ": got " << got << ", R " << want;
 }

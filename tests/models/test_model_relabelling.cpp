@@ -34,6 +34,7 @@ struct Design {
   double planted_slope = 0.0;   // extra slope per iteration in condition "b"
   double planted_shift = 0.0;   // extra level in condition "b"
   double missing = 0.0;         // share of trials left out
+  double dropout = 0.0;         // share of participants who stop after a random iteration
 };
 
 LongData simulate(const Design& s, std::uint64_t seed) {
@@ -43,7 +44,10 @@ LongData simulate(const Design& s, std::uint64_t seed) {
     for (int k = 0; k < s.per_group; ++k) {
       const double u = s.participant_sd * rnorm();
       double e = s.noise_sd * rnorm();
-      for (int j = 1; j <= s.iterations; ++j) {
+      int last = s.iterations;  // a dropout's last iteration: 2 .. iterations - 1
+      if (s.dropout > 0 && rnorm.uniform() < s.dropout)
+        last = 2 + static_cast<int>(rnorm.uniform() * (s.iterations - 2));
+      for (int j = 1; j <= last; ++j) {
         if (j > 1) e = s.ar * e + std::sqrt(1 - s.ar * s.ar) * s.noise_sd * rnorm();
         if (s.missing > 0 && rnorm.uniform() < s.missing) continue;
         d.participant.push_back((g ? "B" : "A") + std::to_string(k));
@@ -109,6 +113,8 @@ TEST(ModelRelabelling, ObservedStatisticsAreTheFitsOwnFAndT) {
   expect_same_statistics(simulate({.per_group = 8, .iterations = 4, .participant_sd = 0.0}, 4),
                          "no participant variance (a singular fit)");
   expect_same_statistics(simulate({.per_group = 7, .iterations = 5, .planted_slope = 0.3}, 5), "planted slope");
+  expect_same_statistics(simulate({.per_group = 12, .iterations = 10, .ar = 0.6, .missing = 0.03, .dropout = 0.3}, 8),
+                         "dropouts and 3% lost trials (many trial patterns and sizes)");
   auto unequal = simulate({.per_group = 9, .iterations = 4}, 6);
   // Drop 3 participants of condition b: 9 against 6.
   LongData d;
@@ -199,9 +205,12 @@ TEST(ModelRelabelling, SampledRelabellingsAgreeWithEnumerationAndRepeatWithTheir
   EXPECT_EQ(exact.labellings, 924u);
   RelabellingOptions o;
   o.permutations = 599;
+  o.exceedances = 0;  // every test counts all 599 draws
   const auto sampled = relabel_condition_tests(d, {"a", "b"}, o);
   EXPECT_FALSE(sampled.exact);
   EXPECT_EQ(sampled.labellings, 600u);
+  EXPECT_EQ(sampled.labellings_interaction, 600u);
+  EXPECT_EQ(sampled.labellings_slope, 600u);
   auto within = [](double p, double q) {
     EXPECT_NEAR(p, q, 4 * std::sqrt(q * (1 - q) / 600) + 1.0 / 600);
   };
@@ -214,6 +223,44 @@ TEST(ModelRelabelling, SampledRelabellingsAgreeWithEnumerationAndRepeatWithTheir
   o.seed = 7;
   const auto other = relabel_condition_tests(d, {"a", "b"}, o);
   within(*other.p_condition, *exact.p_condition);
+}
+
+// Besag & Clifford's sequential p-values (RelabellingOptions::exceedances = h, n = 2000): a test
+// whose fixed-n p-value is at most h / n never reaches h and is that p-value, from the same draws;
+// one above it stops once h draws reach its statistic, p = h / l after l draws, near the fixed-n p.
+TEST(ModelRelabelling, SequentialPValuesStopFarFromAlphaAndEqualTheFixedNOnesBelowHOverN) {
+  RelabellingOptions fixed, sequential;
+  fixed.permutations = sequential.permutations = 1999;
+  fixed.exceedances = 0;
+  sequential.exceedances = 20;
+  int stopped = 0, full = 0;
+  for (const std::uint64_t seed : {301u, 302u, 303u}) {
+    SCOPED_TRACE(seed);
+    // 301: a planted slope (its p about 1 / 2000); 302, 303: nulls.
+    const LongData d = simulate({.per_group = 10, .iterations = 8, .ar = 0.5, .planted_slope = seed == 301 ? 0.3 : 0.0}, seed);
+    const auto f = relabel_condition_tests(d, {"a", "b"}, fixed);
+    const auto s = relabel_condition_tests(d, {"a", "b"}, sequential);
+    EXPECT_EQ(f.labellings, 2000u);
+    EXPECT_EQ(*s.interaction_f, *f.interaction_f);
+    auto check = [&](double pf, double ps, std::uint64_t n) {
+      const double reached = std::round(pf * 2000) - 1;  // draws reaching it in the fixed-n run
+      if (reached < 20) {
+        EXPECT_EQ(ps, pf);
+        EXPECT_EQ(n, 2000u);
+        ++full;
+      } else {
+        EXPECT_DOUBLE_EQ(ps, 20.0 / static_cast<double>(n - 1));
+        EXPECT_NEAR(ps, pf, 5 * pf / std::sqrt(20.0));
+        stopped += n < 2000;
+      }
+    };
+    check(*f.p_interaction, *s.p_interaction, s.labellings_interaction);
+    check(*f.p_condition, *s.p_condition, s.labellings_condition);
+    check(*f.p_slope_difference, *s.p_slope_difference, s.labellings_slope);
+    EXPECT_EQ(s.labellings, std::max({s.labellings_interaction, s.labellings_condition, s.labellings_slope}));
+  }
+  EXPECT_GE(full, 1) << "the planted slope's p-value was expected below h / n";
+  EXPECT_GE(stopped, 4) << "the nulls' p-values were expected to stop early";
 }
 
 // A null whose trials are AR(1)-correlated within each participant (rho = 0.8) over 10 iterations:

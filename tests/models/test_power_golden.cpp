@@ -9,6 +9,7 @@
 #include "feint/error.hpp"
 #include "feint/models/power.hpp"
 #include "stats/golden_csv.hpp"
+#include "accuracy.hpp"
 
 namespace feint::models {
 namespace {
@@ -45,6 +46,7 @@ TEST(TTestPowerGolden, AgreesWithRWithin1e10) {
     const double got = solve == "n" ? *r.spec.n : solve == "delta" ? *r.spec.delta : *r.spec.power;
     const double rel = std::abs(got - want) / std::abs(want);
     worst = std::max(worst, rel);
+    feint::test::record("power (pwr)", got, want, row.str("source") + " " + solve);
     EXPECT_LE(rel, 1e-10) << row.str("source") << " " << solve << " " << row.str("type") << " "
                           << row.str("alternative") << " m=" << row.str("tests") << " got " << got
                           << " want " << want;

@@ -165,18 +165,21 @@ TEST(ResultsText, AbsentNumbersAreLeftOutNeverPrintedAsNan) {
   bare.effect_size = EffectSize{"d", std::nan(""), std::nullopt, std::nullopt};
   bare.statistics = "t(57.50) = NA, p = NA";
   Finding conf = inconclusive_confusion();
-  conf.ci_low = -std::numeric_limits<double>::infinity();  // a one-sided interval: no CI printed
+  conf.ci_low = -std::numeric_limits<double>::infinity();  // a one-sided interval, open below as R's
   conf.effect_size.reset();
   conf.bf10.reset();
   conf.bf_note = "no Bayes factor for this test";
   const std::vector<Finding> fs{bare, conf};
   for (const auto format : {ResultsFormat::markdown, ResultsFormat::latex, ResultsFormat::html}) {
-    const std::string t = results_text({h1()}, fs, format);
+    std::string t = results_text({h1()}, fs, format);
+    // LaTeX's \infty is the one-sided interval's open end, not a number printed as "inf".
+    for (auto k = t.find("\\infty"); k != std::string::npos; k = t.find("\\infty")) t.erase(k, 6);
     for (const char* bad : {"nan", "NA", "inf", "Inf"}) EXPECT_EQ(t.find(bad), std::string::npos) << bad << "\n" << t;
   }
   const std::string p = md_paragraph(h1(), fs);
   EXPECT_NE(p.find(" Error: no evidence either way. Confusion: adaptive *M* = 0.35, random *M* = 0.34; difference "
-                   "(adaptive \u2212 random) 0.01; Welch t test, *t*(55.12) = 0.83, *p* = .410, no Bayes factor: "
+                   "(adaptive \u2212 random) 0.01, 95% CI (\u2212\u221e, 0.04]; Welch t test, *t*(55.12) = 0.83, *p* = .410, "
+                   "no Bayes factor: "
                    "no evidence either way. "),
             std::string::npos) << p;
 }

@@ -188,7 +188,36 @@ TEST(WriteStudy, WritesGzippedLogsAndAQuestionnaire) {
     }
   }
   EXPECT_EQ(n, 4);
+  // The yes/no question, as `feint collect` writes it: one row per participant, in order.
+  feint::io::CsvReader yn((dir / "questionnaire_yesno.csv").string());
+  EXPECT_EQ(yn.header(), (std::vector<std::string>{"participant", "condition", "intentional"}));
+  for (const auto& p : people) {
+    ASSERT_TRUE(yn.next());
+    EXPECT_EQ(yn.field(0), p.id);
+    EXPECT_EQ(yn.field(1), to_string(p.condition));
+    EXPECT_EQ(yn.field(2), p.intentional ? "yes" : "no");
+  }
+  EXPECT_FALSE(yn.next());
   std::filesystem::remove_all(dir);
+}
+
+TEST(SimulatedStudy, IntentionalFollowsTheDeceptionRatingAsDocumented) {
+  // P(yes | deception rating d) = 1 / (1 + exp(-(d - 4.5))): over 400 participants the yes count
+  // equals the sum of those probabilities within 4 standard deviations of the binomial sum.
+  StudySettings s;
+  s.participants = 200;
+  s.iterations = 2;
+  double expected = 0, variance = 0;
+  int yes = 0;
+  for (int i = 0; i < 2 * s.participants; ++i) {
+    const auto p = simulate_participant(s, i);
+    const double q = 1 / (1 + std::exp(-(p.likert[1] - 4.5)));
+    expected += q;
+    variance += q * (1 - q);
+    yes += p.intentional ? 1 : 0;
+  }
+  EXPECT_NEAR(yes, expected, 4 * std::sqrt(variance));
+  EXPECT_GT(variance, 20.0);  // the ratings vary, so the check has power
 }
 
 // The goal-inference participant (the default of feint simulate study; docs/paper-scale.md) meets

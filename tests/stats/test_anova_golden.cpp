@@ -11,6 +11,7 @@
 #include "feint/error.hpp"
 #include "feint/stats/anova.hpp"
 #include "golden_csv.hpp"
+#include "accuracy.hpp"
 
 namespace fs = feint::stats;
 using feint::test::GoldenCsv;
@@ -28,6 +29,7 @@ std::vector<std::vector<double>> parse_groups(const std::string& text) {
 
 void expect_rel(std::optional<double> got, double want, const char* what, double abs_floor = 0) {
   ASSERT_TRUE(got.has_value()) << what;
+  feint::test::record("one-way ANOVA", *got, want, what);
   EXPECT_LE(std::fabs(*got - want), std::max(1e-10 * std::fabs(want), abs_floor))
       << what << ": feint " << *got << ", R " << want;
 }

@@ -9,6 +9,7 @@
 
 #include "golden_csv.hpp"
 #include "feint/stats/rank_tests.hpp"
+#include "accuracy.hpp"
 
 namespace fs = feint::stats;
 using feint::test::GoldenCsv;
@@ -28,6 +29,7 @@ std::string rank_golden(const std::string& name) {
     return ::testing::AssertionFailure() << "expected empty, got " << *actual;
   }
   if (!actual) return ::testing::AssertionFailure() << "empty, expected " << *expected;
+  feint::test::record("rank tests", *actual, *expected);
   const double tol = std::max(1e-10 * std::fabs(*expected), abs_floor);
   if (std::fabs(*actual - *expected) <= tol) return ::testing::AssertionSuccess();
   return ::testing::AssertionFailure() << ::testing::PrintToString(*actual) << " vs R "

@@ -12,6 +12,7 @@
 #include "feint/stats/p_adjust.hpp"
 #include "feint/stats/ttest.hpp"
 #include "golden_csv.hpp"
+#include "accuracy.hpp"
 
 namespace fs = feint::stats;
 using feint::test::GoldenCsv;
@@ -33,6 +34,7 @@ constexpr double kRel = 1e-10;
     return ::testing::AssertionFailure() << what << ": feint " << *got << ", R " << *want;
   }
   const double err = std::fabs(*got - *want);
+  feint::test::record("t tests", *got, *want, what);
   if (err <= std::max(kRel * std::fabs(*want), abs_floor)) return ::testing::AssertionSuccess();
   char buf[160];
   std::snprintf(buf, sizeof buf, "%s: feint %.17g, R %.17g (rel. error %.3g)", what, *got, *want,

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "feint/tables/likert.hpp"
+#include "accuracy.hpp"
 
 using feint::tables::analyze_likert_file;
 using feint::tables::LikertAnalysis;
@@ -134,6 +135,7 @@ std::optional<double> feint_value(const LikertAnalysis& a, const Golden& g,
 
 bool close(double got, double want) {
   const double diff = std::fabs(got - want);
+  feint::test::record("Likert tables (psych, wilcox.test)", got, want);
   return diff <= 1e-10 * std::fabs(want) || diff <= 1e-13;
 }
 

@@ -23,6 +23,7 @@
 #include "feint/tables/likert.hpp"
 #include "feint/tables/model.hpp"
 #include "feint/tables/table1.hpp"
+#include "feint/tables/yes_no.hpp"
 
 namespace feint::analysis {
 
@@ -89,6 +90,14 @@ struct StudyResults {
   std::optional<tables::ModelAnalysis> trend_model;  ///< metric ~ condition * iteration as a trend
   std::optional<tables::LikertAnalysis> likert;          ///< against the reference
   std::optional<tables::LikertAnalysis> likert_compare;  ///< A against B
+  /// The yes/no questions (questionnaire_yesno.csv): proportions per condition, and with two
+  /// conditions compared Fisher's exact test and the chi-square test (docs/yes-no.md).
+  std::optional<tables::YesNoAnalysis> yes_no;
+  /// The one-sided tests of a confirmatory hypothesis with a direction (H1: the comparison, H2:
+  /// the questionnaire between the conditions), with that alternative: its findings rest on them;
+  /// the tables above, and every exploratory finding, stay two-sided (docs/findings.md).
+  std::optional<tables::Table1> comparison_one_sided;
+  std::optional<tables::LikertAnalysis> likert_compare_one_sided;
   /// Condition x exposure per strategy, one per metric (two conditions and the trials' strategies
   /// needed; analysis::exposure_table); the findings' source "exposure".
   std::vector<tables::ExposureTable> exposure;

@@ -28,6 +28,9 @@ struct Study {
   /// The Likert settings (questionnaire loading options, composites, reference, tests).
   tables::LikertSettings likert;
   std::optional<io::Questionnaire> answers;  ///< loaded and validated; empty without one
+  /// STUDY/questionnaire_yesno.csv (written by `feint collect`) when present: yes/no answers
+  /// read with the questionnaire's column options (docs/yes-no.md).
+  std::optional<io::Questionnaire> yes_no_answers;
   /// Typed settings, checked once.
   metrics::ScoreSettings scoring;
   ResolvedReportOptions tests;

@@ -19,16 +19,23 @@
 //
 //     p = #{labellings b : s_b >= s_obs} / B_total,   s = F (interaction, condition) or |t| (slope)
 //
-// over every labelling when there are at most `permutations + 1`, else the observed one and
-// `permutations` uniform draws (stats::for_each_labelling; seeded, the same on every machine).
+// over every labelling when there are at most `permutations + 1`. Otherwise the labellings are
+// drawn uniformly (stats::for_each_labelling_while; seeded, the same on every machine) and each
+// test's p-value is Besag & Clifford's sequential one (stats::SequentialPValue): a test stops once
+// `exceedances` (h) drawn labellings reach its observed statistic, p = h / l after l draws, or
+// after `permutations` draws with g < h reaching it, p = (g + 1) / (permutations + 1) (the fixed-n
+// p-value). Both are exact under exchangeability; a p-value far above alpha stops after about h / p
+// draws, and one below h / (permutations + 1) is the fixed-n one from the same draws.
 //
-// Each relabelling is a full REML refit, made fast by the models' structure: in the cell-means
-// parametrisation (one mean per condition x iteration cell, or an intercept and a slope per
-// condition) X'V^-1 X is block-diagonal by condition, and with V = sigma^2 (I + theta^2 Z Z') every
-// term is a sum over participants of their counts and sums (the Fuller–Battese weights
-// c_i = theta^2 / (1 + n_i theta^2)), so that one REML evaluation costs O(m^2) per condition plus
-// O(m^2) per participant with missing trials, and theta is found by Brent's method. The observed
-// statistics equal fit_mixed_model's F and t (tested to 1e-6).
+// Each relabelling is a full REML refit, made cheap by the models' structure: in the cell-means
+// parametrisation X'V^-1 X is block-diagonal by condition, and with V = sigma^2 (I + theta^2 Z Z')
+// it is D - U W U' (D the trials per cell, U the few distinct patterns of a participant's trials
+// over the iterations, W their Fuller–Battese weights c_n = theta^2 / (1 + n theta^2) times their
+// participants), so that by Woodbury one REML evaluation factorises an r x r matrix, r = the
+// patterns present (1 when every participant has every trial), and the linear trend's is 2 x 2 per
+// condition. theta is found by Brent's method, or in closed form when every participant has every
+// trial (the REML criterion then splits into two strata). The observed statistics equal fit_mixed_model's F
+// and t (tested to 1e-6).
 #pragma once
 
 #include <cstdint>
@@ -41,8 +48,13 @@
 namespace feint::models {
 
 struct RelabellingOptions {
-  std::uint64_t permutations = 9999;  ///< relabellings drawn when not enumerated exactly
+  std::uint64_t permutations = 9999;  ///< relabellings drawn at most when not enumerated exactly
   std::uint64_t seed = 20261126;
+  /// Besag & Clifford's h: a test's draws stop once h of them reach its observed statistic
+  /// (0 = never: every test counts all `permutations` draws). With h = 50 a true p outside
+  /// [alpha / 1.5, 1.5 alpha] gets the other side of alpha with probability below 0.4 %
+  /// (docs/findings.md, "Mixed models: relabelling p-values").
+  std::uint64_t exceedances = 50;
 };
 
 /// The observed statistics and their relabelling p-values. A statistic is empty when the observed
@@ -54,8 +66,15 @@ struct RelabelledConditionTests {
   std::optional<double> condition_f;         ///< condition, iteration as a factor
   std::optional<double> slope_difference_t;  ///< group_levels[1] minus group_levels[0], linear trend
   std::optional<double> p_interaction, p_condition, p_slope_difference;
-  std::uint64_t labellings = 0;  ///< labellings counted, the observed one included
+  std::uint64_t labellings = 0;  ///< labellings visited, the observed one included (the most of any test)
   bool exact = false;            ///< every labelling enumerated
+  /// Labellings each p-value counts, the observed one included: all of them when exact, else the
+  /// observed one and the draws until the test stopped (RelabellingOptions::exceedances).
+  std::uint64_t labellings_interaction = 0, labellings_condition = 0, labellings_slope = 0;
+  /// Whether each test stopped early: then its p-value is exceedances / (labellings_* - 1), that
+  /// many of the drawn labellings reaching the observed statistic.
+  bool stopped_interaction = false, stopped_condition = false, stopped_slope = false;
+  std::uint64_t exceedances = 0;  ///< RelabellingOptions::exceedances when sampled, 0 when exact
   std::uint64_t not_computable = 0;
 };
 

@@ -31,6 +31,7 @@
 #include "feint/metrics/trial_metrics.hpp"
 #include "feint/models/deceptiveness.hpp"
 #include "feint/models/goal_inference.hpp"
+#include "feint/stats/htest.hpp"
 
 namespace feint::models {
 
@@ -148,7 +149,21 @@ struct TrialIssue {
   std::string reason;
 };
 
+/// One parameter of the participants' fits compared between two conditions (participant level:
+/// one estimate per participant). beta is compared on the log scale (it is a rate, positive and
+/// right-skewed: a ratio of betas is what a difference of logs estimates); tau on its own scale.
+/// `welch`: Welch's t test with Cohen's d and its CI and the JZS Bayes factor (r = sqrt(2)/2);
+/// `rank`: the Mann–Whitney test with the rank-biserial correlation and its CI (docs/observer.md).
+struct ObserverComparison {
+  std::string parameter;  // "log beta" or "tau"
+  std::string condition_a, condition_b;
+  stats::TestResult welch;
+  stats::TestResult rank;
+  std::size_t at_bound = 0;  // participants whose estimate lies at the range's bound (kept)
+};
+
 struct StudyObserverFit {
+  std::vector<ObserverComparison> comparisons;  // two conditions: log beta, then tau
   std::vector<ObserverFit> participants;
   std::vector<ObserverFit> conditions;   // pooled per condition
   std::vector<AgreementRow> agreement;
@@ -159,7 +174,14 @@ struct StudyObserverFit {
 
 /// The whole study: every trial checked (a bad one is reported in `issues` by label and left out;
 /// the rest are fitted), per-participant fits, pooled fits per condition, agreement per condition x
-/// strategy x iteration (with "all" margins), and the learning test per condition.
+/// strategy x iteration (with "all" margins), the learning test per condition, and with exactly two
+/// conditions the participants' beta and tau compared between them (`comparisons`).
 StudyObserverFit fit_study(std::vector<ObservedTrial> trials, const ObserverFitSettings& settings);
+
+/// beta (log) and tau of the participants' fits compared between conditions a and b, at `level`.
+/// Empty when either condition has fewer than two participants.
+std::vector<ObserverComparison> compare_conditions(std::span<const ObserverFit> participants,
+                                                   const std::string& a, const std::string& b,
+                                                   double level);
 
 }  // namespace feint::models

@@ -7,10 +7,14 @@
 //   ptukey(q, k, df) = int_0^inf P(range <= q s) f_df(s) ds,  s = sqrt(chi2_df / df),
 //   f_df(s) = 2 (df/2)^(df/2) s^(df-1) exp(-df s^2 / 2) / Gamma(df/2)
 //
-// Both integrals by piecewise 20-point Gauss-Legendre rules (~1e-12); the complement
-// Phi is used where Phi is near 1 (no cancellation). qtukey inverts ptukey by bracketing and
-// TOMS 748 to ~1e-12 relative. R's qtukey stops its secant iteration at |dq| < 1e-4, so it is only
-// that precise (docs/mixed-model.md); feint's is exact to the quadrature.
+// Both integrals by piecewise 20-point Gauss-Legendre rules; the outer one in u = log s, and
+// P(range <= w) read from per-k Chebyshev tables of its quadrature (built once per k, ~1 ms), so a
+// call costs a few microseconds. Absolute error below 1e-15 (5.5e-16 measured) in P and in 1 - P
+// against 34-digit quadrature for q 0.01..50, k 2..100, df 2..infinity, whole or not
+// (tests/models/test_studentized_range_reference.cpp); Phi's complement is used where Phi is near
+// 1 (no cancellation). qtukey inverts ptukey by bracketing and TOMS 748 to ~1e-12 relative.
+// R's qtukey stops its secant iteration at |dq| < 1e-4, so it is only that precise
+// (docs/mixed-model.md); feint's is exact to the quadrature.
 #pragma once
 
 namespace feint::models {

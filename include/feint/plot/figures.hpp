@@ -48,8 +48,8 @@ struct MetricRange {
   double lo = -std::numeric_limits<double>::infinity();
   double hi = std::numeric_limits<double>::infinity();
 };
-/// [0, 1] for error and confusion (fractions of the pad's travel); unbounded otherwise (e.g.
-/// raw_confusion, in seconds).
+/// [0, 1] for error (a fraction of the pad's travel); [0, inf) for confusion (unbounded above on
+/// its raw scale, the default: docs/metrics.md "One scale"); unbounded otherwise.
 MetricRange metric_range(const std::string& metric);
 
 /// The axis label of a metric with its unit ("Error (pad units)"); the name itself otherwise.

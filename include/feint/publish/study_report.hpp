@@ -23,6 +23,9 @@ struct RenderedFigure {
   std::string alt;                 ///< alt text: what the figure shows, in one sentence
   std::string svg;                 ///< the two-column SVG for the page
   std::vector<std::string> files;  ///< relative to the output folder ("figures/error-2col.pdf")
+  /// The one-column SVG, shown instead on a narrow screen (a phone's 390 px), where the
+  /// two-column figure's 7 pt text would be drawn at 5 px.
+  std::string svg_narrow = {};
 };
 
 /// The figures the results allow, drawn in `formats` (pdf, svg, png) and written into

@@ -45,6 +45,10 @@ struct ParticipantRecord {
   std::vector<TrialRecord> trials;
   double mean_error = 0;
   std::array<int, 4> likert{};  // entertainment, deception, intelligence, trust (1-7)
+  /// The yes/no question "was the robot deceiving you on purpose?" (questionnaire_yesno.csv): yes
+  /// with probability 1 / (1 + exp(-(deception - 4.5))), drawn last so that every other number of
+  /// a participant is the same as before the question was simulated.
+  bool intentional = false;
 };
 
 /// Error of a trial (paper eq. 3), for checks on simulated data: the time-weighted mean of

@@ -67,6 +67,47 @@ Labellings for_each_labelling(std::size_t participants, std::span<const std::siz
                               std::uint64_t permutations, std::uint64_t seed,
                               const std::function<void(std::span<const std::size_t>)>& visit);
 
+/// True when for_each_labelling enumerates every labelling of `participants` with `members` of them
+/// in group 1 (there are at most `permutations + 1`), false when it samples them.
+bool every_labelling(std::size_t participants, std::size_t members, std::uint64_t permutations);
+
+/// As for_each_labelling, but `visit` answers whether to go on: false stops the sampled labellings
+/// (a sequential p-value). Enumeration ignores the answer: its order is not random, so stopping it
+/// early would bias the p-value.
+Labellings for_each_labelling_while(std::size_t participants, std::span<const std::size_t> members,
+                                    std::uint64_t permutations, std::uint64_t seed,
+                                    const std::function<bool(std::span<const std::size_t>)>& visit);
+
+/// Besag & Clifford's (1991) sequential Monte Carlo p-value of one test over sampled labellings:
+/// sample until h of them reach the observed statistic, or until n - 1 have been sampled. With g
+/// of the l sampled labellings reaching it,
+///
+///     p = h / l            when the h-th reaching labelling is the l-th sampled (stopped early)
+///     p = (g + 1) / n      when n - 1 were sampled with g < h reaching it (as the fixed-n p)
+///
+/// Under the null (the observed labelling exchangeable with the sampled ones) P(p <= u) = u at
+/// every value u the sampler can give, and <= u elsewhere: the p-value is exact, not only
+/// approximate (Besag & Clifford 1991, Biometrika 78, 301-304; ties counted as reaching make it
+/// conservative). A p-value far above alpha stops after about h / p labellings; one below h / n is
+/// the fixed-n p-value itself, from the same labellings. h = 0: never stop early (the fixed-n p).
+class SequentialPValue {
+ public:
+  /// `h` reaching labellings to stop at (0 = never), `n` = the most labellings counted, the
+  /// observed one included (n - 1 sampled). Throws UsageError when n < 2.
+  SequentialPValue(std::uint64_t h, std::uint64_t n);
+  /// Counts the next sampled labelling; ignored once done().
+  void add(bool reaches);
+  bool stopped_early() const { return h_ > 0 && reached_ == h_; }
+  bool done() const { return stopped_early() || sampled_ + 1 >= n_; }
+  /// h / l when stopped early, else (g + 1) / (l + 1): (g + 1) / n once all n - 1 are sampled.
+  double p() const;
+  /// Labellings counted, the observed one included.
+  std::uint64_t labellings() const { return sampled_ + 1; }
+
+ private:
+  std::uint64_t h_, n_, sampled_ = 0, reached_ = 0;
+};
+
 /// The maxT adjustment of `columns` two-sample t tests. `values` is participant-major
 /// (values[i * columns + j]: participant i, test j; NaN = missing, left out of that test only);
 /// `group[i]` is 1 (group 1, x) or 0 (group 2, y). Throws UsageError for mismatched sizes, labels

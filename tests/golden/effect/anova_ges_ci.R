@@ -83,4 +83,7 @@ res <- do.call(rbind, out)
 print(res[, c("case", "effect", "ges", "df1", "df2", "ges_low", "es_low")])
 cat("max |ges - afex ges|:", max(abs(res$ges - res$afex_ges)), "\n")
 cat("max |effectsize low - exact low|:", max(abs(res$es_low - res$ges_low)), "\n")
+# Every number with 17 significant digits (write.csv keeps 15, which would cap the agreement).
+num <- vapply(res, is.numeric, TRUE)
+res[num] <- lapply(res[num], function(x) sprintf("%.17g", x))
 write.csv(res, "tests/golden/effect/anova_ges_ci.csv", row.names = FALSE, quote = FALSE)

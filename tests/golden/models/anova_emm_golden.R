@@ -3,7 +3,8 @@
 # the multivariate model (afex_options(emmeans_model = "multivariate")): cell means, and every
 # contrast's SE from the pooled within-condition covariance of the iterations, df = N - a.
 #   cd tests/golden/models && Rscript anova_emm_golden.R
-# Reads anova_data.csv (anova_golden.R), writes anova_emm_golden.csv (case, quantity, name, value).
+# Reads anova_data.csv (anova_golden.R), writes anova_emm_strong.csv and anova_emm_golden.csv (case,
+# quantity, name, value).
 suppressPackageStartupMessages({ library(afex); library(emmeans) })
 afex_options(emmeans_model = "multivariate")
 d0 <- read.csv("anova_data.csv")
@@ -23,7 +24,15 @@ rows <- function(case, label, obj, means) {
     if (!means) { put(case, paste0(label, ".t"), n, s$t.ratio[i]); put(case, paste0(label, ".p"), n, s$p.value[i]) }
   }
 }
-for (case in c("balanced_spherical", "unbalanced_nonspherical", "missing_trials")) {
+# A strong effect, for p-values far below 1e-6: balanced_spherical with 0.2 * (iteration - 1)
+# added to every 'adaptive' value, written to anova_emm_strong.csv (same columns).
+s <- d0[d0$case == "balanced_spherical", ]
+s$case <- "strong_effect"
+s$value <- sprintf("%.6f", s$value + ifelse(s$condition == "adaptive", 0.2 * (s$iteration - 1), 0))
+write.csv(s, "anova_emm_strong.csv", row.names = FALSE, quote = FALSE)
+s$value <- as.numeric(s$value)
+d0 <- rbind(d0, s)
+for (case in c("balanced_spherical", "unbalanced_nonspherical", "missing_trials", "strong_effect")) {
   d <- d0[d0$case == case & !is.na(d0$value), ]
   d$iteration <- factor(d$iteration)
   a <- suppressMessages(suppressWarnings(aov_ez("participant", "value", d, between = "condition",

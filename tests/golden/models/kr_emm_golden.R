@@ -4,6 +4,7 @@
 #   cd tests/golden/models && Rscript kr_emm_golden.R
 #
 # Writes lmm_single_trial.csv (unbalanced4_missing with participant P03 reduced to one trial),
+# lmm_strong_effect.csv (balanced5 with a strong effect: p-values below 1e-6),
 # lmm_missing_cell.csv (balanced5 without condition 'adaptive' at iteration 3, fitted with
 # iteration as a trend) and kr_emm_golden.csv (case, ddf, quantity, name, value).
 # Type-III ANOVA: lmerTest::anova(m, ddf = "Kenward-Roger") (pbkrtest::KRmodcomp) and
@@ -26,6 +27,11 @@ write.csv(d, "lmm_single_trial.csv", row.names = FALSE, quote = FALSE)
 d <- read.csv("lmm_balanced5.csv")
 d <- d[!(d$condition == "adaptive" & d$iteration == 3), ]
 write.csv(d, "lmm_missing_cell.csv", row.names = FALSE, quote = FALSE)
+# A strong effect, for p-values far below 1e-6 (F p ~ 1e-8, contrasts' p to ~1e-12): balanced5
+# with 0.1 * (iteration - 1) added to every 'adaptive' error.
+d <- read.csv("lmm_balanced5.csv")
+d$error <- sprintf("%.6f", d$error + ifelse(d$condition == "adaptive", 0.1 * (d$iteration - 1), 0))
+write.csv(d, "lmm_strong_effect.csv", row.names = FALSE, quote = FALSE)
 
 emm_rows <- function(case, ddf, label, e) {
   s <- as.data.frame(summary(e, infer = c(TRUE, TRUE)))
@@ -91,4 +97,5 @@ fit_case("unbalanced4_missing")
 fit_case("single_trial")
 fit_case("missing_cell", trend = TRUE)
 fit_case("trend_slope", trend = TRUE, slope = TRUE)
+fit_case("strong_effect")
 write.csv(do.call(rbind, out), "kr_emm_golden.csv", row.names = FALSE, quote = FALSE)

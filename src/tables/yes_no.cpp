@@ -1,0 +1,196 @@
+// The yes/no questions: see feint/tables/yes_no.hpp.
+#include "feint/tables/yes_no.hpp"
+
+#include <algorithm>
+#include <set>
+
+#include <fmt/format.h>
+
+#include "feint/error.hpp"
+
+namespace feint::tables {
+
+namespace {
+
+std::string percent(double v) { return std::isnan(v) ? "–" : fmt::format("{:.0f}%", 100 * v); }
+std::string interval(double lo, double hi) {
+  return std::isnan(lo) ? "–" : fmt::format("[{:.2f}, {:.2f}]", lo, hi);
+}
+
+std::vector<std::size_t> respondents_in(const io::Questionnaire& q, const std::string& group) {
+  std::vector<std::size_t> out;
+  for (std::size_t r = 0; r < q.respondents(); ++r)
+    if (!q.has_condition || q.conditions[r] == group) out.push_back(r);
+  return out;
+}
+
+YesNoSummary summarise(const io::Questionnaire& q, std::size_t item, const std::string& group,
+                       double conf_level) {
+  std::size_t yes = 0, n = 0, missing = 0;
+  for (const auto r : respondents_in(q, group)) {
+    const auto& a = q.responses[item][r];
+    if (!a) ++missing;
+    else { ++n; yes += *a == 1 ? 1 : 0; }
+  }
+  return {q.items[item], group, stats::describe_proportion(yes, n, conf_level), missing};
+}
+
+/// Checks the compared conditions exist and are independent (Fisher's and the chi-square test
+/// compare two independent groups).
+void check_comparison(const io::Questionnaire& q, const std::vector<std::string>& groups,
+                      const std::pair<std::string, std::string>& compare) {
+  if (!q.has_condition)
+    throw UsageError(fmt::format("--compare {},{}: {} has no condition column (use --condition-column)",
+                                 compare.first, compare.second, q.source));
+  for (const auto& c : {compare.first, compare.second})
+    if (std::find(groups.begin(), groups.end(), c) == groups.end())
+      throw UsageError(fmt::format("--compare {},{}: {} has no condition {} (conditions: {})", compare.first,
+                                   compare.second, q.source, c, fmt::join(groups, ", ")));
+  if (compare.first == compare.second)
+    throw UsageError(fmt::format("--compare {0},{0}: a condition against itself", compare.first));
+  std::set<std::string> in_a;
+  for (const auto r : respondents_in(q, compare.first)) in_a.insert(q.participants[r]);
+  for (const auto r : respondents_in(q, compare.second))
+    if (in_a.count(q.participants[r]) != 0)
+      throw InvalidData(fmt::format("{}: participant {} answered in both conditions {} and {}; Fisher's exact "
+                                    "test compares independent groups (give each participant one condition)",
+                                    q.source, q.participants[r], compare.first, compare.second));
+}
+
+TidyRow comparison_row(const std::string& question, const std::string& a, const std::string& b,
+                       stats::TestResult result, double alpha) {
+  TidyRow row;
+  row.metric = question;
+  row.group1 = a;
+  row.group2 = b;
+  // Two proportions: no Bayes factor and no equivalence test, so "≈" is never earned.
+  if (!result.computed) row.label = std::string(kNotComputable);
+  else if (*result.p_value >= alpha) row.label = std::string(kNotSignificant);
+  else row.label = *result.mean1 > *result.mean2 ? "A>B" : "A<B";
+  row.result = std::move(result);
+  return row;
+}
+
+}  // namespace
+
+io::QuestionnaireOptions yes_no_load_options() {
+  io::QuestionnaireOptions o;
+  o.layout = io::QuestionnaireLayout::wide_format;
+  o.scale_min = 0;
+  o.scale_max = 1;
+  o.labels = {{"yes", 1}, {"no", 0}, {"y", 1}, {"n", 0}, {"true", 1}, {"false", 0}};
+  return o;
+}
+
+YesNoAnalysis analyze_yes_no(const io::Questionnaire& q, const YesNoSettings& settings) {
+  YesNoAnalysis a;
+  a.settings = settings;
+  a.source = q.source;
+  a.questions = q.items;
+  a.groups = q.has_condition ? q.condition_names() : std::vector<std::string>{""};
+  if (settings.compare) check_comparison(q, a.groups, *settings.compare);
+  for (std::size_t i = 0; i < q.items.size(); ++i)
+    for (const auto& g : a.groups) a.summaries.push_back(summarise(q, i, g, settings.test.conf_level));
+  a.notes.push_back(fmt::format(
+      "Proportion of yes with its exact (Clopper–Pearson) and Wilson {:g}% intervals; empty answers "
+      "are left out of n.", 100 * settings.test.conf_level));
+  if (!settings.compare) return a;
+  const auto& [ga, gb] = *settings.compare;
+  for (std::size_t i = 0; i < q.items.size(); ++i) {
+    const auto& sa = *std::find_if(a.summaries.begin(), a.summaries.end(),
+                                   [&](const auto& s) { return s.question == q.items[i] && s.group == ga; });
+    const auto& sb = *std::find_if(a.summaries.begin(), a.summaries.end(),
+                                   [&](const auto& s) { return s.question == q.items[i] && s.group == gb; });
+    const stats::YesNoTable t{sa.proportion.x, sa.proportion.n, sb.proportion.x, sb.proportion.n};
+    a.rows.push_back(comparison_row(q.items[i], ga, gb, stats::fisher_exact(t, settings.test), settings.alpha));
+    a.rows.push_back(comparison_row(q.items[i], ga, gb, stats::prop_test(t, settings.test), settings.alpha));
+  }
+  a.notes.push_back(fmt::format(
+      "{} against {}: Fisher's exact test (primary) with the conditional maximum-likelihood odds ratio of "
+      "yes and its interval; beside it the chi-square test of two proportions (Yates-corrected) with the "
+      "difference of the proportions. A>B / A<B: p < {:g}; n.s. otherwise (no test here gives evidence "
+      "of no difference).",
+      ga, gb, settings.alpha));
+  return a;
+}
+
+YesNoAnalysis analyze_yes_no_file(const std::string& path, const YesNoSettings& settings) {
+  return analyze_yes_no(io::load_questionnaire(path, settings.load), settings);
+}
+
+namespace {
+
+std::string render_records(const YesNoAnalysis& a, OutputFormat format) {
+  const std::vector<std::string_view> columns{"question", "condition", "yes", "n", "missing", "proportion",
+                                              "exact_low", "exact_high", "wilson_low", "wilson_high"};
+  std::vector<Record> records;
+  for (const auto& s : a.summaries) {
+    const auto& p = s.proportion;
+    records.push_back({Cell::str(s.question), Cell::str(s.group), Cell::integer(static_cast<long long>(p.x)),
+                       Cell::integer(static_cast<long long>(p.n)), Cell::integer(static_cast<long long>(s.missing)),
+                       Cell::num(p.n ? std::optional(p.estimate) : std::nullopt),
+                       Cell::num(p.n ? std::optional(p.exact_low) : std::nullopt),
+                       Cell::num(p.n ? std::optional(p.exact_high) : std::nullopt),
+                       Cell::num(p.n ? std::optional(p.wilson_low) : std::nullopt),
+                       Cell::num(p.n ? std::optional(p.wilson_high) : std::nullopt)});
+  }
+  const auto test_columns = table_columns();
+  if (format == OutputFormat::csv) {
+    std::string out = write_csv(columns, records);
+    if (!a.rows.empty()) out += "\n" + tidy_csv(a.rows, test_columns);
+    return out;
+  }
+  std::string out = "{\"proportions\": " + write_json(columns, records);
+  if (!out.empty() && out.back() == '\n') out.pop_back();
+  out += ", \"tests\": " + tidy_json(a.rows, test_columns);
+  if (!out.empty() && out.back() == '\n') out.pop_back();
+  return out + "}\n";
+}
+
+TextTable comparison_table(const YesNoAnalysis& a) {
+  TextTable t;
+  t.caption = fmt::format("Yes/no questions: {} against {}", a.settings.compare->first, a.settings.compare->second);
+  t.header = {"Question", "Test", "Estimate", "CI", "Statistic", "p", "Inference"};
+  t.right_align = {false, false, true, true, true, true, false};
+  for (const auto& row : a.rows) {
+    const auto& r = row.result;
+    const bool fisher = r.test == "fisher_exact";
+    std::string estimate = "–", ci = "–", statistic = "–";
+    if (r.computed && r.estimate) {
+      estimate = fisher ? fmt::format("OR = {:.2f}", *r.estimate) : fmt::format("Δ = {:.2f}", *r.estimate);
+      ci = fmt::format("[{:.2f}, {:.2f}]", *r.conf_low, *r.conf_high);
+    }
+    if (r.computed && r.statistic) statistic = fmt::format("χ²({:g}) = {:.2f}", *r.df, *r.statistic);
+    t.rows.push_back({{row.metric, fisher ? "Fisher's exact" : "χ² (Yates)", estimate, ci, statistic,
+                       r.computed ? format_p(r.p_value) : "–", row.label}});
+  }
+  return t;
+}
+
+}  // namespace
+
+std::string render_yes_no(const YesNoAnalysis& a, OutputFormat format) {
+  if (format == OutputFormat::csv || format == OutputFormat::json) return render_records(a, format);
+  TextTable t;
+  t.caption = "Yes/no questions: proportion of yes per condition";
+  t.header = {"Question", "Condition", "Yes", "n", "%", "Exact CI", "Wilson CI"};
+  t.right_align = {false, false, true, true, true, true, true};
+  for (const auto& s : a.summaries) {
+    const auto& p = s.proportion;
+    t.rows.push_back({{s.question, s.group.empty() ? "all" : s.group, std::to_string(p.x), std::to_string(p.n),
+                       percent(p.estimate), interval(p.exact_low, p.exact_high),
+                       interval(p.wilson_low, p.wilson_high)}});
+  }
+  t.notes = {a.notes.front()};
+  std::string out = render_table(t, format);
+  if (a.settings.compare) {
+    TextTable c = comparison_table(a);
+    c.notes = {a.notes.back()};
+    for (const auto& row : a.rows)
+      if (!row.result.note.empty()) c.notes.push_back(row.metric + ": " + row.result.note);
+    out += "\n" + render_table(c, format);
+  }
+  return out;
+}
+
+}  // namespace feint::tables
