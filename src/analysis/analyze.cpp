@@ -320,7 +320,6 @@ void analyze_questionnaire(const Study& study, const Comparison& compare, StudyR
 void analyze_yes_no_answers(const Study& study, const Comparison& compare, StudyResults& r) {
   if (!study.yes_no_answers) return;
   tables::YesNoSettings s;
-  s.load = tables::yes_no_load_options();
   s.test.conf_level = study.tests.test.conf_level;
   s.alpha = study.tests.alpha;
   const auto groups = study.yes_no_answers->condition_names();

@@ -60,16 +60,6 @@ std::string interval_text(double low, double high) {
 
 }  // namespace
 
-std::string apa_df(double df) {
-  std::string s = fmt::format("{:.1f}", df);
-  if (s.size() > 2 && s.compare(s.size() - 2, 2, ".0") == 0) s.erase(s.size() - 2);
-  return s;
-}
-
-std::string apa_f(double num_df, double den_df, double f, double p) {
-  return fmt::format("F({}, {}) = {:.2f}, {}", apa_df(num_df), apa_df(den_df), f, tables::apa_p(p));
-}
-
 Strength classify(const stats::TestResult& d, const stats::TestResult* tost, const WordingRules& rules,
                   Grade* grade) {
   if (grade) *grade = Grade::none;

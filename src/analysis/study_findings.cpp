@@ -41,11 +41,6 @@ stats::TestResult f_as_test(const models::AnovaTerm& t) {
   return r;
 }
 
-// A model term's F as the findings print it (apa_f: the df of docs/findings.md).
-std::string term_apa(const models::AnovaTerm& t) {
-  return t.computed ? apa_f(t.num_df, t.den_df, t.f, t.p) : tables::anova_apa(t);
-}
-
 std::string evidence_text(Strength s, Grade g) {
   const std::string grade = to_string(g);
   return grade.empty() ? to_string(s) : grade + " " + to_string(s);
@@ -417,13 +412,13 @@ void add_factor_model_tests(std::vector<ModelTest>& family, const tables::Metric
     family.push_back({"H1-model-interaction-" + metric,
                       fmt::format("Does the course of {} over the iterations differ between the conditions?", metric),
                       fmt::format("Condition \u00d7 iteration interaction of {}", metric), "model", m.formula + " (iteration as a factor)",
-                      term_apa(*t), f_as_test(*t), true, m.fit.singular, ModelTest::Kind::interaction});
+                      tables::anova_apa(*t), f_as_test(*t), true, m.fit.singular, ModelTest::Kind::interaction});
   }
   if (const auto* t = find_term(m.fit, spec.group)) {
     family.push_back({"H1-model-condition-" + metric,
                       fmt::format("Does {} differ between the conditions, over all iterations?", metric),
                       fmt::format("Main effect of condition on {}", metric), "model", m.formula + " (iteration as a factor)",
-                      term_apa(*t), f_as_test(*t), true, m.fit.singular, ModelTest::Kind::condition});
+                      tables::anova_apa(*t), f_as_test(*t), true, m.fit.singular, ModelTest::Kind::condition});
   }
 }
 
@@ -555,7 +550,7 @@ Finding model_test_finding(const ModelTest& mb, std::size_t i, std::size_t famil
                              numbers, numbers.empty() ? "" : "; ", mb.apa, holm, no_bf);
   } else {
     const auto& t = mb.test;
-    f.statistics = fmt::format("t({}) = {:.2f}, {}", apa_df(*t.df), *t.statistic, p_text(*t.p_value));
+    f.statistics = fmt::format("t({}) = {:.2f}, {}", tables::apa_model_df(*t.df), *t.statistic, p_text(*t.p_value));
     f.sentence = fmt::format("{} in the mixed model {}: {} (b = {:.4f} per iteration, {:g}% CI [{:.4f}, "
                              "{:.4f}], {}; {}; {}).",
                              mb.what, mb.formula, f.evidence, *t.estimate, 100 * t.conf_level, *t.conf_low,

@@ -114,6 +114,23 @@ void fill_fisher_p(TestResult& r, const NoncentralHypergeometric& law, long x, A
   }
 }
 
+/// What both comparisons of two proportions report alike: the settings, the sizes and the
+/// proportions of yes (as mean1, mean2).
+TestResult two_proportions(const char* test, const char* method, const YesNoTable& t, const TestOptions& options,
+                           double mu) {
+  TestResult r;
+  r.test = test;
+  r.method = method;
+  r.alternative = options.alternative;
+  r.conf_level = options.conf_level;
+  r.mu = mu;
+  r.n1 = t.n1;
+  r.n2 = t.n2;
+  r.mean1 = static_cast<double>(t.yes1) / static_cast<double>(t.n1);
+  r.mean2 = static_cast<double>(t.yes2) / static_cast<double>(t.n2);
+  return r;
+}
+
 }  // namespace
 
 Proportion describe_proportion(std::size_t x, std::size_t n, double conf_level) {
@@ -139,16 +156,7 @@ TestResult fisher_exact(const YesNoTable& t, const TestOptions& options) {
   const char* method = "Fisher's Exact Test for Count Data";
   if (t.n1 == 0 || t.n2 == 0)
     return TestResult::not_computable("fisher_exact", method, "a condition has no answer");
-  TestResult r;
-  r.test = "fisher_exact";
-  r.method = method;
-  r.alternative = options.alternative;
-  r.conf_level = options.conf_level;
-  r.mu = 1.0;
-  r.n1 = t.n1;
-  r.n2 = t.n2;
-  r.mean1 = static_cast<double>(t.yes1) / static_cast<double>(t.n1);
-  r.mean2 = static_cast<double>(t.yes2) / static_cast<double>(t.n2);
+  TestResult r = two_proportions("fisher_exact", method, t, options, 1.0);  // H0: odds ratio 1
   const NoncentralHypergeometric law(t);
   const long x = static_cast<long>(t.yes1);
   fill_fisher_p(r, law, x, options.alternative);
@@ -188,17 +196,8 @@ TestResult prop_test(const YesNoTable& t, const TestOptions& options, bool corre
   if (pooled == 0 || pooled == 1)
     return TestResult::not_computable("prop_test", method,
                                       pooled == 0 ? "every answer is no" : "every answer is yes");
-  TestResult r;
-  r.test = "prop_test";
-  r.method = method;
-  r.alternative = options.alternative;
-  r.conf_level = options.conf_level;
-  r.mu = 0.0;
-  r.n1 = t.n1;
-  r.n2 = t.n2;
-  const double p1 = y1 / n1, p2 = y2 / n2, delta = p1 - p2, inv = 1 / n1 + 1 / n2;
-  r.mean1 = p1;
-  r.mean2 = p2;
+  TestResult r = two_proportions("prop_test", method, t, options, 0.0);  // H0: p1 - p2 = 0
+  const double p1 = *r.mean1, p2 = *r.mean2, delta = p1 - p2, inv = 1 / n1 + 1 / n2;
   r.estimate = delta;
   const double yates = std::min(correct ? 0.5 : 0.0, std::fabs(delta) / inv);
   const bool two = options.alternative == Alternative::two_sided;

@@ -1,4 +1,5 @@
 // Likert analysis assembly. See feint/tables/likert.hpp.
+#include "respondents.hpp"
 #include "feint/tables/likert.hpp"
 
 #include <algorithm>
@@ -212,14 +213,7 @@ struct Answers {
   }
 };
 
-/// The respondents of a condition (everybody without a condition column).
-std::vector<std::size_t> respondents_in(const io::Questionnaire& q, const std::string& condition) {
-  std::vector<std::size_t> out;
-  for (std::size_t r = 0; r < q.respondents(); ++r) {
-    if (!q.has_condition || q.conditions[r] == condition) out.push_back(r);
-  }
-  return out;
-}
+using detail::respondents_in;
 
 void check_condition(const io::Questionnaire& q, const std::vector<std::string>& conditions,
                      const std::string& c, std::string_view option) {
@@ -248,15 +242,11 @@ Block comparison_block(const io::Questionnaire& q, const std::vector<std::string
   if (ga == gb)
     throw UsageError(fmt::format("--compare {},{}: a condition against itself", ga, gb));
   Block b{ga, gb, respondents_in(q, ga), respondents_in(q, gb)};
-  std::set<std::string> in_a;
-  for (const auto r : b.resp1) in_a.insert(q.participants[r]);
-  for (const auto r : b.resp2) {
-    if (in_a.count(q.participants[r]) != 0) {
-      throw InvalidData(fmt::format(
-          "{}: participant {} answered in both conditions {} and {}; Mann-Whitney and Welch "
-          "compare independent groups",
-          q.source, q.participants[r], ga, gb));
-    }
+  if (const auto shared = detail::shared_participant(q, b.resp1, b.resp2)) {
+    throw InvalidData(fmt::format(
+        "{}: participant {} answered in both conditions {} and {}; Mann-Whitney and Welch "
+        "compare independent groups",
+        q.source, *shared, ga, gb));
   }
   return b;
 }

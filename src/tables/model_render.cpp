@@ -34,14 +34,15 @@ std::string percent(double conf) { return io::format_double(std::round(conf * 1e
 
 }  // namespace
 
+std::string apa_model_df(double df) {
+  std::string s = fmt::format("{:.1f}", df);
+  if (s.size() > 2 && s.compare(s.size() - 2, 2, ".0") == 0) s.resize(s.size() - 2);
+  return s;
+}
+
 std::string anova_apa(const models::AnovaTerm& a) {
   if (!a.computed) return fmt::format("{}: {}", kNotComputable, a.note);
-  std::string f = fmt::format("{:.2f}", a.f);
-  // The den df as every APA string prints it (docs/findings.md "Degrees of freedom"): one
-  // decimal, none when it rounds to a whole number: F(1, 58), F(19, 1157.8).
-  std::string den = fmt::format("{:.1f}", a.den_df);
-  if (den.size() > 2 && den.compare(den.size() - 2, 2, ".0") == 0) den.resize(den.size() - 2);
-  return fmt::format("F({}, {}) = {}, {}", df_text(a.num_df), den, f, apa_p(a.p));
+  return fmt::format("F({}, {}) = {:.2f}, {}", apa_model_df(a.num_df), apa_model_df(a.den_df), a.f, apa_p(a.p));
 }
 
 namespace {

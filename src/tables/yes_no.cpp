@@ -2,11 +2,12 @@
 #include "feint/tables/yes_no.hpp"
 
 #include <algorithm>
-#include <set>
+#include <cmath>
 
 #include <fmt/format.h>
 
 #include "feint/error.hpp"
+#include "respondents.hpp"
 
 namespace feint::tables {
 
@@ -17,12 +18,7 @@ std::string interval(double lo, double hi) {
   return std::isnan(lo) ? "–" : fmt::format("[{:.2f}, {:.2f}]", lo, hi);
 }
 
-std::vector<std::size_t> respondents_in(const io::Questionnaire& q, const std::string& group) {
-  std::vector<std::size_t> out;
-  for (std::size_t r = 0; r < q.respondents(); ++r)
-    if (!q.has_condition || q.conditions[r] == group) out.push_back(r);
-  return out;
-}
+using detail::respondents_in;
 
 YesNoSummary summarise(const io::Questionnaire& q, std::size_t item, const std::string& group,
                        double conf_level) {
@@ -48,13 +44,11 @@ void check_comparison(const io::Questionnaire& q, const std::vector<std::string>
                                    compare.second, q.source, c, fmt::join(groups, ", ")));
   if (compare.first == compare.second)
     throw UsageError(fmt::format("--compare {0},{0}: a condition against itself", compare.first));
-  std::set<std::string> in_a;
-  for (const auto r : respondents_in(q, compare.first)) in_a.insert(q.participants[r]);
-  for (const auto r : respondents_in(q, compare.second))
-    if (in_a.count(q.participants[r]) != 0)
-      throw InvalidData(fmt::format("{}: participant {} answered in both conditions {} and {}; Fisher's exact "
-                                    "test compares independent groups (give each participant one condition)",
-                                    q.source, q.participants[r], compare.first, compare.second));
+  if (const auto shared =
+          detail::shared_participant(q, respondents_in(q, compare.first), respondents_in(q, compare.second)))
+    throw InvalidData(fmt::format("{}: participant {} answered in both conditions {} and {}; Fisher's exact "
+                                  "test compares independent groups (give each participant one condition)",
+                                  q.source, *shared, compare.first, compare.second));
 }
 
 TidyRow comparison_row(const std::string& question, const std::string& a, const std::string& b,

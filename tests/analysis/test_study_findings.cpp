@@ -17,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "feint/analysis/analyze.hpp"
+#include "feint/stats/proportions.hpp"
 #include "feint/analysis/study_findings.hpp"
 #include "feint/models/exposure.hpp"
 #include "feint/models/model_relabelling.hpp"
@@ -147,8 +148,8 @@ TEST(StudyFindings, DemoMixedModelFindingsCarryTheModelTablesNumbers) {
     // The F statistics are the model table's terms (F, df, p) with the findings' df (whole df
     // without a decimal: docs/findings.md "Degrees of freedom"), in the table and in the sentence.
     const std::string table = tables::render_model(*r.model, tables::OutputFormat::markdown);
-    EXPECT_EQ(fi->statistics, analysis::apa_f(inter.num_df, inter.den_df, inter.f, inter.p));
-    EXPECT_EQ(fc->statistics, analysis::apa_f(cond.num_df, cond.den_df, cond.f, cond.p));
+    EXPECT_EQ(fi->statistics, tables::anova_apa(inter));
+    EXPECT_EQ(fc->statistics, tables::anova_apa(cond));
     EXPECT_EQ(fc->statistics.find(".0) ="), std::string::npos) << fc->statistics;
     EXPECT_TRUE(contains(fi->sentence, fi->statistics));
     EXPECT_TRUE(contains(fi->sentence, fmt::format("{:.2f}", inter.f)));
@@ -452,4 +453,30 @@ TEST(StudyFindings, ASingularModelFitIsSaidInItsFindings) {
     EXPECT_TRUE(contains(c->warnings[0], "The relabelling p-value does not rest on that estimate")) << c->warnings[0];
     EXPECT_TRUE(e->warnings.empty()) << part;
   }
+}
+
+// The yes/no question of the study folder (questionnaire_yesno.csv, as `feint collect` and
+// `feint simulate study` write it) reaches the findings with no setting, with its numbers
+// recomputed from the file.
+TEST(YesNoFindings, TheDemoComparesItsYesNoQuestionWithFishersTest) {
+  const auto& r = demo();
+  ASSERT_TRUE(r.yes_no.has_value());
+  // data/demo/questionnaire_yesno.csv: 18 of 30 adaptive, 23 of 30 random answered yes.
+  ASSERT_EQ(r.yes_no->summaries.size(), 2u);
+  EXPECT_EQ(r.yes_no->summaries[0].proportion.x, 18u);
+  EXPECT_EQ(r.yes_no->summaries[1].proportion.x, 23u);
+  const auto fisher = feint::stats::fisher_exact({18, 30, 23, 30});
+  const Finding* f = by_id(r.findings, "H2-yesno-intentional");
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(f->test, "Fisher's exact test");
+  EXPECT_EQ(*f->p, *fisher.p_value);
+  EXPECT_EQ(f->direction, "adaptive < random");
+  ASSERT_TRUE(f->effect_size.has_value());
+  EXPECT_EQ(f->effect_size->name, "odds_ratio");
+  EXPECT_EQ(f->effect_size->value, *fisher.estimate);
+  EXPECT_EQ(f->strength, Strength::no_evidence_either_way);
+  EXPECT_NE(f->sentence.find("Intentional (yes/no): adaptive vs random: no evidence either way (yes 60% of 30 vs "
+                             "77% of 30; odds ratio 0.46, 95% CI [0.13, 1.59]; Fisher's exact test, p = .267;"),
+            std::string::npos)
+      << f->sentence;
 }

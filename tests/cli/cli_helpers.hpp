@@ -45,6 +45,17 @@ inline void write_text(const std::filesystem::path& path, const std::string& tex
 }
 
 /// Single-quotes a string for /bin/sh.
+/// The standard output of a shell command (its exit status is not checked).
+inline std::string shell_output(const std::string& command) {
+  std::string out;
+  FILE* p = popen(command.c_str(), "r");
+  if (p == nullptr) return out;
+  char buf[4096];
+  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
+  pclose(p);
+  return out;
+}
+
 inline std::string shell_quote(const std::string& s) {
   std::string q = "'";
   for (char c : s) {

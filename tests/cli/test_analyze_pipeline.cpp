@@ -13,22 +13,13 @@
 namespace fs = std::filesystem;
 using feint::test::read_text;
 using feint::test::run_feint;
+using feint::test::shell_output;
 using feint::test::shell_quote;
 using feint::test::TempDir;
 
 namespace {
 
 const std::string kDemo = std::string(FEINT_SOURCE_DIR) + "/data/demo";
-
-std::string shell_output(const std::string& command) {
-  std::string out;
-  FILE* p = popen(command.c_str(), "r");
-  if (p == nullptr) return out;
-  char buf[4096];
-  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-  pclose(p);
-  return out;
-}
 
 // A small study in `dir`: P1, P2 (adaptive) and P3, P4 (random), two iterations of a 0.5 s trial
 // (times multiplied by `scale`: 1000 = milliseconds), with or without the condition column, and a

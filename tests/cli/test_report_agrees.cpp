@@ -13,6 +13,7 @@
 namespace fs = std::filesystem;
 using feint::test::read_text;
 using feint::test::run_feint;
+using feint::test::shell_output;
 using feint::test::shell_quote;
 using feint::test::TempDir;
 
@@ -50,16 +51,6 @@ fs::path small_study(const fs::path& dir, bool unlabelled, bool questionnaire) {
     feint::test::write_text(study / "questionnaire.csv", q);
   }
   return study;
-}
-
-std::string shell_output(const std::string& command) {
-  std::string out;
-  FILE* p = popen(command.c_str(), "r");
-  if (p == nullptr) return out;
-  char buf[4096];
-  for (std::size_t n; (n = fread(buf, 1, sizeof buf, p)) > 0;) out.append(buf, n);
-  pclose(p);
-  return out;
 }
 
 // The finding object of `id` in findings.json (one object per line's worth of text).

@@ -76,14 +76,6 @@ struct Finding {
   std::string member;          ///< for a family: which member the numbers describe ("test 3")
 };
 
-/// Degrees of freedom as the findings and the Results text print them (docs/findings.md "Degrees
-/// of freedom"): one decimal, and a whole number without one: 58 (also a Satterthwaite df of
-/// 57.99999), 1157.8.
-std::string apa_df(double df);
-
-/// A model term's F test in APA style with apa_df: "F(1, 58) = 8.48, p = .005".
-std::string apa_f(double num_df, double den_df, double f, double p);
-
 /// Fills the structured fields (test, estimate and CI as a difference `lhs - rhs`, direction,
 /// effect size with CI, p, adjusted p, BF10 or bf_note) from the test a finding rests on. A
 /// one-sample estimate is reported as its difference from the reference.

@@ -96,7 +96,11 @@ std::vector<std::string> load_strategies(const io::ScoresTable& scores,
                                          const io::ScoresOptions& options,
                                          const std::string& strategy_column = "strategy");
 
-/// `F(1, 58.0) = 4.31, p = .042`: numerator df as an integer, denominator df with one decimal.
+/// A model test's df as every APA string prints it (docs/findings.md "Degrees of freedom"): one
+/// decimal, none when it rounds to a whole number: 58 (also a Satterthwaite df of 57.99999), 1157.8.
+std::string apa_model_df(double df);
+
+/// `F(1, 58) = 4.31, p = .042`: both df by apa_model_df.
 std::string anova_apa(const models::AnovaTerm& term);
 
 /// The notes under the tables of one metric (model, REML, Satterthwaite, counts, missing trials).
