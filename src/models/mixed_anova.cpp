@@ -7,8 +7,10 @@
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/fisher_f.hpp>
 #include <cctype>
+#include <algorithm>
 #include <cmath>
 
+#include "anova_detail.hpp"
 #include "feint/error.hpp"
 
 namespace feint::models {
@@ -36,6 +38,29 @@ Eigen::MatrixXd orthonormal_contrasts(Eigen::Index k) {
     p(j, j - 1) = -static_cast<double>(j) / s;
   }
   return p;
+}
+
+SphericityStatistics sphericity_statistics(const Eigen::VectorXd& lambda, double dfe,
+                                           double columns) {
+  const auto p = static_cast<double>(lambda.size());
+  SphericityStatistics out;
+  const double s1 = lambda.sum(), s2 = lambda.squaredNorm();
+  out.gg = (s1 / p) * (s1 / p) / (s2 / p);
+  out.hf = ((dfe + 1) * p * out.gg - 2) / (p * (dfe - p * out.gg));
+  // car:::summary.Anova.mlm's mauchly(); `3 * columns` (not 3 * p) as car has it.
+  const double logw = lambda.array().log().sum() - p * std::log(s1 / p);
+  const double rho = 1 - (2 * p * p + p + 2) / (6 * p * dfe);
+  const double w2 = (p + 2) * (p - 1) * (p - 2) * (2 * p * p * p + 6 * p * p + 3 * columns + 2) /
+                    (288 * std::pow(dfe * p * rho, 2));
+  const double z = -dfe * rho * logw;
+  const double f = p * (p + 1) / 2 - 1;
+  const double pr1 = chisq_upper(z, f), pr2 = chisq_upper(z, f + 4);
+  out.mauchly_w = std::exp(logw);
+  // Box's second-order term can carry the sum outside [0, 1] when the effect has nearly as many
+  // contrasts as error df (p = 19 iterations, 23 df: car prints p = 1.0155); a probability it is
+  // not, so it is kept within [0, 1] (docs/anova-power.md, "Where R is wrong").
+  out.mauchly_p = std::clamp(pr1 + w2 * (pr2 - pr1), 0.0, 1.0);
+  return out;
 }
 
 }  // namespace detail
@@ -167,19 +192,12 @@ Sphericity sphericity_of(const Eigen::MatrixXd& E, double dfe, Eigen::Index n, E
     out.mauchly.note = "error SSP matrix singular";
     return out;
   }
-  const double s1 = lambda.sum(), s2 = lambda.squaredNorm();
-  out.gg = (s1 / p) * (s1 / p) / (s2 / p);
-  out.hf = ((dfe + 1) * p * *out.gg - 2) / (p * (dfe - p * *out.gg));
-  // car:::summary.Anova.mlm's mauchly(); `3 * kd` (not 3 * p) as car has it.
-  const double logw = lambda.array().log().sum() - p * std::log(s1 / p);
-  const double rho = 1 - (2 * p * p + p + 2) / (6 * p * dfe);
-  const double w2 = (p + 2) * (p - 1) * (p - 2) * (2 * p * p * p + 6 * p * p + 3 * kd + 2) /
-                    (288 * std::pow(dfe * p * rho, 2));
-  const double z = -dfe * rho * logw;
-  const double f = p * (p + 1) / 2 - 1;
-  const double pr1 = detail::chisq_upper(z, f), pr2 = detail::chisq_upper(z, f + 4);
-  out.mauchly.statistic = std::exp(logw);
-  out.mauchly.p_value = pr1 + w2 * (pr2 - pr1);
+  // car's nrow(P) is k here: the response has one column per iteration.
+  const detail::SphericityStatistics s = detail::sphericity_statistics(lambda, dfe, kd);
+  out.gg = s.gg;
+  out.hf = s.hf;
+  out.mauchly.statistic = s.mauchly_w;
+  out.mauchly.p_value = s.mauchly_p;
   return out;
 }
 

@@ -325,17 +325,25 @@ Eigen::VectorXd optimise_theta(const Problem& problem) {
     return th;
   }
   auto f = [&](const Eigen::VectorXd& t) { return problem.profiled_reml(t); };
-  Eigen::VectorXd x(3);
-  x << 1.0, 0.0, 1.0;  // lme4's start
-  for (int restart = 0; restart < 4; ++restart)
-    x = nelder_mead(f, x, restart == 0 ? 0.5 : 0.05, 4000);
-  x = newton_polish(problem, x);
-  // Canonical signs: diagonal of the Cholesky factor >= 0 (the criterion is invariant).
-  if (x(0) < 0) {
-    x(0) = -x(0);
-    x(1) = -x(1);
+  // lme4's start: the entries of the identity (1 on the diagonal), column-wise.
+  const Eigen::Index q = problem.Z.cols();
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(q * (q + 1) / 2);
+  std::vector<Eigen::Index> diagonal;  // where each column of Lambda starts in theta
+  for (Eigen::Index j = 0, k = 0; j < q; k += q - j, ++j) {
+    diagonal.push_back(k);
+    x(k) = 1.0;
   }
-  if (x(2) < 0) x(2) = -x(2);
+  // Unconstrained: the criterion depends on Lambda Lambda' only, and every covariance has a factor
+  // with diagonal >= 0, so the unconstrained minimum is lme4's bounded one (found by flipping signs
+  // below).
+  for (int restart = 0; restart < 4; ++restart)
+    x = nelder_mead(f, x, restart == 0 ? 0.5 : 0.05, 4000 * static_cast<int>(q * q) / 4);
+  x = newton_polish(problem, x);
+  // Canonical signs: diagonal of the Cholesky factor >= 0 (negating a column of Lambda leaves
+  // Lambda Lambda' and the criterion unchanged).
+  for (Eigen::Index j = 0; j < q; ++j)
+    if (x(diagonal[static_cast<std::size_t>(j)]) < 0)
+      x.segment(diagonal[static_cast<std::size_t>(j)], q - j) *= -1.0;
   return x;
 }
 

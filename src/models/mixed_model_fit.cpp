@@ -401,6 +401,20 @@ void check_columns(const LongData& data, const ModelSpec& spec) {
                                     data.participant[i]));
 }
 
+/// (1 + group | participant) needs the group within participants and excludes (1 + time | ...).
+void check_random_group_slope(const ModelSpec& spec, bool group_between) {
+  if (!spec.random_group_slope) return;
+  if (group_between)
+    throw UsageError(fmt::format(
+        "a random slope of {} (1 + {} | {}) needs {} within participants: with {} between "
+        "participants each participant has one {} and the slope is not identified",
+        spec.group, spec.group, spec.participant, spec.group, spec.group, spec.group));
+  if (spec.random_slope)
+    throw UsageError(fmt::format(
+        "random slopes of both {} and {} are not supported: use (1 + {} | {}) or (1 + {} | {})",
+        spec.group, spec.time, spec.group, spec.participant, spec.time, spec.participant));
+}
+
 /// Fills fit.participants (first-appearance order) and returns each one's index in it.
 std::map<std::string, std::size_t> index_participants(const LongData& data, const ModelSpec& spec,
                                                       bool group_between, MixedModelFit& fit) {
@@ -500,6 +514,15 @@ void check_variation(const LongData& data, const ModelSpec& spec, const MixedMod
 /// Refuses random slopes, groups or a time factor that the numbers of trials cannot identify.
 void check_identifiable(const ModelSpec& spec, bool group_between, const MixedModelFit& fit,
                         std::size_t n) {
+  const std::size_t q = fit.group_levels.size();
+  if (spec.random_group_slope && n <= q * fit.participants.size())
+    throw InvalidData(fmt::format(
+        "metric '{}': {} trials of {} participants are not more than the {} random effects of "
+        "(1 + {} | {}) ({} per participant, one per {}): the participant deviations per {} and "
+        "the residual variance cannot all be estimated (as lme4's check of the number of "
+        "observations against random effects); drop the random {} slope",
+        spec.response, n, fit.participants.size(), q * fit.participants.size(), spec.group,
+        spec.participant, q, spec.group, spec.group, spec.group));
   if (spec.random_slope && n <= 2 * fit.participants.size())
     throw InvalidData(fmt::format(
         "metric '{}': {} trials of {} participants are not more than the {} random effects of "
@@ -555,7 +578,9 @@ Design build_design(const LongData& data, const ModelSpec& spec, MixedModelFit& 
     return pidx[data.participant[a]] < pidx[data.participant[b]];
   });
   const auto p = static_cast<Eigen::Index>(lay.coef_names.size());
-  const Eigen::Index q = spec.random_slope ? 2 : 1;
+  const Eigen::Index q = spec.random_group_slope ? static_cast<Eigen::Index>(lay.n_group)
+                         : spec.random_slope      ? 2
+                                                  : 1;
   Design des;
   des.X = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(n), p);
   des.Z.resize(static_cast<Eigen::Index>(n), q);
@@ -570,7 +595,12 @@ Design build_design(const LongData& data, const ModelSpec& spec, MixedModelFit& 
     const auto row = static_cast<Eigen::Index>(r);
     des.X.row(row) = cell_row_of(fit, lay, li.group[i], data.time[i]).transpose();
     des.Z(row, 0) = 1;
-    if (q == 2) des.Z(row, 1) = data.time[i];
+    if (spec.random_group_slope) {
+      for (Eigen::Index k = 1; k < q; ++k)
+        des.Z(row, k) = li.group[i] == static_cast<std::size_t>(k) ? 1 : 0;
+    } else if (q == 2) {
+      des.Z(row, 1) = data.time[i];
+    }
     des.y(row) = data.y[i];
     des.time(row) = data.time[i];
     des.group[r] = li.group[i];
@@ -626,6 +656,15 @@ void store_variance_components(MixedModelFit& fit, const Eigen::MatrixXd& Lam) {
     fit.variance.slope = Sb(1, 1);
     if (Sb(0, 0) > 0 && Sb(1, 1) > 0)
       fit.variance.correlation = Sb(0, 1) / std::sqrt(Sb(0, 0) * Sb(1, 1));
+  } else if (fit.spec.random_group_slope && Sb.rows() > 1) {
+    // VarCorr's order: the variances of the dummies, then the correlations column-wise.
+    const Eigen::Index q = Sb.rows();
+    for (Eigen::Index k = 1; k < q; ++k) fit.variance.group_slopes.push_back(Sb(k, k));
+    for (Eigen::Index j = 0; j < q; ++j)
+      for (Eigen::Index i = j + 1; i < q; ++i)
+        fit.variance.group_correlations.push_back(
+            Sb(i, i) > 0 && Sb(j, j) > 0 ? Sb(i, j) / std::sqrt(Sb(i, i) * Sb(j, j))
+                                         : std::numeric_limits<double>::quiet_NaN());
   } else {
     fit.variance.icc = Sb(0, 0) / (Sb(0, 0) + fit.variance.residual);
   }
@@ -698,6 +737,7 @@ void store_type3_anova(MixedModelFit& fit, const Layout& lay, const Design& des)
 MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool group_between) {
   const std::size_t n = data.y.size();
   check_columns(data, spec);
+  check_random_group_slope(spec, group_between);
   MixedModelFit fit;
   fit.spec = spec;
   fit.n_obs = n;

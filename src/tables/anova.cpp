@@ -6,6 +6,9 @@
 #include <utility>
 #include <vector>
 
+#include "feint/error.hpp"
+#include "feint/models/within_anova.hpp"
+
 namespace feint::tables {
 
 std::vector<models::Observation> observations(const io::ScoresTable& scores,
@@ -23,13 +26,22 @@ std::vector<models::Observation> observations(const io::ScoresTable& scores,
 
 AnovaReport build_anova_report(const io::ScoresTable& scores,
                                models::SphericityCorrection correction,
-                               bool drop_empty_conditions, const AnovaEmmOptions& emm) {
+                               bool drop_empty_conditions, const AnovaEmmOptions& emm,
+                               bool condition_within) {
   AnovaReport report;
   report.source = scores.path;
   report.correction = correction;
   report.emm_options = emm;
+  if (condition_within && emm.any())
+    throw UsageError("--emmeans with conditions within participants is not supported yet");
   for (const auto& metric : scores.metrics) {
     const auto obs = observations(scores, metric);
+    if (condition_within) {  // every participant in every condition: no condition is dropped
+      report.analyses.push_back(
+          models::within_anova(models::make_within_design(obs, metric, scores.path), correction));
+      report.emm.emplace_back();
+      continue;
+    }
     const models::WideDesign d =
         models::make_wide_design(obs, metric, scores.path, drop_empty_conditions);
     report.analyses.push_back(models::mixed_anova(d, correction));

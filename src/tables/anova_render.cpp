@@ -41,7 +41,24 @@ std::optional<stats::EtaSquared> ges_interval(const models::AnovaEffect& e) {
   return stats::generalized_eta2(e.ges, e.num_df, e.den_df, 0.95);
 }
 
+/// An all-within analysis (models::within_anova): its condition effect is within participants.
+bool condition_within(const models::MixedAnova& a) {
+  return std::any_of(a.effects.begin(), a.effects.end(),
+                     [](const auto& e) { return e.effect == "condition" && e.within; });
+}
+
+/// The order of the error SSP matrix an effect's sphericity is about: its own numerator df in an
+/// all-within analysis, k - 1 (shared by both within effects) in the split-plot one.
+double sphericity_order(const models::MixedAnova& a, const models::AnovaEffect& e) {
+  return condition_within(a) ? e.num_df : static_cast<double>(a.iterations.size()) - 1;
+}
+
 std::string design_text(const models::MixedAnova& a) {
+  if (condition_within(a)) {
+    return fmt::format(
+        "condition ({} levels) \u00d7 iteration ({} levels), both within participants",
+        a.conditions.size(), a.iterations.size());
+  }
   if (a.one_way()) {
     return fmt::format("one-way repeated measures: iteration ({} levels) within participants",
                        a.iterations.size());
@@ -84,7 +101,7 @@ std::string correction_name(models::SphericityCorrection c) {
 std::string sphericity_cell(const models::MixedAnova& a, const models::AnovaEffect& e,
                             std::optional<double> value, bool leading_zero = false) {
   if (!e.within) return "";
-  if (a.iterations.size() < 3) return "1 df";
+  if (sphericity_order(a, e) < 2) return "1 df";
   if (!value) return "singular";
   if (*value > 0 && *value < 0.0005) return "< .001";
   return leading_zero ? format_mean(*value, 3) : no_leading_zero(*value);
@@ -145,7 +162,7 @@ std::string effect_note(const models::MixedAnova& a, const models::AnovaEffect& 
                     " dropped (every participant had a missing value; --drop-empty-conditions)");
   if (!e.correction_note.empty())
     notes.push_back(e.correction_note + "; df and p assume sphericity");
-  if (e.within && a.iterations.size() == 2)
+  if (e.within && sphericity_order(a, e) < 2)
     notes.push_back("1 numerator df: sphericity holds trivially");
   return join(notes, "; ");
 }
@@ -245,9 +262,13 @@ void add_effect_rows(TextTable& t, const models::MixedAnova& a, bool apa) {
 
 /// The note of one metric: design, sample, exclusions and the sphericity remark.
 std::string metric_note(const models::MixedAnova& a) {
-  std::string n = fmt::format("{}: {}; {} participants with every iteration{}.", a.metric,
-                              design_text(a), a.n_participants,
-                              a.one_way() ? "" : " (" + sizes_text(a) + ")");
+  std::string n =
+      condition_within(a)
+          ? fmt::format("{}: {}; {} participants with every condition at every iteration.",
+                        a.metric, design_text(a), a.n_participants)
+          : fmt::format("{}: {}; {} participants with every iteration{}.", a.metric,
+                        design_text(a), a.n_participants,
+                        a.one_way() ? "" : " (" + sizes_text(a) + ")");
   if (!a.excluded.empty()) {
     n += fmt::format(" Excluded for a missing value (as afex): {} ({}).", a.excluded.size(),
                      join(a.excluded, ", "));
@@ -278,8 +299,14 @@ std::string method_note(const AnovaReport& r) {
       "the reported df). GG eps = Greenhouse-Geisser, HF eps = Huynh-Feldt "
       "(Lecoutre's correction, capped at 1 when applied); Mauchly's W tests sphericity (p < .05: "
       "violated). '1 df' = two iterations, sphericity holds trivially; 'singular' = fewer error df "
-      "than iteration contrasts, not computable.",
-      within);
+      "than iteration contrasts, not computable.{}",
+      within, std::any_of(r.analyses.begin(), r.analyses.end(), condition_within)
+                  ? " Conditions within participants (afex::aov_ez with within = c(\"condition\", "
+                    "\"iteration\")): each effect is tested against its own effect \u00d7 "
+                    "participant error, with its own epsilons and Mauchly test; '1 df' there = "
+                    "an effect with one numerator df; ges counts every error stratum, the "
+                    "participants' included."
+                  : "");
 }
 
 TextTable people_table(const AnovaReport& r, bool apa) {
@@ -289,6 +316,12 @@ TextTable people_table(const AnovaReport& r, bool apa) {
   if (r.analyses.size() == 1 && r.analyses[0].one_way()) {
     t.caption = fmt::format("Repeated-measures ANOVA, {} correction of the df",
                             correction_name(r.correction));
+  }
+  if (!r.analyses.empty() && std::all_of(r.analyses.begin(), r.analyses.end(), condition_within)) {
+    t.caption = fmt::format(
+        "Repeated-measures ANOVA (type III), condition and iteration within participants, {} "
+        "correction of the df",
+        correction_name(r.correction));
   }
   t.header = {"Effect", "df1", "df2",    "MSE",    "F",         "ges",
               "pes",    "p",   "GG eps", "HF eps", "Mauchly W", "Mauchly p"};

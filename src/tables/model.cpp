@@ -67,6 +67,19 @@ std::vector<std::string> load_strategies(const io::ScoresTable& scores,
 
 namespace {
 
+// The random slope of the condition needs the condition within participants and its own model.
+void check_condition_slope(const ModelOptions& o) {
+  if (o.random_condition_slope && !o.condition_within)
+    throw UsageError(
+        "--random-condition-slope needs the condition within participants (each participant "
+        "sees several conditions): (1 + condition | participant) is not identified when each "
+        "participant has one condition");
+  if (o.random_condition_slope && (o.random_slope || o.exposure))
+    throw UsageError(
+        "--random-condition-slope does not go with --random-slope or --exposure (one random "
+        "slope per model)");
+}
+
 // Options that cannot be fitted, in the order the user is told about them.
 void check_model_options(const io::ScoresTable& scores, const ModelOptions& options,
                          const std::vector<std::string>* strategy) {
@@ -77,6 +90,7 @@ void check_model_options(const io::ScoresTable& scores, const ModelOptions& opti
         "--exposure fits its own model (strategy * exposure); drop --trend/--random-slope");
   if (options.exposure && (strategy == nullptr || strategy->size() != scores.records.size()))
     throw std::invalid_argument("build_model_analysis: --exposure needs one strategy per record");
+  check_condition_slope(options);
   if (!(options.alpha > 0 && options.alpha < 1)) throw UsageError("--alpha must be in (0, 1)");
   if (!(options.conf_level > 0 && options.conf_level < 1))
     throw UsageError("--conf-level must be in (0, 1)");
@@ -149,14 +163,20 @@ models::LongData metric_data(const ModelInput& in, const std::string& metric, in
 
 // Missing trials: empty values and absent rows (a participant x iteration without a row).
 // Participants with missing trials stay in the model with the trials they have.
-void count_missing(MetricModel& mm, const models::LongData& d, std::size_t n_iterations) {
-  std::map<std::string, std::size_t> have;
-  for (const auto& p : d.participant) ++have[p];
+// With the condition within participants, per participant x condition that participant saw.
+void count_missing(MetricModel& mm, const models::LongData& d, std::size_t n_iterations,
+                   bool condition_within) {
+  std::map<std::string, std::map<std::string, std::size_t>> have;
+  for (std::size_t i = 0; i < d.participant.size(); ++i)
+    ++have[d.participant[i]][condition_within ? d.group[i] : std::string()];
   mm.trials_missing = 0;
-  for (const auto& [p, n] : have) {
-    if (n < n_iterations) {
+  for (const auto& [p, per_condition] : have) {
+    std::size_t missing = 0;
+    for (const auto& [c, n] : per_condition)
+      if (n < n_iterations) missing += n_iterations - n;
+    if (missing > 0) {
       ++mm.participants_with_missing;
-      mm.trials_missing += n_iterations - n;
+      mm.trials_missing += missing;
     }
   }
 }
@@ -171,16 +191,20 @@ void fit_metric(MetricModel& mm, const models::LongData& d, const ModelOptions& 
   spec.time_scale =
       options.exposure || options.trend ? models::TimeScale::linear : models::TimeScale::factor;
   spec.random_slope = options.random_slope;
+  spec.random_group_slope = options.random_condition_slope;
   spec.ddf = options.ddf;
   try {
-    mm.fit = models::fit_mixed_model(d, spec, !options.exposure);
+    mm.fit = models::fit_mixed_model(d, spec, !options.exposure && !options.condition_within);
   } catch (const InvalidData& e) {
     throw InvalidData(fmt::format("{}: {}", path, e.what()));  // name the file
   }
   const bool one_group = mm.fit.group_levels.size() < 2;
   const std::string rhs = one_group ? spec.time : fmt::format("{} * {}", spec.group, spec.time);
-  mm.formula = fmt::format("{} ~ {} + ({} | participant)", mm.metric, rhs,
-                           options.random_slope ? "1 + iteration" : "1");
+  // The random part actually fitted (with one condition, (1 + condition | .) is (1 | .)).
+  const std::string random = options.random_slope ? "1 + iteration"
+                             : options.random_condition_slope && !one_group ? "1 + condition"
+                                                                            : "1";
+  mm.formula = fmt::format("{} ~ {} + ({} | participant)", mm.metric, rhs, random);
 }
 
 // Participants per condition (not with exposure: there a participant has several strategies).
@@ -293,7 +317,7 @@ MetricModel build_metric_model(const ModelInput& in, const std::string& metric) 
   MetricModel mm;
   mm.metric = metric;
   models::LongData d = metric_data(in, metric, mi);
-  count_missing(mm, d, in.iterations.size());
+  count_missing(mm, d, in.iterations.size(), in.options.condition_within);
   fit_metric(mm, d, in.options, in.scores.path);
   if (!in.options.exposure) count_participants(mm, d);
   add_contrasts(mm, in.options, in.scores.path);
@@ -308,7 +332,7 @@ MetricModel build_metric_model(const ModelInput& in, const std::string& metric) 
 ModelAnalysis build_model_analysis(const io::ScoresTable& scores, const ModelOptions& options,
                                    const std::vector<std::string>* strategy) {
   check_model_options(scores, options, strategy);
-  check_condition_between(scores);
+  if (!options.condition_within) check_condition_between(scores);
   ModelAnalysis a;
   a.options = options;
   a.source = scores.path;
@@ -327,7 +351,7 @@ void validate(const ModelOptions& o) {
   if (o.exposure && (o.trend || o.random_slope))
     throw UsageError(
         "--exposure fits its own model (strategy * exposure); drop --trend/--random-slope");
-
+  check_condition_slope(o);
 }
 
 }  // namespace feint::tables

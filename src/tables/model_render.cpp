@@ -55,9 +55,10 @@ std::string model_note(const ModelOptions& o, const MetricModel& m) {
       : o.trend  ? "iteration as a linear trend"
                  : "iteration as a factor";
   return fmt::format(
-      "Linear mixed model {} ({}; R's treatment coding), fitted by REML as lme4::lmer (REML "
+      "Linear mixed model {} ({}{}; R's treatment coding), fitted by REML as lme4::lmer (REML "
       "criterion {:.4f}).",
-      m.formula, time_text, m.fit.reml_criterion);
+      m.formula, time_text, o.condition_within ? "; condition within participants" : "",
+      m.fit.reml_criterion);
 }
 
 std::string f_test_note(bool kenward_roger) {
@@ -81,19 +82,23 @@ std::string sample_note(const MetricModel& m) {
 }
 
 // The mixed model keeps participants with missing trials; say so, since the ANOVA does not.
-std::string missing_trials_note(const MetricModel& m) {
+std::string missing_trials_note(const MetricModel& m, bool condition_within) {
   if (m.trials_missing == 0) return "No missing trials.";
   return fmt::format(
-      "{} participant x iteration trial{} without a value of {} (empty or absent); the {} "
+      "{} participant x {}iteration trial{} without a value of {} (empty or absent); the {} "
       "participant{} with missing trials {} kept with {} other trials (unlike the "
       "repeated-measures ANOVA, which drops them).",
-      m.trials_missing, m.trials_missing == 1 ? "" : "s", m.metric, m.participants_with_missing,
+      m.trials_missing, condition_within ? "condition (seen) x " : "",
+      m.trials_missing == 1 ? "" : "s", m.metric, m.participants_with_missing,
       m.participants_with_missing == 1 ? "" : "s",
       m.participants_with_missing == 1 ? "is" : "are",
       m.participants_with_missing == 1 ? "its" : "their");
 }
 
 std::string variance_note(const models::MixedModelFit& fit) {
+  if (!fit.variance.icc && fit.spec.random_group_slope)
+    return "With a random slope of the condition the share of the variance between participants "
+           "depends on the condition: no single ICC.";
   if (!fit.variance.icc) {
     return "With a random slope the share of the variance between participants depends on the "
            "iteration: no single ICC.";
@@ -164,7 +169,7 @@ std::vector<std::string> model_notes(const ModelAnalysis& a, const MetricModel& 
         "(the covariate is not centred, as in R); condition:iteration tests the difference of "
         "the slopes.");
   notes.push_back(sample_note(m));
-  notes.push_back(missing_trials_note(m));
+  notes.push_back(missing_trials_note(m, o.condition_within));
   notes.push_back(variance_note(fit));
   if (fit.singular)
     notes.push_back(
@@ -227,6 +232,17 @@ TextTable random_table(const MetricModel& m) {
   if (v.slope)
     row("participant", m.fit.spec.time, *v.slope,
         v.correlation ? fmt::format("{:.3f}", *v.correlation) : "");
+  // (1 + condition | participant): as R prints VarCorr, each dummy's row lists its correlations
+  // with the terms above it.
+  const std::size_t q = v.group_slopes.size() + 1;
+  for (std::size_t k = 1; k < q; ++k) {
+    std::string corr;
+    for (std::size_t j = 0; j < k; ++j) {
+      const double r = v.group_correlations.at(j * q - j * (j + 1) / 2 + (k - j - 1));
+      corr += (j ? " " : "") + (std::isnan(r) ? std::string("NaN") : fmt::format("{:.3f}", r));
+    }
+    row("participant", m.fit.spec.group + m.fit.group_levels.at(k), v.group_slopes[k - 1], corr);
+  }
   row("Residual", "", v.residual, "");
   return t;
 }
@@ -356,6 +372,16 @@ void add_random_effect_records(std::vector<Record>& out, const MetricModel& m) {
   if (fit.variance.slope) ran("participant", "var__" + fit.spec.time, *fit.variance.slope);
   if (fit.variance.correlation)
     ran("participant", "cor__(Intercept)." + fit.spec.time, *fit.variance.correlation);
+  // (1 + condition | participant), in VarCorr's order: the dummies' variances, then correlations.
+  std::vector<std::string> terms = {"(Intercept)"};
+  for (std::size_t k = 0; k < fit.variance.group_slopes.size(); ++k) {
+    terms.push_back(fit.spec.group + fit.group_levels.at(k + 1));
+    ran("participant", "var__" + terms.back(), fit.variance.group_slopes[k]);
+  }
+  std::size_t c = 0;
+  for (std::size_t j = 0; j < terms.size(); ++j)
+    for (std::size_t i = j + 1; i < terms.size(); ++i)
+      ran("participant", "cor__" + terms[j] + "." + terms[i], fit.variance.group_correlations.at(c++));
   ran("Residual", "var__Observation", fit.variance.residual);
   if (fit.variance.icc) ran("participant", "icc", *fit.variance.icc);
 }

@@ -4,6 +4,8 @@
 //
 //   y ~ group * time + (1 | participant)                (time as a factor, or a linear trend)
 //   y ~ group * time + (1 + time | participant)         (linear trend with a random slope)
+//   y ~ group * time + (1 + group | participant)        (group within participants: a random
+//                                                        deviation per participant and group level)
 //
 // `group` is the between- (condition) or within- (strategy) factor, `time` the iteration (or the
 // count of exposures to a strategy). The design uses R's default treatment coding with levels in R's
@@ -47,6 +49,11 @@ struct ModelSpec {
   std::string participant = "participant";
   TimeScale time_scale = TimeScale::factor;
   bool random_slope = false;  ///< (1 + time | participant); only with TimeScale::linear
+  /// (1 + group | participant): Z has the intercept and one treatment dummy per non-reference
+  /// group level (R's model.matrix(~ group)), so q = the number of group levels and theta has
+  /// q (q + 1) / 2 entries. Only with the group within participants (group_between == false) and
+  /// not with random_slope (UsageError otherwise).
+  bool random_group_slope = false;
   /// Order of the group levels (the first is the reference of the treatment coding). Empty: sorted
   /// as R's factor() sorts ASCII names (byte order).
   std::vector<std::string> group_levels;
@@ -68,9 +75,16 @@ struct VarianceComponents {
   double participant = 0;             ///< variance of the random intercept
   std::optional<double> slope;        ///< variance of the random slope
   std::optional<double> correlation;  ///< intercept-slope correlation
+  /// With random_group_slope: the variance of each non-reference group level's dummy (its
+  /// participant deviation from the reference level), in the order of the levels.
+  std::vector<double> group_slopes;
+  /// With random_group_slope: the lower triangle of the random effects' correlation matrix
+  /// (intercept, dummies), column-wise, as as.data.frame(VarCorr(m)) lists it: (intercept, g1),
+  /// (intercept, g2), ..., (g1, g2), ...; NaN where a variance is 0 (R's NaN too).
+  std::vector<double> group_correlations;
   double residual = 0;                ///< sigma^2
   /// Intraclass correlation participant / (participant + residual): the share of the variance
-  /// between participants. Empty with a random slope (it then depends on time).
+  /// between participants. Empty with a random slope (it then depends on time or group).
   std::optional<double> icc;
 };
 
@@ -89,7 +103,9 @@ struct MixedModelFit {
   Eigen::VectorXd theta;      ///< getME(m, "theta"): relative Cholesky factor, column-wise
   double sigma = 0;           ///< sigma(m)
   double reml_criterion = 0;  ///< REMLcrit(m) (-2 REML log-likelihood)
-  bool singular = false;      ///< a variance estimate on the boundary (lme4: isSingular)
+  /// A variance estimate on the boundary, as lme4's isSingular(tol = 1e-4): a diagonal entry of
+  /// the relative Cholesky factor (theta's entries with lower bound 0) below 1e-4.
+  bool singular = false;
   VarianceComponents variance;
   std::vector<AnovaTerm> anova;  ///< type III, Satterthwaite
 
@@ -113,8 +129,8 @@ struct MixedModelFit {
 
 /// Fits the model by REML. Throws InvalidData (exit 65) when the data cannot identify it: fewer
 /// than 2 participants, a response without variance, a participant in two groups when the group
-/// is between participants (`group_between`), an empty group x time cell (time as a factor), or a
-/// time level without observations.
+/// is between participants (`group_between`), an empty group x time cell (time as a factor), a
+/// time level without observations, or (random slopes) no more trials than random effects.
 MixedModelFit fit_mixed_model(const LongData& data, const ModelSpec& spec, bool group_between);
 
 /// A contrast of the fixed effects: the test (TestResult: test "lmm_contrast", estimate, t, df, p,

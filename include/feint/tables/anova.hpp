@@ -1,5 +1,6 @@
-// feint/tables/anova.hpp - the mixed ANOVA of a scores table, rendered as text, Markdown,
-// booktabs LaTeX, tidy CSV and JSON (docs/anova-power.md).
+// feint/tables/anova.hpp - the mixed ANOVA of a scores table (or, with conditions within
+// participants, the all-within ANOVA), rendered as text, Markdown, booktabs LaTeX, tidy CSV and
+// JSON (docs/anova-power.md).
 //
 // Tidy columns follow afex's anova_table (spaces and R's `Pr(>F)` made syntactic, as broom):
 // metric, effect, num_df, den_df, MSE, F, ges, pes, p.value (under the chosen correction), then
@@ -43,10 +44,14 @@ std::vector<models::Observation> observations(const io::ScoresTable& scores,
 
 /// The mixed ANOVA of every metric of `scores` (InvalidData from make_wide_design/mixed_anova;
 /// a condition left without complete participants stops it unless `drop_empty_conditions`).
+/// `condition_within`: every participant sees every condition, and each metric gets the
+/// all-within ANOVA instead (models::make_within_design + models::within_anova, as afex::aov_ez
+/// with within = c("condition", "iteration")); `drop_empty_conditions` does not apply, and
+/// estimated marginal means are not available yet (UsageError when `emm` asks for them).
 AnovaReport build_anova_report(const io::ScoresTable& scores,
                                models::SphericityCorrection correction,
                                bool drop_empty_conditions = false,
-                               const AnovaEmmOptions& emm = {});
+                               const AnovaEmmOptions& emm = {}, bool condition_within = false);
 
 /// `F(1.93, 112.1) = 4.31, p = .017, ηG² = .031`: df as reported (non-integer df with two
 /// decimals below 100, one above), F two decimals, APA p, ges three decimals without leading zero.

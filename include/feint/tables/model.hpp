@@ -24,6 +24,14 @@ struct ModelOptions {
   std::vector<std::string> metrics = {"error", "confusion"};
   bool trend = false;         ///< iteration as a linear trend instead of a factor
   bool random_slope = false;  ///< (1 + iteration | participant); needs `trend`
+  /// Each participant may see several conditions: the model is fitted with the condition within
+  /// participants (models::fit_mixed_model's group_between = false) and the missing trials are
+  /// counted per participant x condition seen.
+  bool condition_within = false;
+  /// (1 + condition | participant): a random deviation per participant and condition
+  /// (models::ModelSpec::random_group_slope); needs `condition_within`, not with `random_slope`
+  /// or `exposure`.
+  bool random_condition_slope = false;
   bool exposure = false;      ///< metric ~ strategy * exposure + (1 | participant)
   /// The contrast A - B; default: the first two conditions in R's level order.
   std::optional<std::pair<std::string, std::string>> compare;
@@ -43,7 +51,8 @@ struct ModelOptions {
 
 /// Throws UsageError for options that do not go together: --emmeans or --contrasts with --trend or
 /// --exposure, --compare with --exposure, --random-slope without --trend, --exposure with --trend
-/// or --random-slope.
+/// or --random-slope, --random-condition-slope without the condition within participants or with
+/// --random-slope or --exposure.
 void validate(const ModelOptions& o);
 
 using models::EmmTable;
@@ -82,7 +91,8 @@ struct ModelAnalysis {
 };
 
 /// Fits the model of every metric. `strategy` (one per scores record, needed with `exposure`) is
-/// the strategy of each trial. Throws InvalidData for: a participant in two conditions, an
+/// the strategy of each trial. Throws InvalidData for: a participant in two conditions (unless
+/// `condition_within`), an
 /// iteration present in the file but without a value of the metric for any participant, a metric
 /// without variance, an empty condition x iteration cell, a --compare condition not in the data;
 /// UsageError for impossible options (random slope without trend, exposure with trend).
