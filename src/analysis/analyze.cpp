@@ -207,15 +207,30 @@ void load_scored(const Scored& sc, const std::vector<std::string>& metrics, Stud
 
 using Comparison = std::optional<std::pair<std::string, std::string>>;
 
-// Stage 3. Table 1: one-sample per condition, and A against B when asked.
+// Stage 2b. The condition design, declared or read off the data and checked against it: a
+// contradiction stops the run (InvalidData naming the participant and what to set); participants
+// a within design cannot pair are named in the accounting.
+void check_design(const Study& study, const std::vector<std::string>& metrics, StudyResults& r) {
+  if (metrics.empty()) return;
+  // The scored trials' lines are those of a scratch file: the messages name the study instead.
+  auto rows = tables::observations(r.scores, metrics.front());
+  for (auto& row : rows) row.line = 0;
+  r.design = models::check_condition_design(rows, study.design, fmt::format("study {}", study.name));
+  for (const auto& w : r.design.warnings) note_left_out(r.diagnostics, "design", w);
+}
+
+bool within(const StudyResults& r) { return r.design.design == models::ConditionDesign::within; }
+
+// Stage 3. Table 1: one-sample per condition, and A against B when asked (paired when the
+// conditions are within participants).
 void build_tables(const Study& study, const Comparison& compare, const tables::Table1Options& t,
                   StudyResults& r) {
   r.table1 = tables::build_table1(r.scores, t);
   if (compare) {
     tables::Table1Options c = t;
     c.compare = compare;
-    c.var_equal = study.settings.var_equal;
-    c.paired = study.settings.paired;
+    c.var_equal = study.settings.var_equal && !within(r);
+    c.paired = study.settings.paired || within(r);
     r.comparison = tables::build_table1(r.scores, c);
   }
 }
@@ -228,7 +243,7 @@ void fit_models(const Study& study, const Comparison& compare,
                 StudyResults& r) {
   Diagnostics& d = r.diagnostics;
   try {
-    r.anova = tables::build_anova_report(r.scores, models::SphericityCorrection::GG);
+    r.anova = tables::build_anova_report(r.scores, models::SphericityCorrection::GG, false, {}, within(r));
   } catch (const InvalidData& e) {
     note_left_out(d, "anova", fmt::format("no mixed ANOVA: {}", without_prefix(e.what(), prefix)));
   }
@@ -250,6 +265,7 @@ void fit_models(const Study& study, const Comparison& compare,
   o.conf_level = study.tests.test.conf_level;
   o.p_adjust = study.tests.p_adjust;
   o.apa = study.tests.apa;
+  o.condition_within = within(r);
   try {
     r.model = tables::build_model_analysis(r.scores, o);
     o.trend = true;
@@ -399,11 +415,17 @@ Comparison decide_comparison(const Study& study, StudyResults& r) {
     r.comparison_note = fmt::format(
         "compared by default: the logs hold exactly these two conditions and no settings file "
         "names a comparison (set compare = \"A,B\" in feint.toml to choose)");
-    AnalysisSettings printed = study.settings;
-    printed.compare = c->first + "," + c->second;
-    r.settings_toml = settings_toml(printed);
   }
   return c;
+}
+
+// The settings that reproduce the run: as given, with the comparison and the design that were
+// decided without a setting written in, so that a rerun makes the same decisions on purpose.
+void print_settings(const Study& study, const Comparison& compare, StudyResults& r) {
+  AnalysisSettings printed = study.settings;
+  if (!study.compare && compare) printed.compare = compare->first + "," + compare->second;
+  if (!r.design.declared && !r.design.note.empty()) printed.design = std::string(models::to_string(r.design.design));
+  r.settings_toml = settings_toml(printed);
 }
 
 // The one-sided tests of the confirmatory hypotheses with a direction: H1 on the comparison of
@@ -437,7 +459,9 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   const tables::Table1Options t = table1_options(study);
   const std::vector<std::string> metrics = metric_columns(t);
   load_scored(scored, metrics, r);
+  check_design(study, metrics, r);
   const Comparison compare = decide_comparison(study, r);
+  print_settings(study, compare, r);
   build_tables(study, compare, t, r);
   fit_models(study, compare, metrics, scored.prefix, r);
   analyze_questionnaire(study, compare, r);

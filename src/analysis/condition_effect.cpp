@@ -22,23 +22,43 @@ const models::AnovaTerm* term_of(const models::MixedModelFit& fit, const std::st
   return nullptr;
 }
 
-// The participants' mean scores in each of the two conditions (each person one number, so the
-// Welch t test and its Bayes factor are on independent units).
-std::pair<std::vector<double>, std::vector<double>> participant_means(const models::LongData& d,
-                                                                      const std::string& a,
-                                                                      const std::string& b) {
-  std::map<std::string, std::pair<std::string, std::pair<double, std::size_t>>> per;
+// The participants' mean scores in each of the two conditions: each person one number per
+// condition, so that the t test and its Bayes factor are on independent units (Welch between
+// participants). `paired` when some participant saw both (conditions within participants): then
+// only those who saw both, in the same order in both vectors (a paired t test).
+struct ParticipantMeans {
+  std::vector<double> a, b;
+  bool paired = false;
+};
+
+ParticipantMeans participant_means(const models::LongData& d, const std::string& a, const std::string& b) {
+  std::map<std::pair<std::string, std::string>, std::pair<double, std::size_t>> per;  // (participant, group)
   for (std::size_t i = 0; i < d.y.size(); ++i) {
-    auto& [group, sum] = per[d.participant[i]];
-    group = d.group[i];
+    auto& sum = per[{d.participant[i], d.group[i]}];
     sum.first += d.y[i];
     ++sum.second;
   }
-  std::pair<std::vector<double>, std::vector<double>> out;
-  for (const auto& [p, v] : per) {
-    const double mean = v.second.first / static_cast<double>(v.second.second);
-    if (v.first == a) out.first.push_back(mean);
-    if (v.first == b) out.second.push_back(mean);
+  auto mean_of = [&](const std::string& p, const std::string& g) -> std::optional<double> {
+    const auto it = per.find({p, g});
+    if (it == per.end()) return std::nullopt;
+    return it->second.first / static_cast<double>(it->second.second);
+  };
+  ParticipantMeans out;
+  for (const auto& [key, _] : per)
+    if (key.second == a && mean_of(key.first, b)) out.paired = true;
+  for (const auto& [key, _] : per) {
+    const auto& [p, g] = key;
+    if (out.paired) {
+      if (g != a) continue;
+      if (const auto y = mean_of(p, b)) {
+        out.a.push_back(*mean_of(p, a));
+        out.b.push_back(*y);
+      }
+    } else if (g == a) {
+      out.a.push_back(*mean_of(p, g));
+    } else if (g == b) {
+      out.b.push_back(*mean_of(p, g));
+    }
   }
   return out;
 }
@@ -82,19 +102,22 @@ std::optional<double> describe_condition_effect(Finding& f, const tables::Metric
   } catch (const Error&) {
     // emmeans needs iteration as a factor; a model without it keeps its F test alone.
   }
-  const auto [x, y] = participant_means(m.data, a, b);
+  const ParticipantMeans pm = participant_means(m.data, a, b);
   stats::TestOptions o;
   o.conf_level = conf_level;
-  stats::TestResult t = stats::t_test_welch(x, y, o);
+  stats::TestResult t = pm.paired ? stats::t_test_paired(pm.a, pm.b, o) : stats::t_test_welch(pm.a, pm.b, o);
   stats::add_bayes_factor(t, bf_prior_r);
   if (!t.computed || !t.log_bf10) {
     f.bf_note = "no Bayes factor: the participants' mean scores cannot be compared";
     return std::nullopt;
   }
   f.bf10 = std::exp(*t.log_bf10);
-  f.bf_note = fmt::format("JZS Bayes factor of a Welch t test on the participants' mean scores "
-                          "({} and {} participants; docs/findings.md)",
-                          x.size(), y.size());
+  f.bf_note = pm.paired ? fmt::format("JZS Bayes factor of a paired t test on the participants' mean scores in the "
+                                      "two conditions ({} participants who saw both; docs/findings.md)",
+                                      pm.a.size())
+                        : fmt::format("JZS Bayes factor of a Welch t test on the participants' mean scores "
+                                      "({} and {} participants; docs/findings.md)",
+                                      pm.a.size(), pm.b.size());
   if (!std::isfinite(*f.bf10)) f.bf10.reset();
   return t.log_bf10;
 }

@@ -79,6 +79,7 @@ std::string settings_toml(const AnalysisSettings& a) {
   t.text += "\n# Tables\n";
   t.list("metric", a.metrics, "default: error=0.5 and confusion=0.95@raw");
   t.maybe("compare", a.compare, "no comparison of two conditions");
+  t.maybe("design", a.design, "read off the data: between or within participants");
   t.list("hypothesis", a.hypotheses, "the paper's H1 and H2");
   t.flag("var-equal", a.var_equal);
   t.flag("paired", a.paired);

@@ -81,6 +81,7 @@ Study load_study(const std::string& folder, const AnalysisSettings& a, const std
   // One scale: refused here, before a log is read, not found as "reference outside the data".
   tables::check_reference_scales(s.metrics, metrics::to_string(s.scoring.metrics.norm),
                                  "the study's settings");
+  s.design = models::parse_condition_design(a.design);
   if (!a.compare.empty()) {
     s.compare = parse_compare(a.compare);
     // A log without a condition column is then refused, not pooled.

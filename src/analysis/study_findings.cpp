@@ -69,6 +69,62 @@ bool is_t_test(const std::string& test) {
   return test == "one_sample_t" || test == "welch_t" || test == "student_t" || test == "paired_t";
 }
 
+/// The adjusted p-values of `m` into the tests, when its statistics are the table's own t (else
+/// the data differ from the tests' and `why_not` says so).
+bool take_maxt(const stats::MaxTResult& m, const std::vector<long long>& iterations,
+               std::vector<stats::TestResult>& tests, std::string& why_not) {
+  for (std::size_t j = 0; j < tests.size(); ++j) {
+    const auto& t = tests[j];
+    const bool both = t.computed && t.statistic && m.statistic[j];
+    if ((t.computed && t.statistic) != m.statistic[j].has_value() ||
+        (both && std::fabs(*t.statistic - *m.statistic[j]) > 1e-8 * std::max(1.0, std::fabs(*t.statistic)))) {
+      why_not = fmt::format("iteration {}'s t could not be reproduced from the participants' values", iterations[j]);
+      return false;
+    }
+  }
+  for (std::size_t j = 0; j < tests.size(); ++j) tests[j].p_adjusted = m.p_adjusted[j];
+  return true;
+}
+
+/// The paired per-iteration contrasts (conditions within participants) adjusted by maxT over sign
+/// flips: each participant's two conditions swapped with all of their iterations
+/// (stats::maxt_step_down_paired). Participants without a pair at an iteration are left out of
+/// that iteration, as the paired tests leave them out.
+std::string maxt_paired(const StudyResults& r, const tables::Table1& comparison, const std::string& metric,
+                        const std::vector<long long>& iterations, std::vector<stats::TestResult>& tests,
+                        std::string& why_not) {
+  const auto& o = comparison.options;
+  const int k = r.scores.metric_index(metric);
+  if (k < 0 || tests.empty()) return {};
+  std::map<long long, std::size_t> column;
+  for (std::size_t j = 0; j < iterations.size(); ++j) column[iterations[j]] = j;
+  const std::size_t columns = iterations.size();
+  // participant -> (A, B) per column; the last record wins, as the paired table takes it.
+  std::map<std::string, std::vector<std::pair<double, double>>> pairs;
+  const double none = std::nan("");
+  for (const auto& rec : r.scores.records) {
+    const bool a = rec.condition == o.compare->first, b = rec.condition == o.compare->second;
+    const auto c = column.find(rec.iteration);
+    const auto& v = rec.values[static_cast<std::size_t>(k)];
+    if ((!a && !b) || c == column.end() || !v) continue;
+    auto& row = pairs.try_emplace(rec.participant, columns, std::pair{none, none}).first->second;
+    (a ? row[c->second].first : row[c->second].second) = *v;
+  }
+  std::vector<double> differences;
+  for (const auto& [_, row] : pairs)
+    for (const auto& [x, y] : row) differences.push_back(x - y);  // NaN where either is missing
+  if (differences.empty()) return {};
+  stats::MaxTOptions mo;
+  mo.alternative = o.test.alternative;
+  mo.permutations = kIterationPermutations;
+  const stats::MaxTResult m = stats::maxt_step_down_paired(differences, columns, mo);
+  if (!take_maxt(m, iterations, tests, why_not)) return {};
+  return m.exact ? fmt::format("Westfall\u2013Young maxT-adjusted over {} iterations, all {} sign flips of "
+                               "the participants' pairs", iterations.size(), thousands(m.labellings))
+                 : fmt::format("Westfall\u2013Young maxT-adjusted over {} iterations, {} sign flips of the "
+                               "participants' pairs drawn at random", iterations.size(), thousands(m.labellings));
+}
+
 /// The per-iteration contrasts' multiplicity correction (docs/findings.md, "Per-iteration
 /// contrasts: the maxT correction"): Westfall–Young step-down maxT over the iterations, each
 /// participant relabelled between the two conditions with all of their iterations. Fills the
@@ -79,10 +135,7 @@ std::string maxt_over_iterations(const StudyResults& r, const tables::Table1& co
                                  std::string& why_not) {
   const auto& o = comparison.options;
   if (!o.compare) return {};
-  if (o.paired) {
-    why_not = "paired tests";
-    return {};
-  }
+  if (o.paired) return maxt_paired(r, comparison, metric, iterations, tests, why_not);
   const int k = r.scores.metric_index(metric);
   if (k < 0 || tests.empty()) return {};
   const std::string& a = o.compare->first;
@@ -120,16 +173,7 @@ std::string maxt_over_iterations(const StudyResults& r, const tables::Table1& co
   mo.permutations = kIterationPermutations;
   const stats::MaxTResult m = stats::maxt_step_down(values, columns, group, mo);
   // The relabelled statistic must be the table's own t: else the data differ from the tests'.
-  for (std::size_t j = 0; j < tests.size(); ++j) {
-    const auto& t = tests[j];
-    const bool both = t.computed && t.statistic && m.statistic[j];
-    if ((t.computed && t.statistic) != m.statistic[j].has_value() ||
-        (both && std::fabs(*t.statistic - *m.statistic[j]) > 1e-8 * std::max(1.0, std::fabs(*t.statistic)))) {
-      why_not = fmt::format("iteration {}'s t could not be reproduced from the participants' values", iterations[j]);
-      return {};
-    }
-  }
-  for (std::size_t j = 0; j < tests.size(); ++j) tests[j].p_adjusted = m.p_adjusted[j];
+  if (!take_maxt(m, iterations, tests, why_not)) return {};
   return m.exact ? fmt::format("Westfall\u2013Young maxT-adjusted over {} iterations, all {} labellings of "
                                "the participants", iterations.size(), m.labellings)
                  : fmt::format("Westfall\u2013Young maxT-adjusted over {} iterations, {} labellings of the "
@@ -459,6 +503,16 @@ std::string labelling_words(const models::RelabelledConditionTests& rt, std::uin
   return fmt::format(" over {} labellings of the participants drawn at random", thousands(counted));
 }
 
+// Whether some participant has trials in two conditions (conditions within participants).
+bool conditions_within(const models::LongData& d) {
+  std::map<std::string, const std::string*> first;
+  for (std::size_t i = 0; i < d.y.size(); ++i) {
+    const auto [it, added] = first.emplace(d.participant[i], &d.group[i]);
+    if (!added && *it->second != d.group[i]) return true;
+  }
+  return false;
+}
+
 // Relabelling p-values (docs/findings.md, "Mixed models: relabelling p-values"): whole
 // participants relabelled between the two conditions, both models refitted each time.
 Relabelling relabel_family(const tables::MetricModel* any, const std::vector<ModelTest>& family) {
@@ -469,6 +523,9 @@ Relabelling relabel_family(const tables::MetricModel* any, const std::vector<Mod
     rl.why_not = "the trials were not given to relabel";
   } else if (any->fit.group_levels.size() != 2) {
     rl.why_not = fmt::format("{} conditions (relabelling needs two)", any->fit.group_levels.size());
+  } else if (conditions_within(any->data)) {
+    rl.why_not = "the conditions are within participants, and the models' relabelling moves whole participants "
+                 "between conditions; swapping the conditions within participants is not implemented yet";
   } else if (!family.empty()) {
     try {
       models::RelabellingOptions ro;
@@ -537,8 +594,9 @@ Finding model_test_finding(const ModelTest& mb, std::size_t i, std::size_t famil
           : fmt::format("Holm-adjusted over the {} model tests of {}: {}", family_size, metric,
                         p_text(*mb.test.p_adjusted));
   const std::string no_bf =
-      mb.test.log_bf10 ? fmt::format("{}, Welch t test on the participants' mean scores",
-                                     tables::apa_bayes_factor(*mb.test.log_bf10))
+      mb.test.log_bf10 ? fmt::format("{}, {} t test on the participants' mean scores",
+                                     tables::apa_bayes_factor(*mb.test.log_bf10),
+                                     f.bf_note.find("paired t test") != std::string::npos ? "paired" : "Welch")
       : f.strength == Strength::evidence_for_difference
           ? "no Bayes factor is available for this test"
           : "no Bayes factor is available for this test, so a non-significant result is not evidence "

@@ -9,8 +9,6 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,19 +34,6 @@ struct AnalyzeArgs {
   analysis::AnalysisSettings s;
 };
 
-// This process's arguments as the kernel recorded them (Linux: /proc/self/cmdline; none without
-// /proc), for the report's Reproduce line: the caller captures them, the library quotes them.
-std::vector<std::string> process_arguments() {
-  std::ifstream in("/proc/self/cmdline", std::ios::binary);
-  const std::string raw{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  std::vector<std::string> args;
-  for (std::size_t start = 0, end = 0; start < raw.size(); start = end + 1) {
-    end = std::min(raw.find('\0', start), raw.size());
-    args.push_back(raw.substr(start, end - start));
-  }
-  return args;
-}
-
 void run(CLI::App& cmd, AnalyzeArgs& a) {
   if (!fs::is_directory(a.study)) {
     throw IoError(fmt::format("study folder '{}' does not exist or is not a folder", a.study));
@@ -60,7 +45,7 @@ void run(CLI::App& cmd, AnalyzeArgs& a) {
   const analysis::StudyResults results = analysis::analyze(study, FEINT_VERSION);
   for (const auto& w : results.diagnostics.warnings) fmt::print(stderr, "feint: warning: {}\n", w);
   // The Reproduce line runs from the report's folder: its paths are relative to it.
-  const std::string command = commands::quoted_command_line(process_arguments(), out);
+  const std::string command = commands::quoted_command_line(commands::process_arguments(), out);
   const publish::WrittenStudy written = publish::write_study(study, results, out, command);
   // What the study shows (docs/findings.md), also in OUT/findings.json and first in the report.
   if (!results.findings.empty()) fmt::print("{}", analysis::findings_text(results.findings));
@@ -102,6 +87,7 @@ void add_analyze_command(CLI::App& app) {
                   "questionnaire), e.g. adaptive,random");
   cmd->add_flag("--var-equal", args->s.var_equal, "Student's t instead of Welch's");
   cmd->add_flag("--paired", args->s.paired, "Paired t (same participants in both)");
+  cmd->add_option("--design", args->s.design, analysis::kDesignHelp);
   cmd->add_option("--equivalence", args->s.equivalence, "TOST margin: '≈' must be earned");
   one_per_use(cmd->add_option("--hypothesis", args->s.hypotheses, "ID:KEY=VALUE, e.g. H1:confirmatory=true"));
   cmd->option_defaults()->group("Questionnaire (see feint likert)");

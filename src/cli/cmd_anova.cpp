@@ -42,6 +42,7 @@ void add_anova_command(CLI::App& app) {
   cmd->add_option("--adjust", args->o.adjust,
                   "Adjustment of the --contrasts within each family: tukey, holm or none "
                   "(default: tukey for pairwise/simple, none for poly)");
+  cmd->add_option("--design", args->o.design, analysis::kDesignHelp);
   add_scores_column_options(*cmd, args->o.columns);
   add_report_options(*cmd, args->report, {.tests = false, .presentation = true});
   cmd->callback([args] { run_report(*args, commands::anova_report); });

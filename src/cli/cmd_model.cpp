@@ -27,6 +27,9 @@ void add_model_command(CLI::App& app) {
   cmd->add_flag("--trend", args->o.trend, "Iteration as a linear trend instead of a factor");
   cmd->add_flag("--random-slope", args->o.random_slope,
                 "With --trend: a random slope per participant, (1 + iteration | participant)");
+  cmd->add_flag("--random-condition-slope", args->o.random_condition_slope,
+                "Conditions within participants: (1 + condition | participant)");
+  cmd->add_option("--design", args->o.design, analysis::kDesignHelp);
   cmd->add_flag("--exposure", args->o.exposure,
                 "Fit metric ~ strategy * exposure + (1 | participant), exposure = earlier trials "
                 "of the same strategy; report the slope per strategy");

@@ -85,7 +85,8 @@ void add_study_command(CLI::App& parent) {
   cmd->add_flag("--replace", opts->replace,
                 "replace the folder of an earlier feint simulate study whole (never a folder "
                 "holding other files)");
-  cmd->add_option("--participants,-p", opts->participants, "participants per condition")
+  cmd->add_option("--design", opts->design, "between or within participants")->capture_default_str();
+  cmd->add_option("--participants,-p", opts->participants, "participants per condition (within: in all)")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
   cmd->add_option("--iterations,-n", opts->iterations, "iterations per participant")

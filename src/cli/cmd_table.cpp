@@ -30,6 +30,7 @@ void add_table_command(CLI::App& app) {
                 "Two-sample: Student's t (pooled variance) instead of Welch");
   cmd->add_flag("--paired", args->o.paired,
                 "Two-sample: paired t-test, pairs matched by participant");
+  cmd->add_option("--design", args->o.design, analysis::kDesignHelp);
   auto* equivalence = cmd->add_option(
       "--equivalence", args->o.equivalence,
       "Equivalence margin delta (> 0, metric units): '≈' is earned by TOST within +-delta");

@@ -129,6 +129,8 @@ std::string study_toml(const Settings& s, std::string_view tool_version) {
       tool_version, fmt::join(names, ", "), s.iterations, s.practice,
       io::format_double(s.pad_speed), io::format_double(s.geometry.sample_rate), s.seed,
       fmt::join(s.items, ", "));
+  out += "# Each participant is given one condition: conditions between participants.\n"
+         "design = \"between\"\n\n";
   if (names.size() == 2) {
     out += fmt::format(
         "# The comparison the study was run for (Table 1 two-sample, the models, the questionnaire).\n"

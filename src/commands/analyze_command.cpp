@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "feint/analysis/study.hpp"
 
@@ -31,6 +34,17 @@ std::string shown_argument(const std::string& arg, const std::string& out_arg) {
 }
 
 }  // namespace
+
+std::vector<std::string> process_arguments() {
+  std::ifstream in("/proc/self/cmdline", std::ios::binary);
+  const std::string raw{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  std::vector<std::string> args;
+  for (std::size_t start = 0, end = 0; start < raw.size(); start = end + 1) {
+    end = std::min(raw.find('\0', start), raw.size());
+    args.push_back(raw.substr(start, end - start));
+  }
+  return args;
+}
 
 std::string quoted_command_line(const std::vector<std::string>& arguments,
                                 const std::string& output_folder) {

@@ -7,6 +7,7 @@
 
 #include "feint/error.hpp"
 #include "feint/io/file_identity.hpp"
+#include "feint/models/condition_design.hpp"
 #include "feint/models/emmeans.hpp"
 #include "feint/tables/anova.hpp"
 #include "feint/tables/likert.hpp"
@@ -14,6 +15,17 @@
 #include "feint/tables/table1.hpp"
 
 namespace feint::commands {
+
+namespace {
+
+// The conditions' design of a scores table: --design, else read off the data; a contradiction is
+// InvalidData naming the participant and what to set (models/condition_design.hpp).
+models::DesignCheck design_of(const io::ScoresTable& scores, std::optional<models::ConditionDesign> declared,
+                              const std::string& metric) {
+  return models::check_condition_design(tables::observations(scores, metric), declared, scores.path);
+}
+
+}  // namespace
 
 std::string table1_report(const TableCommandOptions& a, const analysis::ResolvedReportOptions& r) {
   io::refuse_overwriting_inputs({a.input}, {r.output});
@@ -24,6 +36,7 @@ std::string table1_report(const TableCommandOptions& a, const analysis::Resolved
     o.compare = analysis::parse_compare(a.compare);
     if (!a.condition.empty()) throw UsageError("--condition and --compare exclude each other");
   }
+  const auto declared = models::parse_condition_design(a.design);
   o.var_equal = a.var_equal;
   o.paired = a.paired;
   if (a.equivalence_given) o.equivalence = a.equivalence;
@@ -37,6 +50,11 @@ std::string table1_report(const TableCommandOptions& a, const analysis::Resolved
   so.metrics.clear();
   for (const auto& m : o.metrics) so.metrics.push_back(m.column);
   const io::ScoresTable scores = io::load_scores(a.input, so);
+  // Conditions within participants are compared pair by pair.
+  if (o.compare && design_of(scores, declared, o.metrics.front().column).design == models::ConditionDesign::within) {
+    if (o.var_equal) throw UsageError("--var-equal: the conditions are within participants (paired t-tests)");
+    o.paired = true;
+  }
   const tables::Table1 table = tables::build_table1(scores, o);
   // The scores' sidecar (read for the note) is an input too.
   io::refuse_overwriting_inputs({table.provenance.sidecar_path}, {r.output});
@@ -64,9 +82,12 @@ std::string anova_report(const AnovaCommandOptions& a, const analysis::ResolvedR
   auto contrasts = models::parse_emm_contrasts(a.contrasts, a.adjust);
   emm.families = std::move(contrasts.families);
   emm.adjust = contrasts.adjust;
+  const auto declared = models::parse_condition_design(a.design);
   const io::ScoresTable scores = io::load_scores(a.input, so);
+  const bool within = !scores.metrics.empty() &&
+                      design_of(scores, declared, scores.metrics.front()).design == models::ConditionDesign::within;
   const tables::AnovaReport report =
-      tables::build_anova_report(scores, correction, a.drop_empty_conditions, emm);
+      tables::build_anova_report(scores, correction, a.drop_empty_conditions, emm, within);
   return tables::render_anova(report, r.format, a.apa, r.presentation);
 }
 
@@ -87,6 +108,8 @@ std::string model_report(const ModelCommandOptions& a, const analysis::ResolvedR
   if (!a.compare.empty()) o.compare = analysis::parse_compare(a.compare);
   o.trend = a.trend;
   o.random_slope = a.random_slope;
+  o.random_condition_slope = a.random_condition_slope;
+  const auto declared = models::parse_condition_design(a.design);
   o.exposure = a.exposure;
   o.alpha = r.alpha;
   o.conf_level = r.test.conf_level;
@@ -97,6 +120,9 @@ std::string model_report(const ModelCommandOptions& a, const analysis::ResolvedR
   auto contrasts = models::parse_emm_contrasts(a.contrasts, a.adjust);
   o.contrast_families = std::move(contrasts.families);
   o.adjust = contrasts.adjust;
+  // The options' other combinations are checked before the file is read; whether the conditions
+  // are within participants, only after.
+  o.condition_within = o.random_condition_slope;
   tables::validate(o);
 
   io::ScoresOptions so = a.columns;
@@ -104,6 +130,13 @@ std::string model_report(const ModelCommandOptions& a, const analysis::ResolvedR
   if (o.exposure && a.input == "-")
     throw UsageError("--exposure reads the file twice: give a file, not standard input");
   const io::ScoresTable scores = io::load_scores(a.input, so);
+  // Strategies are within participants whatever the conditions are; the conditions' design is
+  // checked (and read off the data) only for the models of conditions.
+  if (!o.exposure && !o.metrics.empty())
+    o.condition_within = design_of(scores, declared, o.metrics.front()).design == models::ConditionDesign::within;
+  if (o.random_condition_slope && !o.condition_within)
+    throw UsageError("--random-condition-slope: the conditions are between participants (a random slope of the "
+                     "condition needs each participant in several conditions: --design within)");
   std::vector<std::string> strategies;
   if (o.exposure) strategies = tables::load_strategies(scores, so, a.strategy_column);
   const tables::ModelAnalysis analysis =

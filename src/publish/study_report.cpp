@@ -129,6 +129,7 @@ std::vector<std::pair<std::string, std::string>> design_rows(const analysis::Stu
   return {
       {"Study folder", c.study_folder},
       {"Conditions", fmt::format("{}", fmt::join(per_condition, ", "))},
+      {"Design", r.design.note.empty() ? std::string("no conditions to relate to the participants") : r.design.note},
       {"Iterations",
        its.empty() ? "none" : fmt::format("{} ({} to {})", its.size(), its.front(), its.back())},
       {"Metrics and references", detail::references_text(r)},

@@ -26,6 +26,10 @@ std::vector<SimulationSettings> selection_settings(const SelectionOptions& o) {
 StudySettings study_settings(const StudyOptions& o) {
   StudySettings s;
   s.participants = o.participants;
+  if (o.design != "between" && o.design != "within")
+    throw UsageError(fmt::format("--design '{}': expected between (each participant in one condition) or "
+                                 "within (each participant in both, counterbalanced)", o.design));
+  s.within = o.design == "within";
   s.iterations = o.iterations;
   s.lambda = o.lambda;
   s.seed = o.seed;

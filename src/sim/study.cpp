@@ -88,6 +88,56 @@ ParticipantRecord simulate_participant(const StudySettings& settings, int index)
 
 namespace {
 
+// One block of a participant: the condition's run, watched by `observer`.
+ParticipantRecord watch_block(const StudySettings& settings, Algorithm condition, int block, Observer& observer,
+                              Rng& rng) {
+  ParticipantRecord p;
+  p.condition = condition;
+  RunSettings run;
+  run.algorithm = condition;
+  run.lambda = settings.lambda;
+  run.iterations = settings.iterations;
+  const std::vector<Iteration> its = generate_run(run, rng);
+  double sum = 0;
+  for (std::size_t i = 0; i < its.size(); ++i) {
+    const auto& it = its[i];
+    TrialRecord tr;
+    tr.iteration = static_cast<int>(i) + 1;
+    tr.block = block;
+    tr.strategy = it.strategy;
+    tr.variant = it.variant;
+    tr.target = it.target;
+    const auto path = trajectory(it.strategy, it.variant, it.target, settings.geometry);
+    tr.pad = observer.watch(path, it.strategy, it.variant, it.target, settings.geometry, rng);
+    tr.error = trial_error(tr.pad, it.target == Target::left ? 0.0 : 1.0);
+    observer.remember(it.strategy, it.variant);
+    sum += tr.error;
+    p.trials.push_back(std::move(tr));
+  }
+  p.mean_error = sum / static_cast<double>(its.size());
+  return p;
+}
+
+}  // namespace
+
+std::vector<ParticipantRecord> simulate_participant_within(const StudySettings& settings, int index) {
+  validate(settings.geometry);
+  if (settings.participants < 1) throw UsageError("participants must be >= 1");
+  if (index < 0 || index >= settings.participants) throw UsageError("participant index out of range");
+  Rng rng = Rng::stream(settings.seed, static_cast<std::uint64_t>(index));
+  Observer observer(settings.observer);
+  const bool adaptive_first = index % 2 == 0;
+  std::vector<ParticipantRecord> blocks;
+  for (int b = 0; b < 2; ++b) {
+    const Algorithm c = kStudyConditions[static_cast<std::size_t>(adaptive_first ? b : 1 - b)];
+    blocks.push_back(watch_block(settings, c, b + 1, observer, rng));
+    blocks.back().id = participant_id(index, settings.participants);
+  }
+  return blocks;
+}
+
+namespace {
+
 // A folder that `feint simulate study` wrote before it wrote a manifest: logs/ with P*.csv.gz and
 // questionnaire.csv.
 bool is_legacy_study_output(std::string_view name) {
@@ -104,18 +154,27 @@ bool is_legacy_study_output(std::string_view name) {
 }  // namespace
 
 std::string study_toml(const StudySettings& settings, std::string_view tool_version) {
+  const std::string design =
+      settings.within
+          ? fmt::format("{} participants, each in both conditions (counterbalanced blocks of {} iterations)",
+                        settings.participants, settings.iterations)
+          : fmt::format("{} participants per condition, {} iterations", settings.participants, settings.iterations);
   return fmt::format(
       "# The design of this simulated study, written by feint simulate study (feint {}), read by\n"
       "# `feint analyze` (names are its options without the dashes; the command line wins).\n"
-      "# {} participants per condition, {} iterations, lambda {} (adaptive), seed {}.\n\n"
+      "# {}, lambda {} (adaptive), seed {}.\n\n"
+      "# {}\n"
+      "design = \"{}\"\n\n"
       "# The study compares its two conditions (Table 1 two-sample, the models, the questionnaire).\n"
       "compare = \"adaptive,random\"\n\n"
       "# Confusion on the paper's scale (eq. 4 without normalisation), where the paper's reference\n"
       "# 0.95 lies: the scores and the reference are on one scale (docs/metrics.md).\n"
       "confusion-norm = \"raw\"\n"
       "metric = [\"error=0.5\", \"confusion=0.95@raw\"]\n",
-      tool_version, settings.participants, settings.iterations,
-      io::format_double(settings.lambda), settings.seed);
+      tool_version, design, io::format_double(settings.lambda), settings.seed,
+      settings.within ? "Each participant saw both conditions: conditions within participants (paired tests)."
+                      : "Each participant saw one condition: conditions between participants.",
+      settings.within ? "within" : "between");
 }
 
 io::FolderWriter study_folder_writer(bool replace) {
@@ -130,26 +189,25 @@ io::FolderWriter study_folder_writer(bool replace) {
   return w;
 }
 
-std::vector<ParticipantRecord> write_study(const StudySettings& settings, const std::string& dir,
-                                           bool replace, std::string_view tool_version) {
-  namespace fs = std::filesystem;
-  io::OutputFolder folder(dir, {}, study_folder_writer(replace));
-  const fs::path logs = folder.staging() / "logs";
-  std::error_code ec;
-  fs::create_directories(logs, ec);
-  if (ec) throw IoError(fmt::format("{}: cannot create directory: {}", logs.string(), ec.message()));
+namespace {
+
+// A participant's pad-trace log: every trial of its blocks, with the robot's position at each pad
+// sample (formats.md "Robot path", to 0.1 mm); within designs add the block column.
+std::string log_text(const std::vector<ParticipantRecord>& blocks, const StudySettings& settings) {
   const std::string pad_speed = io::format_double(settings.observer.pad_speed);
-  std::vector<ParticipantRecord> all;
-  for (int i = 0; i < 2 * settings.participants; ++i) {
-    ParticipantRecord p = simulate_participant(settings, i);
-    std::string text =
-        "participant,condition,iteration,strategy,variant,target,t,pad,pad_speed,robot_x,robot_y\n";
+  std::string text = settings.within ? "participant,condition,block,iteration,strategy,variant,target,t,pad,"
+                                       "pad_speed,robot_x,robot_y\n"
+                                     : "participant,condition,iteration,strategy,variant,target,t,pad,pad_speed,"
+                                       "robot_x,robot_y\n";
+  std::vector<double> times;
+  for (const auto& p : blocks) {
     const std::string cond(to_string(p.condition));
-    std::vector<double> times;
     for (const auto& tr : p.trials) {
-      const std::string key = fmt::format("{},{},{},{},{},{},", p.id, cond, tr.iteration,
-                                          to_string(tr.strategy), to_string(tr.variant), to_string(tr.target));
-      // The robot's position at each pad sample (formats.md "Robot path"), to 0.1 mm.
+      const std::string key =
+          settings.within ? fmt::format("{},{},{},{},{},{},{},", p.id, cond, tr.block, tr.iteration,
+                                        to_string(tr.strategy), to_string(tr.variant), to_string(tr.target))
+                          : fmt::format("{},{},{},{},{},{},", p.id, cond, tr.iteration, to_string(tr.strategy),
+                                        to_string(tr.variant), to_string(tr.target));
       times.clear();
       for (const auto& s : tr.pad) times.push_back(s.t - tr.pad.front().t);
       const auto robot = robot_positions(tr.strategy, tr.variant, tr.target, settings.geometry, times);
@@ -168,24 +226,33 @@ std::vector<ParticipantRecord> write_study(const StudySettings& settings, const 
         text += '\n';
       }
     }
-    const fs::path target = logs / (p.id + ".csv.gz");
-    const fs::path tmp = logs / ("." + p.id + ".csv.gz.tmp");
-    gzFile gz = gzopen(tmp.c_str(), "wb9");
-    if (gz == nullptr) throw IoError(fmt::format("{}: cannot open for writing", tmp.string()));
-    const int written = gzwrite(gz, text.data(), static_cast<unsigned>(text.size()));
-    const int closed = gzclose(gz);
-    if (written != static_cast<int>(text.size()) || closed != Z_OK) {
-      fs::remove(tmp, ec);
-      throw IoError(fmt::format("{}: write failed", tmp.string()));
-    }
-    fs::rename(tmp, target, ec);
-    if (ec) {
-      fs::remove(tmp, ec);
-      throw IoError(fmt::format("{}: cannot rename into place", target.string()));
-    }
-    for (auto& tr : p.trials) tr.pad.clear();  // the traces are on disk; keep the summary small
-    all.push_back(std::move(p));
   }
+  return text;
+}
+
+// DIR/logs/<id>.csv.gz, written under a temporary name and renamed into place.
+void write_log(const std::filesystem::path& logs, const std::string& id, const std::string& text) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path target = logs / (id + ".csv.gz");
+  const fs::path tmp = logs / ("." + id + ".csv.gz.tmp");
+  gzFile gz = gzopen(tmp.c_str(), "wb9");
+  if (gz == nullptr) throw IoError(fmt::format("{}: cannot open for writing", tmp.string()));
+  const int written = gzwrite(gz, text.data(), static_cast<unsigned>(text.size()));
+  const int closed = gzclose(gz);
+  if (written != static_cast<int>(text.size()) || closed != Z_OK) {
+    fs::remove(tmp, ec);
+    throw IoError(fmt::format("{}: write failed", tmp.string()));
+  }
+  fs::rename(tmp, target, ec);
+  if (ec) {
+    fs::remove(tmp, ec);
+    throw IoError(fmt::format("{}: cannot rename into place", target.string()));
+  }
+}
+
+// The questionnaires of a between-participants study (one row per participant).
+void write_questionnaires(const std::vector<ParticipantRecord>& all, io::OutputFolder& folder) {
   std::string q = "participant,condition,entertainment,deception,intelligence,trust\n";
   for (const auto& p : all) {
     q += fmt::format("{},{},{},{},{},{}\n", p.id, to_string(p.condition), p.likert[0], p.likert[1],
@@ -196,6 +263,30 @@ std::vector<ParticipantRecord> write_study(const StudySettings& settings, const 
   for (const auto& p : all)
     yes_no += fmt::format("{},{},{}\n", p.id, to_string(p.condition), p.intentional ? "yes" : "no");
   io::write_file_atomically(folder.path("questionnaire_yesno.csv"), yes_no);
+}
+
+}  // namespace
+
+std::vector<ParticipantRecord> write_study(const StudySettings& settings, const std::string& dir,
+                                           bool replace, std::string_view tool_version) {
+  namespace fs = std::filesystem;
+  io::OutputFolder folder(dir, {}, study_folder_writer(replace));
+  const fs::path logs = folder.staging() / "logs";
+  std::error_code ec;
+  fs::create_directories(logs, ec);
+  if (ec) throw IoError(fmt::format("{}: cannot create directory: {}", logs.string(), ec.message()));
+  std::vector<ParticipantRecord> all;
+  const int people = settings.within ? settings.participants : 2 * settings.participants;
+  for (int i = 0; i < people; ++i) {
+    std::vector<ParticipantRecord> blocks = settings.within ? simulate_participant_within(settings, i)
+                                                            : std::vector{simulate_participant(settings, i)};
+    write_log(logs, blocks.front().id, log_text(blocks, settings));
+    for (auto& p : blocks) {
+      for (auto& tr : p.trials) tr.pad.clear();  // the traces are on disk; keep the summary small
+      all.push_back(std::move(p));
+    }
+  }
+  if (!settings.within) write_questionnaires(all, folder);
   io::write_file_atomically(folder.path("feint.toml"), study_toml(settings, tool_version));
   folder.commit(tool_version);
   return all;

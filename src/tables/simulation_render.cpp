@@ -209,10 +209,14 @@ std::string render_selection(const std::vector<sim::SimulationSummary>& rows,
 
 std::string study_summary_text(const std::vector<sim::ParticipantRecord>& people,
                                const sim::StudySettings& s, const std::string& dir) {
-  std::string o = fmt::format(
-      "feint simulate study: {} participants ({} per condition: adaptive, random), {} "
-      "iterations, seed {}\n  logs: {}/logs/P*.csv.gz\n  questionnaire: {}/questionnaire.csv\n",
-      people.size(), s.participants, s.iterations, s.seed, dir, dir);
+  std::string o =
+      s.within ? fmt::format("feint simulate study: {} participants, each in both conditions (adaptive, random; "
+                             "counterbalanced blocks of {} iterations), seed {}\n  logs: {}/logs/P*.csv.gz\n  "
+                             "questionnaire: none (not simulated for within designs)\n",
+                             s.participants, s.iterations, s.seed, dir)
+               : fmt::format("feint simulate study: {} participants ({} per condition: adaptive, random), {} "
+                             "iterations, seed {}\n  logs: {}/logs/P*.csv.gz\n  questionnaire: {}/questionnaire.csv\n",
+                             people.size(), s.participants, s.iterations, s.seed, dir, dir);
   for (auto cond : sim::kStudyConditions) {
     double first = 0, last = 0;
     int nf = 0, nl = 0;

@@ -86,7 +86,13 @@ TEST(Analyze, TheDemoGivesEveryPartAsPlainData) {
   // Raw, the default normalisation, is the scale of the default reference 0.95: no warning.
   EXPECT_FALSE(reference_warning);
   EXPECT_TRUE(h2);
-  EXPECT_EQ(r.settings_toml, analysis::settings_toml(study.settings));
+  // The settings that reproduce the run name the design read off the data (each of the 60
+  // participants in one condition), so that a rerun declares it.
+  EXPECT_EQ(r.design.design, models::ConditionDesign::between);
+  EXPECT_FALSE(r.design.declared);
+  analysis::AnalysisSettings printed = study.settings;
+  printed.design = "between";
+  EXPECT_EQ(r.settings_toml, analysis::settings_toml(printed));
 }
 
 TEST(Analyze, ScoringWarningsAreCollectedNotPrinted) {

@@ -68,9 +68,9 @@ TEST(AnalyzeFindings, PrintedWrittenAndFirstInTheReport) {
   }
 }
 
-// data/example is a within-participants design (each participant in both conditions): the study
-// is analysed, the per-iteration contrasts fall back to Holm and the exposure findings say why they
-// cannot be computed, instead of an internal error.
+// data/example is a within-participants design (each participant in both conditions, no feint.toml):
+// the design is read off the data, the per-iteration contrasts are paired and adjusted by maxT over
+// the 2^3 sign flips of the pairs, and the exposure findings say why they cannot be computed.
 TEST(AnalyzeFindings, AWithinParticipantsStudyIsAnalysedAndTheFindingsSayWhatItCannotAnswer) {
   TempDir dir;
   fs::create_directories(dir.path() / "study" / "logs");
@@ -79,10 +79,14 @@ TEST(AnalyzeFindings, AWithinParticipantsStudyIsAnalysedAndTheFindingsSayWhatItC
   const auto r = run_feint("analyze " + shell_quote((dir.path() / "study").string()) +
                            " --compare adaptive,random -o " + shell_quote((dir.path() / "out").string()));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("The per-iteration contrasts of error are Holm-corrected, not maxT-adjusted: participant "
-                       "P01 is in both conditions."),
+  EXPECT_NE(r.out.find("Per-iteration contrasts of error, adaptive vs random (Westfall\u2013Young maxT-adjusted "
+                       "over 20 iterations, all 8 sign flips of the participants' pairs)"),
             std::string::npos)
       << r.out;
+  EXPECT_NE(read_text(dir.path() / "out" / "table1_compare.txt").find("Paired t-tests"), std::string::npos);
+  EXPECT_NE(read_text(dir.path() / "out" / "report.md").find("conditions within participants (read off the data: "
+                                                             "each of the 3 participants saw both conditions)"),
+            std::string::npos);
   EXPECT_NE(r.out.find("Exposure slopes of error by condition: not computable (participant P01 has two trials at "
                        "iteration 1 (a participant in more than one condition?)"),
             std::string::npos)

@@ -164,12 +164,23 @@ TEST(AnovaCli, ParticipantInTwoConditionsExits65WithTheLine) {
   write_text(scores,
              "participant,condition,iteration,error\nP1,a,1,0.1\nP1,a,2,0.2\nP2,b,1,0.3\n"
              "P2,a,2,0.4\nP3,b,1,0.5\nP3,b,2,0.3\n");
+  // Undeclared: some in two conditions, some in one; the design must be declared.
   const RunResult r = run_feint("anova " + shell_quote(scores.string()) + " --metric error");
   EXPECT_EQ(r.exit_code, 65);
-  EXPECT_NE(
-      r.err.find("scores.csv:5: participant 'P2' is in condition 'a' but line 4 put it in 'b'"),
-      std::string::npos)
+  EXPECT_NE(r.err.find("scores.csv:5: participant 'P2' has trials in 2 conditions but participant 'P1' (line "
+                       "2) in one only (1 of 3 participants saw more than one): declare the design"),
+            std::string::npos)
       << r.err;
+  // Declared between: the participant in two conditions, with both lines, and what to set.
+  const RunResult b = run_feint("anova " + shell_quote(scores.string()) + " --metric error --design between");
+  EXPECT_EQ(b.exit_code, 65);
+  EXPECT_NE(b.err.find("scores.csv:5: participant 'P2' has trials in condition 'a' (line 5) and in 'b' (line 4), "
+                       "but the design is declared between participants"),
+            std::string::npos)
+      << b.err;
+  const RunResult bad = run_feint("anova " + shell_quote(scores.string()) + " --design crossed");
+  EXPECT_EQ(bad.exit_code, 64);
+  EXPECT_NE(bad.err.find("--design 'crossed': expected between"), std::string::npos) << bad.err;
 }
 
 TEST(AnovaCli, ConstantMetricExits65AndBadCorrectionExits64) {

@@ -175,9 +175,15 @@ TEST(ModelCli, ParticipantInTwoConditionsExits65NamingBothLines) {
   write_text(p, scores("P1,a,1,0.1\nP1,a,2,0.3\nP2,b,1,0.2\nP2,b,2,0.5\nP1,b,3,0.4\n"));
   const auto r = run_feint("model " + shell_quote(p.string()) + " --metric error");
   EXPECT_EQ(r.exit_code, 65);
-  EXPECT_NE(r.err.find("s.csv:6: participant P1 is in condition 'b' but in 'a' on line 2"),
+  EXPECT_NE(r.err.find("s.csv:6: participant 'P1' has trials in 2 conditions but participant 'P2' (line 4) in "
+                       "one only"),
             std::string::npos)
       << r.err;
+  const auto b = run_feint("model " + shell_quote(p.string()) + " --metric error --design between");
+  EXPECT_EQ(b.exit_code, 65);
+  EXPECT_NE(b.err.find("s.csv:6: participant 'P1' has trials in condition 'b' (line 6) and in 'a' (line 2)"),
+            std::string::npos)
+      << b.err;
 }
 
 TEST(ModelCli, IterationMissingForEverybodyExits65) {

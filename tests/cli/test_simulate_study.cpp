@@ -75,6 +75,41 @@ TEST(SimulateStudyCli, SameSeedSameDataDifferentSeedDifferentData) {
   EXPECT_NE(slurp_csv(a / "logs" / "P01.csv.gz"), slurp_csv(c / "logs" / "P01.csv.gz"));
 }
 
+// --design within: each participant in both conditions, counterbalanced (P01 adaptive first, P02
+// random first), one log per participant with a block column, the design in feint.toml, and the
+// analysis reads it: paired comparisons with no flag.
+TEST(SimulateStudyCli, AWithinDesignGivesEachParticipantBothConditionsInCounterbalancedBlocks) {
+  TempDir dir;
+  const auto out = dir / "study";
+  const auto r = run_feint("simulate study --design within --out " + shell_quote(out.string()) +
+                           " --participants 4 --iterations 3 --seed 9");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("4 participants, each in both conditions"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(out / "questionnaire.csv"));
+  EXPECT_NE(read_text(out / "feint.toml").find("\ndesign = \"within\"\n"), std::string::npos);
+  for (const char* id : {"P01", "P02", "P03", "P04"}) {
+    feint::io::CsvReader csv((out / "logs" / (std::string(id) + ".csv.gz")).string());
+    ASSERT_EQ(csv.header()[2], "block");
+    std::vector<std::string> seen;  // condition/block/iteration, one per trial
+    while (csv.next()) {
+      const std::string key = std::string(csv.field(1)) + "/" + std::string(csv.field(2)) + "/" + std::string(csv.field(3));
+      if (seen.empty() || seen.back() != key) seen.push_back(key);
+    }
+    const bool adaptive_first = std::string(id) == "P01" || std::string(id) == "P03";
+    const std::string first = adaptive_first ? "adaptive" : "random", second = adaptive_first ? "random" : "adaptive";
+    EXPECT_EQ(seen, (std::vector<std::string>{first + "/1/1", first + "/1/2", first + "/1/3", second + "/2/1",
+                                              second + "/2/2", second + "/2/3"}))
+        << id;
+  }
+  const auto a = run_feint("analyze " + shell_quote(out.string()) + " -o " + shell_quote((dir / "out").string()) +
+                           " --no-figures");
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  EXPECT_NE(read_text(dir / "out" / "table1_compare.txt").find("Paired t-tests"), std::string::npos);
+  const auto bad = run_feint("simulate study --design crossed --out " + shell_quote((dir / "x").string()));
+  EXPECT_EQ(bad.exit_code, 64);
+  EXPECT_NE(bad.err.find("--design 'crossed': expected between"), std::string::npos) << bad.err;
+}
+
 TEST(SimulateStudyCli, BadOptionsAndAFileInTheWayAreUsageErrors) {
   TempDir dir;
   for (const std::string args : {"simulate study", "simulate study --out x --participants 0",

@@ -75,9 +75,12 @@ TEST(TableCli, WritesLatexAtomicallyToAFile) {
   }
 }
 
+// scores_small.csv has the same participants in both conditions (a within design, read off the
+// data: paired, below); scores_small_between.csv has the same values with the random condition's
+// participants renamed P09-P16, each participant in one condition: Welch.
 TEST(TableCli, TwoSampleWithHolmAndEquivalence) {
   const auto r = run_in_table_dir(
-      "table scores_small.csv --compare adaptive,random --p-adjust holm --equivalence 0.1");
+      "table scores_small_between.csv --compare adaptive,random --p-adjust holm --equivalence 0.1");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out, read_text(kTableDir + "/expected_welch_holm_tost.txt"));
 }
@@ -118,7 +121,7 @@ TEST(TableCli, TidyCsvHasTheFixedColumnsAndFullPrecision) {
 }
 
 TEST(TableCli, ApaColumnAndJson) {
-  const auto r = run_feint("table " + shell_quote(kSmall) +
+  const auto r = run_feint("table " + shell_quote(kTableDir + "/scores_small_between.csv") +
                            " --compare adaptive,random --var-equal --apa --format json");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out.rfind("[\n  {\"metric\": \"error\", \"iteration\": 1, \"test\": \"student_t\"", 0), 0u);

@@ -18,6 +18,7 @@
 #include "feint/io/scores.hpp"
 #include "feint/metrics/exposure_trend.hpp"
 #include "feint/metrics/score.hpp"
+#include "feint/models/condition_design.hpp"
 #include "feint/models/fitted_trend.hpp"
 #include "feint/tables/anova.hpp"
 #include "feint/tables/likert.hpp"
@@ -85,6 +86,9 @@ struct StudyResults {
   /// Why the conditions were compared when no setting asked it (default_comparison), for the
   /// report's Design; empty when a setting named the comparison or none was made.
   std::string comparison_note;
+  /// How the conditions relate to the participants (between or within), declared or read off the
+  /// data, with the participants a within design could not pair (models/condition_design.hpp).
+  models::DesignCheck design;
   std::optional<tables::AnovaReport> anova;  ///< mixed ANOVA (GG); empty when the design allows none
   std::optional<tables::ModelAnalysis> model;        ///< metric ~ condition * iteration (feint model)
   std::optional<tables::ModelAnalysis> trend_model;  ///< metric ~ condition * iteration as a trend

@@ -78,6 +78,10 @@ struct ResolvedReportOptions {
 /// Checks and converts; UsageError names the option (--alpha, --conf-level, ...).
 ResolvedReportOptions resolve_report_options(const ReportOptions& options);
 
+inline constexpr const char* kDesignHelp =
+    "between (each participant saw one condition) or within (each saw every condition: paired "
+    "tests, condition within participants); default: read off the data";
+
 inline constexpr const char* kBfPriorScaleHelp =
     "Scale r of the JZS Bayes factors' Cauchy prior: a number > 0, or medium (sqrt(2)/2, the "
     "default), wide (1), ultrawide (sqrt(2))";
@@ -125,6 +129,8 @@ struct AnalysisSettings {
   // Tables (feint table).
   std::vector<std::string> metrics;  ///< NAME=REF; default error=0.5 confusion=0.95
   std::string compare;               ///< "A,B" or ""
+  /// between, within, or "" (read off the data; models/condition_design.hpp).
+  std::string design;
   bool var_equal = false;
   bool paired = false;
   std::optional<double> equivalence;

@@ -13,6 +13,7 @@
 
 #include "feint/analysis/settings.hpp"
 #include "feint/io/questionnaire.hpp"
+#include "feint/models/condition_design.hpp"
 #include "feint/tables/likert.hpp"
 
 namespace feint::analysis {
@@ -36,6 +37,7 @@ struct Study {
   ResolvedReportOptions tests;
   std::vector<tables::MetricSpec> metrics;
   std::optional<std::pair<std::string, std::string>> compare;
+  std::optional<models::ConditionDesign> design;  ///< declared; empty = read off the data
   std::vector<tables::OutputFormat> formats;
 
   /// Every input (log folders and files, questionnaire, settings file): what an output folder

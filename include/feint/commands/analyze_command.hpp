@@ -20,6 +20,11 @@ namespace feint::commands {
 /// process's arguments as the caller captured them (the program first, then the command's name,
 /// which is never rewritten); empty gives "". With `output_folder` empty, paths are shown relative
 /// to the current folder (analysis::display_path) as before.
+/// This process's arguments as the kernel recorded them (Linux: /proc/self/cmdline; none without
+/// /proc), for the report's Reproduce line: the caller captures them, quoted_command_line quotes
+/// them.
+std::vector<std::string> process_arguments();
+
 std::string quoted_command_line(const std::vector<std::string>& arguments,
                                 const std::string& output_folder = "");
 

@@ -19,6 +19,7 @@ struct TableCommandOptions {
   std::string compare;  // A,B
   bool var_equal = false;
   bool paired = false;
+  std::string design;  // --design between|within ("" = read off the data)
   double equivalence = 0.0;
   bool equivalence_given = false;  // --equivalence was given (TOST)
   io::ScoresOptions columns;       // --participant-column, --iteration-column, --condition-column
@@ -37,6 +38,7 @@ struct AnovaCommandOptions {
   bool emmeans = false;
   std::vector<std::string> contrasts;
   std::string adjust;
+  std::string design;  // --design between|within ("" = read off the data)
   io::ScoresOptions columns;
 };
 
@@ -49,6 +51,8 @@ struct ModelCommandOptions {
   std::string compare;
   bool trend = false;
   bool random_slope = false;
+  bool random_condition_slope = false;  // (1 + condition | participant); conditions within
+  std::string design;                   // --design between|within ("" = read off the data)
   bool exposure = false;
   io::ScoresOptions columns;
   std::string strategy_column = "strategy";

@@ -39,6 +39,7 @@ struct StudyOptions {
   std::string out;
   bool replace = false;  ///< --replace: replace an earlier `feint simulate study` folder whole
   int participants = 20;
+  std::string design = "between";  ///< between, or within (each participant in both conditions)
   int iterations = 20;
   double lambda = 0.5;
   std::uint64_t seed = 1;

@@ -22,7 +22,12 @@
 namespace feint::sim {
 
 struct StudySettings {
-  int participants = 20;  // per condition
+  int participants = 20;  // per condition (within: in all)
+  /// Conditions within participants: each participant sees both conditions, one block of
+  /// `iterations` each, in counterbalanced order (adaptive first for P01, P03, ...; random first
+  /// for P02, P04, ...), with one observer whose memory carries over from the first block to the
+  /// second (the carry-over that counterbalancing balances). No questionnaire is simulated.
+  bool within = false;
   int iterations = 20;
   double lambda = 0.5;    // of the adaptive condition
   std::uint64_t seed = 1;
@@ -31,7 +36,8 @@ struct StudySettings {
 };
 
 struct TrialRecord {
-  int iteration = 0;  // 1-based
+  int iteration = 0;  // 1-based, within its condition
+  int block = 1;      // within designs: 1 or 2, the order in which the participant saw the condition
   Strategy strategy = Strategy::optimal;
   Variant variant = Variant::main;
   Target target = Target::left;
@@ -58,6 +64,11 @@ double trial_error(const std::vector<PadSample>& pad, double target, double trim
 
 /// Participant `index` (0-based over both conditions) of a study.
 ParticipantRecord simulate_participant(const StudySettings& settings, int index);
+
+/// Participant `index` (0-based) of a within-participant study (settings.within): one record per
+/// condition, in the order seen, both with the participant's id; everything is drawn from
+/// Rng::stream(seed, index).
+std::vector<ParticipantRecord> simulate_participant_within(const StudySettings& settings, int index);
 
 /// Conditions in order: adaptive, random.
 inline constexpr std::array<Algorithm, 2> kStudyConditions = {Algorithm::adaptive, Algorithm::random};

@@ -115,4 +115,19 @@ class SequentialPValue {
 MaxTResult maxt_step_down(std::span<const double> values, std::size_t columns, std::span<const int> group,
                           const MaxTOptions& options = {});
 
+/// The maxT adjustment of `columns` paired t tests (the per-iteration contrasts of a metric between
+/// two conditions that every participant saw). `differences` is participant-major
+/// (differences[i * columns + j]: participant i's condition-A minus condition-B value at test j;
+/// NaN = no pair there, left out of that test only). Under the null each participant's two
+/// conditions are exchangeable, so a relabelling swaps the conditions within participants: it flips
+/// the signs of all of a participant's differences together (keeping the dependence between the
+/// iterations), and the step-down maxT above runs over the 2^P sign vectors: every one when
+/// 2^P <= permutations + 1 (the observed one among them), otherwise the observed one and
+/// `permutations` uniform draws (feint::Rng from `seed`). The statistic is R's paired
+/// t.test's: mean / (sd / sqrt(n)) of the column's differences, not computable for n < 2 or
+/// constant differences. Throws UsageError for mismatched sizes, no participant or
+/// permutations == 0. (`var_equal` is ignored.)
+MaxTResult maxt_step_down_paired(std::span<const double> differences, std::size_t columns,
+                                 const MaxTOptions& options = {});
+
 }  // namespace feint::stats
