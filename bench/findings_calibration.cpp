@@ -3,7 +3,10 @@
 // against truth"). Own main (a driver, not a Google Benchmark):
 //
 //   findings_calibration [NULL_STUDIES=200] [PLANTED_STUDIES=100] [PARTICIPANTS=30]
-//                        [PLANTED_PARTICIPANTS=60] [THREADS=2] [BF_STUDIES=10]
+//                        [PLANTED_PARTICIPANTS=60] [THREADS=2] [BF_STUDIES=10] [DESIGN=between]
+//
+// DESIGN within: every participant in both conditions (counterbalanced blocks; PARTICIPANTS in
+// all), analysed as a within study (paired tests, sign-flip maxT; docs/analysis.md "Designs").
 //
 // 1. Null: the adaptive condition with lambda = 0 (its selection is then uniform, as random's, so
 //    the condition labels carry no effect), PARTICIPANTS per condition, 20 iterations, seeds
@@ -89,9 +92,12 @@ std::vector<CalibrationOutcome> run(const char* label, feint::sim::StudyOptions 
   const auto w0 = std::chrono::steady_clock::now();
   const double c0 = cpu_seconds();
   auto out = feint::analysis::calibration_run(o, seed, n, threads);
-  fmt::print("{}: {} studies of {} + {} participants x {} iterations (lambda {}), seeds {}..{}: "
+  fmt::print("{}: {} studies of {} participants x {} iterations (lambda {}), seeds {}..{}: "
              "{:.0f} s wall, {:.0f} s CPU\n\n",
-             label, n, o.participants, o.participants, o.iterations, o.lambda, seed,
+             label, n,
+             o.design == "within" ? fmt::format("{} (each in both conditions)", o.participants)
+                                  : fmt::format("{} + {}", o.participants, o.participants),
+             o.iterations, o.lambda, seed,
              seed + static_cast<std::uint64_t>(n) - 1,
              std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count(), cpu_seconds() - c0);
   return out;
@@ -108,6 +114,7 @@ int main(int argc, char** argv) {
 
   feint::sim::StudyOptions o;  // as `feint simulate study`: goal-inference participants, 25 Hz
   o.iterations = 20;
+  if (argc > 7) o.design = argv[7];
   if (null_studies > 0) {
     o.participants = participants;
     o.lambda = 0;

@@ -102,24 +102,96 @@ std::optional<double> describe_condition_effect(Finding& f, const tables::Metric
   } catch (const Error&) {
     // emmeans needs iteration as a factor; a model without it keeps its F test alone.
   }
-  const ParticipantMeans pm = participant_means(m.data, a, b);
+  const auto log_bf10 = participant_means_bf(m.data, a, b, conf_level, bf_prior_r, f.bf_note);
+  if (log_bf10 && std::isfinite(std::exp(*log_bf10))) f.bf10 = std::exp(*log_bf10);
+  return log_bf10;
+}
+
+std::optional<double> participant_means_bf(const models::LongData& data, const std::string& a, const std::string& b,
+                                           double conf_level, double bf_prior_r, std::string& note) {
+  const ParticipantMeans pm = participant_means(data, a, b);
   stats::TestOptions o;
   o.conf_level = conf_level;
   stats::TestResult t = pm.paired ? stats::t_test_paired(pm.a, pm.b, o) : stats::t_test_welch(pm.a, pm.b, o);
   stats::add_bayes_factor(t, bf_prior_r);
   if (!t.computed || !t.log_bf10) {
-    f.bf_note = "no Bayes factor: the participants' mean scores cannot be compared";
+    note = "no Bayes factor: the participants' mean scores cannot be compared";
     return std::nullopt;
   }
-  f.bf10 = std::exp(*t.log_bf10);
-  f.bf_note = pm.paired ? fmt::format("JZS Bayes factor of a paired t test on the participants' mean scores in the "
-                                      "two conditions ({} participants who saw both; docs/findings.md)",
-                                      pm.a.size())
-                        : fmt::format("JZS Bayes factor of a Welch t test on the participants' mean scores "
-                                      "({} and {} participants; docs/findings.md)",
-                                      pm.a.size(), pm.b.size());
-  if (!std::isfinite(*f.bf10)) f.bf10.reset();
+  note = pm.paired ? fmt::format("JZS Bayes factor of a paired t test on the participants' mean scores in the "
+                                 "two conditions ({} participants who saw both; docs/findings.md)",
+                                 pm.a.size())
+                   : fmt::format("JZS Bayes factor of a Welch t test on the participants' mean scores "
+                                 "({} and {} participants; docs/findings.md)",
+                                 pm.a.size(), pm.b.size());
   return t.log_bf10;
+}
+
+std::vector<Finding> pairwise_condition_findings(const tables::MetricModel& m, double conf_level, double bf_prior_r,
+                                                 const WordingRules& rules, const Finding* omnibus) {
+  const auto& fit = m.fit;
+  const std::size_t k = fit.group_levels.size();
+  if (k < 3) return {};
+  std::vector<models::EmmRow> pairs, means;
+  try {
+    pairs = models::emm_contrasts(fit, models::EmmFamily::pairwise_condition, models::EmmAdjust::tukey, conf_level);
+    means = models::estimated_means(fit, models::EmmTerm::condition, conf_level);
+  } catch (const Error&) {
+    return {};  // emmeans needs iteration as a factor
+  }
+  std::map<std::string, double> mean_of;
+  for (const auto& e : means) mean_of[e.label] = e.estimate;
+  std::vector<Finding> out;
+  for (const auto& row : pairs) {
+    const auto dash = row.label.find(" - ");
+    if (dash == std::string::npos) continue;
+    const std::string a = row.label.substr(0, dash), b = row.label.substr(dash + 3);
+    stats::TestResult t;
+    t.test = "lmm_contrast";
+    t.computed = row.computed;
+    t.note = row.note;
+    t.estimate = row.estimate;
+    t.statistic = row.statistic;
+    t.df = row.df;
+    t.p_value = row.p_unadjusted;
+    t.p_adjusted = row.p_value;  // Tukey over the pairs: the finding's p
+    t.conf_level = conf_level;
+    t.conf_low = row.conf_low;  // Tukey-adjusted interval, as emmeans prints it
+    t.conf_high = row.conf_high;
+    if (mean_of.count(a) && mean_of.count(b)) {
+      t.mean1 = mean_of[a];
+      t.mean2 = mean_of[b];
+    }
+    std::string note;
+    t.log_bf10 = participant_means_bf(m.data, a, b, conf_level, bf_prior_r, note);
+    Finding f = difference_finding(
+        fmt::format("H1-model-pair-{}-{}-{}", m.metric, a, b), "H1",
+        fmt::format("Which conditions differ in {}, over all iterations?", m.metric),
+        fmt::format("{}, {} against {}, over all iterations (mixed model, emmeans pairwise contrast, "
+                    "Tukey-adjusted over the {} pairs of {} conditions)",
+                    m.metric, a, b, k * (k - 1) / 2, k),
+        t, nullptr, "model", rules);
+    f.measure = m.metric;
+    name_conditions(f, a, b);
+    // Protected: a pair is evidence for a difference only when the omnibus F of condition is.
+    if (f.strength == Strength::evidence_for_difference && omnibus &&
+        omnibus->strength != Strength::evidence_for_difference) {
+      f.strength = Strength::no_evidence_either_way;
+      f.grade = Grade::none;
+      const std::string was = f.evidence;
+      f.evidence = to_string(f.strength);
+      if (const auto at = f.sentence.find(": " + was); at != std::string::npos)
+        f.sentence.replace(at + 2, was.size(), f.evidence);
+      f.warnings.push_back(fmt::format(
+          "The omnibus test of condition on {} did not show a difference ({}), so no pair is claimed to "
+          "differ (the pairwise contrasts are interpreted only after the omnibus test: docs/findings.md).",
+          m.metric, omnibus->evidence));
+    }
+    f.bf_note = note;
+    f.test = "t test (mixed model contrast)";
+    out.push_back(std::move(f));
+  }
+  return out;
 }
 
 std::string effect_words(const Finding& f) {

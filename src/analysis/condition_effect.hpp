@@ -19,6 +19,22 @@ namespace feint::analysis::detail {
 std::optional<double> describe_condition_effect(Finding& f, const tables::MetricModel& m, double conf_level,
                                                 double bf_prior_r);
 
+/// The JZS Bayes factor (log BF10) of the t test on the participants' mean scores in conditions
+/// `a` and `b`: Welch between participants, paired when some participant saw both; `note` says
+/// which and on how many participants (or why there is none: nullopt).
+std::optional<double> participant_means_bf(const models::LongData& data, const std::string& a, const std::string& b,
+                                           double conf_level, double bf_prior_r, std::string& note);
+
+/// Three or more conditions: after the omnibus F of condition, which conditions differ. One finding
+/// per pair of conditions: the emmeans pairwise contrast over the iterations (Tukey-adjusted p and
+/// interval over the k(k - 1)/2 pairs, Satterthwaite df), the two estimated marginal means, and the
+/// JZS Bayes factor of the participants' mean scores (participant_means_bf); classified by the
+/// rule of every difference test (adjusted p < alpha and BF10 >= 3), and protected: a pair earns
+/// "evidence for a difference" only when `omnibus` (the condition F's finding) did too, else it is
+/// "no evidence either way" with a warning that says why. Empty for fewer than 3 conditions.
+std::vector<Finding> pairwise_condition_findings(const tables::MetricModel& m, double conf_level, double bf_prior_r,
+                                                 const WordingRules& rules, const Finding* omnibus);
+
 /// "M = 0.48 vs 0.46; difference 0.03, 95% CI [0.01, 0.05]; ηp² = .13 [.03, 1.00]; BF10 = 4.2":
 /// the structured fields in words for a sentence ("" when there are none).
 std::string effect_words(const Finding& f);

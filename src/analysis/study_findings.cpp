@@ -687,6 +687,16 @@ std::vector<Finding> mixed_model_findings(const tables::ModelAnalysis* model, co
         f.contrast = "condition \u00d7 iteration";  // an F of several df: a contrast, no direction
       out.push_back(std::move(f));
     }
+    // Three or more conditions: which of them differ, after the omnibus F.
+    if (fm) {
+      const Finding* omnibus = nullptr;
+      for (const auto& f : out)
+        if (f.id == "H1-model-condition-" + metric) omnibus = &f;
+      const std::optional<Finding> omnibus_copy = omnibus ? std::optional<Finding>(*omnibus) : std::nullopt;
+      for (auto& f : detail::pairwise_condition_findings(*fm, model->options.conf_level, bf_prior_r, rules,
+                                                          omnibus_copy ? &*omnibus_copy : nullptr))
+        out.push_back(std::move(f));
+    }
   }
   return out;
 }

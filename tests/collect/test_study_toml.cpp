@@ -21,6 +21,9 @@ TEST(CollectStudyToml, NamesTheComparisonAndOneScaleAndNeverReplacesAFile) {
   ASSERT_TRUE(feint::collect::write_study_toml(dir.path(), s, "test"));
   const std::string toml = read_text(dir / "feint.toml");
   EXPECT_NE(toml.find("compare = \"adaptive,random\"\n"), std::string::npos) << toml;
+  // collect gives each participant one condition: the design is declared, so that a participant id
+  // reused in another condition is refused rather than paired.
+  EXPECT_NE(toml.find("\ndesign = \"between\"\n"), std::string::npos) << toml;
   EXPECT_NE(toml.find("confusion-norm = \"raw\"\n"), std::string::npos) << toml;
   EXPECT_NE(toml.find("metric = [\"error=0.5\", \"confusion=0.95@raw\"]\n"), std::string::npos);
   EXPECT_NE(toml.find("likert-scale = \"1-7\"\n"), std::string::npos);

@@ -46,6 +46,9 @@ std::vector<Finding> study_findings(const StudyResults& results,
 /// The condition main effect also carries its numbers (detail::describe_condition_effect: the
 /// conditions' marginal means and difference, partial eta squared, and the JZS Bayes factor of a
 /// Welch t test on the participants' mean scores, which its strength then uses as every t test's).
+/// With three or more conditions the omnibus F is followed by one finding per pair of conditions
+/// (ids H1-model-pair-METRIC-A-B; detail::pairwise_condition_findings: emmeans' Tukey-adjusted
+/// pairwise contrast, protected by the omnibus finding).
 std::vector<Finding> mixed_model_findings(const tables::ModelAnalysis* model,
                                           const tables::ModelAnalysis* trend,
                                           const WordingRules& rules = {},
