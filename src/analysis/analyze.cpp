@@ -366,7 +366,12 @@ void collect_figure_data(const Study& study, const Scored& sc, const tables::Tab
           metrics::exposure_trend(r.scores, r.figures.labels, m, t.test.conf_level));
     }
     // Its table (slopes per condition and their difference): two conditions, in the model's order.
-    if (r.model && !r.model->models.empty() && !r.model->models.front().group1.empty()) {
+    if (within(r)) {
+      note_left_out(r.diagnostics, "exposure",
+                    "no condition x exposure table: the conditions are within participants, and the exposure "
+                    "slopes by condition compare participants between the conditions (a within version is not "
+                    "implemented yet)");
+    } else if (r.model && !r.model->models.empty() && !r.model->models.front().group1.empty()) {
       const std::vector<std::string> order = {r.model->models.front().group1, r.model->models.front().group2};
       try {
         for (const auto& m : metrics)

@@ -471,6 +471,15 @@ std::string paragraph(const Style& st, const Hypothesis& h, const std::vector<Me
   if (st.format == ResultsFormat::markdown) id = "**" + id + "**";
   if (st.format == ResultsFormat::html) id = "<strong>" + id + "</strong>";
   std::string o = fmt::format("{} ({}): {}", id, kind, st.text(statement));
+  // No finding at all (e.g. H2 of a study without a questionnaire): one sentence says so.
+  if (!ms.empty() && std::none_of(ms.begin(), ms.end(), [](const MeasureResult& m) { return m.headline; })) {
+    std::vector<std::string> names;
+    for (const auto& m : ms) names.push_back(st.text(m.measure));
+    std::string answer = fmt::format("{} could not be tested: the study has no results on {}.", st.text(h.id),
+                                     listed(names));
+    if (st.format == ResultsFormat::html) answer = "<strong>" + answer + "</strong>";
+    return o + " " + answer;
+  }
   for (std::size_t i = 0; i < l.shown && i < ms.size(); ++i)
     o += " " + measure_sentence(st, ms[i].measure, ms[i].headline);
   if (l.shown < ms.size()) {

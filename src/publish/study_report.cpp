@@ -133,8 +133,9 @@ std::vector<std::pair<std::string, std::string>> design_rows(const analysis::Stu
       {"Iterations",
        its.empty() ? "none" : fmt::format("{} ({} to {})", its.size(), its.front(), its.back())},
       {"Metrics and references", detail::references_text(r)},
-      {"Comparison", r.comparison ? fmt::format("{} against {}{}", r.comparison->blocks.front().group1,
+      {"Comparison", r.comparison ? fmt::format("{} against {}{}{}", r.comparison->blocks.front().group1,
                                                 r.comparison->blocks.front().group2,
+                                                r.comparison->options.paired ? ", paired by participant" : "",
                                                 r.comparison_note.empty() ? ""
                                                     : " (" + r.comparison_note + ")")
                                   : "none (set compare = \"A,B\")"},
