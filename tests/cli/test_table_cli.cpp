@@ -85,6 +85,20 @@ TEST(TableCli, TwoSampleWithHolmAndEquivalence) {
   EXPECT_EQ(r.out, read_text(kTableDir + "/expected_welch_holm_tost.txt"));
 }
 
+// The same ids in both conditions and no --design: a within design read off the data, compared
+// pair by pair; Student's pooled t does not apply to pairs; a declared between design is refused.
+TEST(TableCli, ParticipantsInBothConditionsAreComparedPairByPair) {
+  const auto r = run_in_table_dir("table scores_small.csv --compare adaptive,random");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("Paired t-tests of error and confusion per iteration", 0), 0u) << r.out;
+  const auto v = run_in_table_dir("table scores_small.csv --compare adaptive,random --var-equal");
+  EXPECT_EQ(v.exit_code, 64);
+  EXPECT_NE(v.err.find("--var-equal: the conditions are within participants"), std::string::npos) << v.err;
+  const auto b = run_in_table_dir("table scores_small.csv --compare adaptive,random --design between");
+  EXPECT_EQ(b.exit_code, 65);
+  EXPECT_NE(b.err.find("participant 'P01' has trials in condition"), std::string::npos) << b.err;
+}
+
 TEST(TableCli, TidyCsvHasTheFixedColumnsAndFullPrecision) {
   TempDir dir;
   const auto out = (dir / "t.csv").string();
