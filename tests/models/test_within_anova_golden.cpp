@@ -197,7 +197,8 @@ TEST(WithinAnova, TwoByTwoWithThreeParticipantsWorkedByHand) {
 // One condition: the within ANOVA is the one-way repeated-measures ANOVA of the mixed ANOVA.
 TEST(WithinAnova, OneConditionIsTheOneWayRepeatedMeasuresAnova) {
   std::vector<Observation> random;  // the noisiest condition: eps well below 1
-  for (const auto& o : load_sets().at("nonspherical"))
+  const auto sets = load_sets();  // kept: a range-for over load_sets().at(...) would read a freed map
+  for (const auto& o : sets.at("nonspherical"))
     if (o.condition == "random") random.push_back(o);
   const MixedAnova w = within_anova(make_within_design(random, "y", "x"));
   const MixedAnova m = mixed_anova(make_wide_design(random, "y", "x"));
