@@ -357,4 +357,44 @@ TEST(ModelRelabelling, ARelabellingThatEmptiesACellCountsAsReaching) {
   EXPECT_GE(*r.p_condition, 8.0 / 20);
 }
 
+// Two participants with the same values (to the last bit, or one ulp apart), one in each
+// condition: the labelling that swaps them (and its mirror) gives the observed statistics up to
+// rounding. Such a tie reaches the observed statistic, so each p counts at least 4 of the 70
+// labellings: the 1e-9 slack of the threshold keeps a tie from being lost to the last bit (without
+// it, some of these 40 studies lose it: the mutant relabel_no_rounding_slack).
+TEST(ModelRelabelling, ExactTiesReachTheObservedStatistic) {
+  for (std::uint64_t seed = 1; seed <= 40; ++seed) {
+    SCOPED_TRACE(seed);
+    LongData d = simulate({.per_group = 4, .iterations = 5, .missing = 0.1}, seed);
+    std::vector<double> a0;
+    std::vector<double> t0;
+    for (std::size_t i = 0; i < d.y.size(); ++i)
+      if (d.participant[i] == "A0") {
+        a0.push_back(d.y[i]);
+        t0.push_back(d.time[i]);
+      }
+    // B0's trials become A0's, trial by trial (the same iterations, the same values).
+    LongData e;
+    for (std::size_t i = 0; i < d.y.size(); ++i) {
+      if (d.participant[i] == "B0") continue;
+      e.participant.push_back(d.participant[i]);
+      e.group.push_back(d.group[i]);
+      e.time.push_back(d.time[i]);
+      e.y.push_back(d.y[i]);
+    }
+    for (std::size_t k = 0; k < a0.size(); ++k) {
+      e.participant.push_back("B0");
+      e.group.push_back("b");
+      e.time.push_back(t0[k]);
+      e.y.push_back(a0[k] * 1.0000000000000002);  // the same value, or the next double up
+    }
+    const auto r = relabel_condition_tests(e, {"a", "b"});
+    ASSERT_TRUE(r.exact);
+    ASSERT_EQ(r.labellings, 70u);
+    EXPECT_GE(*r.p_condition, 4.0 / 70);
+    EXPECT_GE(*r.p_interaction, 4.0 / 70);
+    EXPECT_GE(*r.p_slope_difference, 4.0 / 70);
+  }
+}
+
 }  // namespace
