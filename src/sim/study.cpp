@@ -46,46 +46,6 @@ std::string participant_id(int index, int total) {
 
 }  // namespace
 
-ParticipantRecord simulate_participant(const StudySettings& settings, int index) {
-  validate(settings.geometry);
-  if (settings.participants < 1) throw UsageError("participants per condition must be >= 1");
-  if (index < 0 || index >= 2 * settings.participants) throw UsageError("participant index out of range");
-  ParticipantRecord p;
-  p.id = participant_id(index, 2 * settings.participants);
-  p.condition = kStudyConditions[static_cast<std::size_t>(index / settings.participants)];
-  Rng rng = Rng::stream(settings.seed, static_cast<std::uint64_t>(index));
-  RunSettings run;
-  run.algorithm = p.condition;
-  run.lambda = settings.lambda;
-  run.iterations = settings.iterations;
-  const std::vector<Iteration> its = generate_run(run, rng);
-  Observer observer(settings.observer);
-  double sum = 0;
-  for (std::size_t i = 0; i < its.size(); ++i) {
-    const auto& it = its[i];
-    TrialRecord tr;
-    tr.iteration = static_cast<int>(i) + 1;
-    tr.strategy = it.strategy;
-    tr.variant = it.variant;
-    tr.target = it.target;
-    const auto path = trajectory(it.strategy, it.variant, it.target, settings.geometry);
-    tr.pad = observer.watch(path, it.strategy, it.variant, it.target, settings.geometry, rng);
-    tr.error = trial_error(tr.pad, it.target == Target::left ? 0.0 : 1.0);
-    observer.remember(it.strategy, it.variant);
-    sum += tr.error;
-    p.trials.push_back(std::move(tr));
-  }
-  p.mean_error = sum / static_cast<double>(its.size());
-  // Likert answers: centred near the paper's adaptive-condition means (entertainment 6.1,
-  // deception 4.8, intelligence 6.8, trust 2.2), rising (trust: falling) with the participant's
-  // mean error; Gaussian noise; rounded and kept within 1-7 (a rating scale has no other values).
-  const double e = p.mean_error - 0.45;
-  p.likert = {likert(5.9 + 2.0 * e + 0.7 * rng.normal()), likert(4.7 + 6.0 * e + 0.8 * rng.normal()),
-              likert(6.3 + 2.0 * e + 0.6 * rng.normal()), likert(2.4 - 3.0 * e + 0.8 * rng.normal())};
-  p.intentional = rng.uniform() < 1 / (1 + std::exp(-(p.likert[1] - 4.5)));
-  return p;
-}
-
 namespace {
 
 // One block of a participant: the condition's run, watched by `observer`.
@@ -119,6 +79,26 @@ ParticipantRecord watch_block(const StudySettings& settings, Algorithm condition
 }
 
 }  // namespace
+
+ParticipantRecord simulate_participant(const StudySettings& settings, int index) {
+  validate(settings.geometry);
+  if (settings.participants < 1) throw UsageError("participants per condition must be >= 1");
+  if (index < 0 || index >= 2 * settings.participants) throw UsageError("participant index out of range");
+  Rng rng = Rng::stream(settings.seed, static_cast<std::uint64_t>(index));
+  Observer observer(settings.observer);
+  ParticipantRecord p = watch_block(settings, kStudyConditions[static_cast<std::size_t>(index / settings.participants)],
+                                    1, observer, rng);
+  p.id = participant_id(index, 2 * settings.participants);
+  // Likert answers: centred near the paper's adaptive-condition means (entertainment 6.1,
+  // deception 4.8, intelligence 6.8, trust 2.2), rising (trust: falling) with the participant's
+  // mean error; Gaussian noise; rounded and kept within 1-7 (a rating scale has no other values).
+  const double e = p.mean_error - 0.45;
+  p.likert = {likert(5.9 + 2.0 * e + 0.7 * rng.normal()), likert(4.7 + 6.0 * e + 0.8 * rng.normal()),
+              likert(6.3 + 2.0 * e + 0.6 * rng.normal()), likert(2.4 - 3.0 * e + 0.8 * rng.normal())};
+  p.intentional = rng.uniform() < 1 / (1 + std::exp(-(p.likert[1] - 4.5)));
+  return p;
+}
+
 
 std::vector<ParticipantRecord> simulate_participant_within(const StudySettings& settings, int index) {
   validate(settings.geometry);
