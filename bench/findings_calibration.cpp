@@ -4,9 +4,13 @@
 //
 //   findings_calibration [NULL_STUDIES=200] [PLANTED_STUDIES=100] [PARTICIPANTS=30]
 //                        [PLANTED_PARTICIPANTS=60] [THREADS=2] [BF_STUDIES=10] [DESIGN=between]
+//                        [CONDITIONS=adaptive,random]
 //
 // DESIGN within: every participant in both conditions (counterbalanced blocks; PARTICIPANTS in
 // all), analysed as a within study (paired tests, sign-flip maxT; docs/analysis.md "Designs").
+// CONDITIONS as `feint simulate study --conditions`: a=random,b=random,c=random is a null study of
+// three conditions (one algorithm under three names), analysed with no pair named: the models'
+// omnibus tests and the protected pairs.
 //
 // 1. Null: the adaptive condition with lambda = 0 (its selection is then uniform, as random's, so
 //    the condition labels carry no effect), PARTICIPANTS per condition, 20 iterations, seeds
@@ -91,12 +95,15 @@ std::vector<CalibrationOutcome> run(const char* label, feint::sim::StudyOptions 
                                     unsigned threads) {
   const auto w0 = std::chrono::steady_clock::now();
   const double c0 = cpu_seconds();
-  auto out = feint::analysis::calibration_run(o, seed, n, threads);
+  // Three or more conditions: no pair is named; the models' omnibus tests and their pairs compare them.
+  auto settings = feint::analysis::calibration_analysis_settings();
+  if (std::count(o.conditions.begin(), o.conditions.end(), ',') >= 2) settings.compare.clear();
+  auto out = feint::analysis::calibration_run(o, seed, n, threads, settings);
   fmt::print("{}: {} studies of {} participants x {} iterations (lambda {}), seeds {}..{}: "
              "{:.0f} s wall, {:.0f} s CPU\n\n",
              label, n,
-             o.design == "within" ? fmt::format("{} (each in both conditions)", o.participants)
-                                  : fmt::format("{} + {}", o.participants, o.participants),
+             o.design == "within" ? fmt::format("{} (each in every condition: {})", o.participants, o.conditions)
+                                  : fmt::format("{} per condition ({})", o.participants, o.conditions),
              o.iterations, o.lambda, seed,
              seed + static_cast<std::uint64_t>(n) - 1,
              std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count(), cpu_seconds() - c0);
@@ -115,6 +122,7 @@ int main(int argc, char** argv) {
   feint::sim::StudyOptions o;  // as `feint simulate study`: goal-inference participants, 25 Hz
   o.iterations = 20;
   if (argc > 7) o.design = argv[7];
+  if (argc > 8) o.conditions = argv[8];  // e.g. a=random,b=random,c=random: a null study of three
   if (null_studies > 0) {
     o.participants = participants;
     o.lambda = 0;

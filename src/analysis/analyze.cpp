@@ -329,6 +329,13 @@ void analyze_questionnaire(const Study& study, const Comparison& compare, StudyR
     tables::LikertSettings lc = study.likert;
     lc.compare = compare;
     r.likert_compare = tables::analyze_likert(q, lc);
+  } else if (q.has_condition && q.condition_names().size() > 2 && !within(r)) {
+    // Three or more conditions and no pair named: the omnibus test per item, then every pair.
+    try {
+      r.likert_conditions = tables::analyze_likert_conditions(q, study.likert);
+    } catch (const InvalidData& e) {
+      note_left_out(d, "questionnaire", fmt::format("no comparison of the conditions' answers: {}", e.what()));
+    }
   }
 }
 
@@ -371,6 +378,12 @@ void collect_figure_data(const Study& study, const Scored& sc, const tables::Tab
                     "no condition x exposure table: the conditions are within participants, and the exposure "
                     "slopes by condition compare participants between the conditions (a within version is not "
                     "implemented yet)");
+    } else if (const std::size_t k = r.scores.conditions().size(); k > 2 && !study.compare) {
+      // Two of three or more conditions would be an arbitrary pair: the lab names the pair.
+      note_left_out(r.diagnostics, "exposure",
+                    fmt::format("no condition x exposure table: it compares two conditions and the study has {}; "
+                                "set compare = \"A,B\" in feint.toml to compare a pair",
+                                k));
     } else if (r.model && !r.model->models.empty() && !r.model->models.front().group1.empty()) {
       const std::vector<std::string> order = {r.model->models.front().group1, r.model->models.front().group2};
       try {

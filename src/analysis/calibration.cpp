@@ -70,16 +70,26 @@ CalibrationOutcome calibration_study(const sim::StudyOptions& options, const Ana
     add("H1 per-iteration contrasts (maxT over iterations): " + m.column,
         f ? f->strength : Strength::not_computable);
   }
+  const bool pairs = study.conditions.size() > 2;
   for (const auto& m : metrics) {
-    std::vector<const Finding*> members;
-    for (const char* part : {"interaction", "condition", "trend"})
-      if (const Finding* f = find(r.findings, fmt::format("H1-model-{}-{}", part, m.column))) members.push_back(f);
-    add("H1 mixed models (Holm over 3 tests): " + m.column, any_of(members));
-    for (const char* part : {"interaction", "condition", "trend"}) {
-      const Finding* f = find(r.findings, fmt::format("H1-model-{}-{}", part, m.column));
-      add(fmt::format("  {} ({})", part == std::string("trend") ? "slope difference" : part, m.column),
-          f ? f->strength : Strength::not_computable);
+    // The model's tests: interaction, condition, and one slope difference per condition but the
+    // first (H1-model-trend-METRIC with two conditions, H1-model-trend-METRIC-LEVEL with more).
+    std::vector<const Finding*> members, slopes, pair_members;
+    for (const auto& f : r.findings) {
+      if (f.id == "H1-model-trend-" + m.column || starts_with(f.id, "H1-model-trend-" + m.column + "-"))
+        slopes.push_back(&f);
+      if (starts_with(f.id, "H1-model-pair-" + m.column + "-")) pair_members.push_back(&f);
     }
+    for (const char* part : {"interaction", "condition"})
+      if (const Finding* f = find(r.findings, fmt::format("H1-model-{}-{}", part, m.column))) members.push_back(f);
+    members.insert(members.end(), slopes.begin(), slopes.end());
+    add(fmt::format("H1 mixed models (Holm over {} tests): {}", pairs ? "its" : "3", m.column), any_of(members));
+    for (const char* part : {"interaction", "condition"}) {
+      const Finding* f = find(r.findings, fmt::format("H1-model-{}-{}", part, m.column));
+      add(fmt::format("  {} ({})", part, m.column), f ? f->strength : Strength::not_computable);
+    }
+    add(fmt::format("  slope difference{} ({})", pairs ? "s, any" : "", m.column), any_of(slopes));
+    if (pairs) add(fmt::format("H1 pairs of conditions (Tukey, protected), any: {}", m.column), any_of(pair_members));
   }
   for (const auto& m : metrics) {
     std::vector<const Finding*> members;

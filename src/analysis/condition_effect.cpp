@@ -127,6 +127,22 @@ std::optional<double> participant_means_bf(const models::LongData& data, const s
   return t.log_bf10;
 }
 
+void protect_by_omnibus(Finding& f, const Finding* omnibus, const std::string& measure) {
+  if (f.strength != Strength::evidence_for_difference || !omnibus ||
+      omnibus->strength == Strength::evidence_for_difference)
+    return;
+  f.strength = Strength::no_evidence_either_way;
+  f.grade = Grade::none;
+  const std::string was = f.evidence;
+  f.evidence = to_string(f.strength);
+  if (const auto at = f.sentence.find(": " + was); at != std::string::npos)
+    f.sentence.replace(at + 2, was.size(), f.evidence);
+  f.warnings.push_back(fmt::format(
+      "The omnibus test of condition on {} did not show a difference ({}), so no pair is claimed to "
+      "differ (the pairwise contrasts are interpreted only after the omnibus test: docs/findings.md).",
+      measure, omnibus->evidence));
+}
+
 std::vector<Finding> pairwise_condition_findings(const tables::MetricModel& m, double conf_level, double bf_prior_r,
                                                  const WordingRules& rules, const Finding* omnibus) {
   const auto& fit = m.fit;
@@ -173,20 +189,7 @@ std::vector<Finding> pairwise_condition_findings(const tables::MetricModel& m, d
         t, nullptr, "model", rules);
     f.measure = m.metric;
     name_conditions(f, a, b);
-    // Protected: a pair is evidence for a difference only when the omnibus F of condition is.
-    if (f.strength == Strength::evidence_for_difference && omnibus &&
-        omnibus->strength != Strength::evidence_for_difference) {
-      f.strength = Strength::no_evidence_either_way;
-      f.grade = Grade::none;
-      const std::string was = f.evidence;
-      f.evidence = to_string(f.strength);
-      if (const auto at = f.sentence.find(": " + was); at != std::string::npos)
-        f.sentence.replace(at + 2, was.size(), f.evidence);
-      f.warnings.push_back(fmt::format(
-          "The omnibus test of condition on {} did not show a difference ({}), so no pair is claimed to "
-          "differ (the pairwise contrasts are interpreted only after the omnibus test: docs/findings.md).",
-          m.metric, omnibus->evidence));
-    }
+    protect_by_omnibus(f, omnibus, m.metric);
     f.bf_note = note;
     f.test = "t test (mixed model contrast)";
     out.push_back(std::move(f));

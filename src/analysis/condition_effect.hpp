@@ -35,6 +35,10 @@ std::optional<double> participant_means_bf(const models::LongData& data, const s
 std::vector<Finding> pairwise_condition_findings(const tables::MetricModel& m, double conf_level, double bf_prior_r,
                                                  const WordingRules& rules, const Finding* omnibus);
 
+/// Protection after an omnibus test: a pair's "evidence for a difference" becomes "no evidence
+/// either way", with a warning naming `measure`, unless `omnibus` earned evidence for a difference.
+void protect_by_omnibus(Finding& f, const Finding* omnibus, const std::string& measure);
+
 /// "M = 0.48 vs 0.46; difference 0.03, 95% CI [0.01, 0.05]; ηp² = .13 [.03, 1.00]; BF10 = 4.2":
 /// the structured fields in words for a sentence ("" when there are none).
 std::string effect_words(const Finding& f);

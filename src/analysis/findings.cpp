@@ -110,6 +110,8 @@ std::optional<EffectSize> effect_size_of(const stats::TestResult& d) {
     return EffectSize{d.test == "paired_t" ? "d_z" : "d", *d.cohen_d, d.cohen_d_low, d.cohen_d_high};
   if (d.rank_biserial && std::isfinite(*d.rank_biserial))
     return EffectSize{"r_rb", *d.rank_biserial, d.rank_biserial_low, d.rank_biserial_high};
+  if (d.rank_epsilon_squared && std::isfinite(*d.rank_epsilon_squared))
+    return EffectSize{"epsilon2_rank", *d.rank_epsilon_squared, std::nullopt, std::nullopt};
   if (d.r_squared && std::isfinite(*d.r_squared))
     return EffectSize{"eta2_p", *d.r_squared, d.eta_squared_low, d.eta_squared_high};
   return std::nullopt;

@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "condition_effect.hpp"
 #include "feint/error.hpp"
@@ -260,16 +261,21 @@ Finding exposure_not_computable(const std::string& metric, const std::string& so
   return f;
 }
 
+// The condition x exposure figure of a metric; else first against later exposures (the
+// strategies figure when there are no traces).
+std::string exposure_source(const StudyResults& r, const std::string& metric) {
+  std::string source = r.figures.traces.empty() ? "fig-strategies" : "fig-traces";
+  for (const auto& e : r.figures.exposure)
+    if (e.metric == metric) source = "fig-exposure-" + metric;
+  return source;
+}
+
 // H1, condition x exposure per strategy for one metric, each finding warned about the scored
 // trials left out for want of a strategy label.
 std::vector<Finding> metric_exposure_findings(const StudyResults& r, const tables::MetricSpec& m,
                                               const std::vector<std::string>& conditions_order,
                                               const WordingRules& rules) {
-  // The condition x exposure figure of this metric; else first against later exposures (the
-  // strategies figure when there are no traces).
-  std::string source = r.figures.traces.empty() ? "fig-strategies" : "fig-traces";
-  for (const auto& e : r.figures.exposure)
-    if (e.metric == m.column) source = "fig-exposure-" + m.column;
+  const std::string source = exposure_source(r, m.column);
   ExposureInput in;
   std::vector<Finding> fs;
   try {
@@ -301,6 +307,14 @@ std::vector<Finding> metric_exposure_findings(const StudyResults& r, const table
 void add_exposure_findings(std::vector<Finding>& out, const StudyResults& r,
                            const std::vector<tables::MetricSpec>& metrics, const WordingRules& rules) {
   if (r.figures.labels.empty()) return;
+  if (const std::size_t k = r.scores.conditions().size(); k > 2 && !r.comparison) {
+    // Two of three or more conditions would be an arbitrary pair: the lab names the pair.
+    const std::string why = fmt::format(
+        "the slopes compare two conditions and the study has {}; set compare = \"A,B\" to compare a pair", k);
+    for (const auto& m : metrics)
+      if (r.scores.metric_index(m.column) >= 0) out.push_back(exposure_not_computable(m.column, exposure_source(r, m.column), why.c_str()));
+    return;
+  }
   std::vector<std::string> conditions_order;
   if (r.model && !r.model->models.empty() && !r.model->models.front().group1.empty())
     conditions_order = {r.model->models.front().group1, r.model->models.front().group2};
@@ -364,6 +378,60 @@ void add_likert_findings(std::vector<Finding>& out, const std::optional<tables::
         f.sentence.insert(f.sentence.size() - 2, bf);
     }
     out.push_back(std::move(f));
+  }
+}
+
+// How much, in the omnibus finding's words: each condition's mean and the rank epsilon squared
+// ("M = 4.80 (adaptive), 5.10 (random), 4.60 (fixed-block); rank ε² = .11; χ²(2) = 3.23, ...").
+void describe_omnibus(Finding& f, const tables::LikertConditions& a, std::size_t k) {
+  if (f.strength == Strength::not_computable || f.statistics.empty()) return;
+  auto mean_of = [&](const std::string& c) -> std::optional<double> {
+    for (const auto& pair : a.pairs)
+      for (const auto& s : pair.summaries)
+        if (s.name == a.names[k] && s.group == c) return s.mean;
+    return std::nullopt;
+  };
+  std::vector<std::string> means;
+  for (const auto& c : a.conditions)
+    if (const auto m = mean_of(c)) means.push_back(fmt::format("{:.2f} ({})", *m, c));
+  std::string words = means.empty() ? "" : fmt::format("M = {}; ", fmt::join(means, ", "));
+  if (f.effect_size) {
+    std::string e = fmt::format("{:.2f}", f.effect_size->value);
+    if (e.rfind("0.", 0) == 0) e.erase(0, 1);
+    words += fmt::format("rank \u03b5\u00b2 = {}; ", e);
+  }
+  if (const auto at = f.sentence.rfind("(" + f.statistics); at != std::string::npos) f.sentence.insert(at + 1, words);
+}
+
+// H2 with three or more conditions and no pair named: per item, the Kruskal-Wallis finding, then
+// one finding per pair (as two conditions are compared, the p Holm-adjusted over the item's
+// pairs), protected by the item's omnibus finding.
+void add_likert_conditions_findings(std::vector<Finding>& out, const std::optional<tables::LikertConditions>& a,
+                                    const WordingRules& rules) {
+  if (!a) return;
+  const std::string conditions = fmt::format("{}", fmt::join(a->conditions, ", "));
+  for (std::size_t k = 0; k < a->omnibus.size(); ++k) {
+    const tables::TidyRow& row = a->omnibus[k];
+    Finding omnibus = difference_finding(
+        fmt::format("H2-conditions-{}", row.metric), "H2", fmt::format("Do the conditions differ on {}?", row.metric),
+        fmt::format("{} across the {} conditions ({})", row.metric, a->conditions.size(), conditions), row.result,
+        nullptr, "questionnaire-conditions", rules);
+    omnibus.measure = row.metric;
+    describe_omnibus(omnibus, *a, k);
+    out.push_back(omnibus);
+    for (const auto& pair : a->pairs) {
+      std::optional<tables::LikertAnalysis> one = pair;
+      one->rows = {pair.rows[2 * k], pair.rows[2 * k + 1]};
+      std::vector<Finding> fs;
+      add_likert_findings(fs, one, true, rules);
+      for (auto& f : fs) {
+        f.id = fmt::format("H2-pair-{}-{}-{}", row.metric, one->rows[0].group1, one->rows[0].group2);
+        f.question = fmt::format("Which conditions differ on {}?", row.metric);
+        f.source = "questionnaire-conditions";
+        detail::protect_by_omnibus(f, &omnibus, row.metric);
+        out.push_back(std::move(f));
+      }
+    }
   }
 }
 
@@ -637,6 +705,7 @@ std::vector<Finding> study_findings(const StudyResults& r, const std::vector<tab
   add_likert_findings(out, r.likert, false, rules);
   add_likert_findings(out, r.likert_compare_one_sided ? r.likert_compare_one_sided : r.likert_compare, true,
                       rules);
+  add_likert_conditions_findings(out, r.likert_conditions, rules);
   add_yes_no_findings(out, r.yes_no, rules);
   return out;
 }

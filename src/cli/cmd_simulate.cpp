@@ -86,6 +86,10 @@ void add_study_command(CLI::App& parent) {
                 "replace the folder of an earlier feint simulate study whole (never a folder "
                 "holding other files)");
   cmd->add_option("--design", opts->design, "between or within participants")->capture_default_str();
+  cmd->add_option("--conditions", opts->conditions,
+                  "the conditions compared, comma-separated: two or more of adaptive, random, fixed-block, "
+                  "fixed-balanced, each as ALGORITHM or NAME=ALGORITHM (e.g. a=random,b=random,c=random)")
+      ->capture_default_str();
   cmd->add_option("--participants,-p", opts->participants, "participants per condition (within: in all)")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));

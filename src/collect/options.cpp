@@ -137,8 +137,9 @@ std::string study_toml(const Settings& s, std::string_view tool_version) {
         "compare = \"{},{}\"\n\n",
         names[0], names[1]);
   } else {
-    out += "# Three or more conditions: no comparison of two is made by default; name one with\n"
-           "# compare = \"A,B\".\n\n";
+    out += "# Three or more conditions: compared by the models' test of condition and then each pair,\n"
+           "# and the questionnaire by Kruskal-Wallis and then each pair; to compare one pair only, name\n"
+           "# it with compare = \"A,B\".\n\n";
   }
   out +=
       "# Confusion on the paper's scale (eq. 4 without normalisation), where the paper's reference\n"

@@ -76,6 +76,10 @@ std::vector<ReportTable> tables(const analysis::StudyResults& r) {
     add("questionnaire-compare", "Questionnaire between the conditions", "likert_compare",
         [&](OutputFormat f) { return tables::render_likert(*r.likert_compare, f); });
   }
+  if (r.likert_conditions) {
+    add("questionnaire-conditions", "Questionnaire across the conditions", "likert_conditions",
+        [&](OutputFormat f) { return tables::render_likert_conditions(*r.likert_conditions, f); });
+  }
   if (r.yes_no) {
     add("yes-no", r.yes_no->rows.empty() ? "Yes/no questions" : "Yes/no questions between the conditions", "yes_no",
         [&](OutputFormat f) { return tables::render_yes_no(*r.yes_no, f); });
@@ -462,6 +466,7 @@ std::string study_results_json(const analysis::StudyResults& r) {
     else if (t.stem == "exposure_by_condition") json = tables::render_exposure(r.exposure, OutputFormat::json);
     else if (t.stem == "likert") json = tables::render_likert(*r.likert, OutputFormat::json);
     else if (t.stem == "likert_compare") json = tables::render_likert(*r.likert_compare, OutputFormat::json);
+    else if (t.stem == "likert_conditions") json = tables::render_likert_conditions(*r.likert_conditions, OutputFormat::json);
     else if (t.stem == "yes_no") json = tables::render_yes_no(*r.yes_no, OutputFormat::json);
     o += fmt::format(",\n  {}: {}", q(t.stem), trimmed(json));
   }

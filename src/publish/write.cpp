@@ -28,6 +28,28 @@ std::string extension(tables::OutputFormat format) {
   return "txt";
 }
 
+// The questionnaire's tables (Likert items, the conditions compared, the yes/no questions).
+template <typename Write, typename WriteAll>
+void write_questionnaire_tables(const analysis::StudyResults& r, const tables::TablePresentation& presentation,
+                                Write&& write, WriteAll&& write_all) {
+  if (r.likert) {
+    write_all("likert", [&](tables::OutputFormat f) {
+      return tables::render_likert(*r.likert, f, presentation);
+    });
+    write("likert_summary.csv", tables::likert_summary_csv(*r.likert));
+  }
+  if (r.likert_compare) {
+    write_all("likert_compare", [&](tables::OutputFormat f) {
+      return tables::render_likert(*r.likert_compare, f, presentation);
+    });
+  }
+  if (r.likert_conditions) {
+    write_all("likert_conditions",
+              [&](tables::OutputFormat f) { return tables::render_likert_conditions(*r.likert_conditions, f); });
+  }
+  if (r.yes_no) write_all("yes_no", [&](tables::OutputFormat f) { return tables::render_yes_no(*r.yes_no, f); });
+}
+
 }  // namespace
 
 WrittenStudy write_study(const analysis::Study& study, const analysis::StudyResults& r,
@@ -73,18 +95,7 @@ WrittenStudy write_study(const analysis::Study& study, const analysis::StudyResu
     write_all("exposure_by_condition",
               [&](tables::OutputFormat f) { return tables::render_exposure(r.exposure, f); });
   }
-  if (r.likert) {
-    write_all("likert", [&](tables::OutputFormat f) {
-      return tables::render_likert(*r.likert, f, presentation);
-    });
-    write("likert_summary.csv", tables::likert_summary_csv(*r.likert));
-  }
-  if (r.likert_compare) {
-    write_all("likert_compare", [&](tables::OutputFormat f) {
-      return tables::render_likert(*r.likert_compare, f, presentation);
-    });
-  }
-  if (r.yes_no) write_all("yes_no", [&](tables::OutputFormat f) { return tables::render_yes_no(*r.yes_no, f); });
+  write_questionnaire_tables(r, presentation, write, write_all);
   write("settings.toml", r.settings_toml);
   write("results.json", study_results_json(r));
   write("findings.json", analysis::findings_json(r.findings));

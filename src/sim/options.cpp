@@ -30,6 +30,25 @@ StudySettings study_settings(const StudyOptions& o) {
     throw UsageError(fmt::format("--design '{}': expected between (each participant in one condition) or "
                                  "within (each participant in both, counterbalanced)", o.design));
   s.within = o.design == "within";
+  s.conditions.clear();
+  std::string_view rest = o.conditions;
+  bool named = false;
+  while (!rest.empty()) {
+    const std::size_t comma = rest.find(',');
+    const std::string_view item = io::trim(rest.substr(0, comma));
+    rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
+    // ALGORITHM, or NAME=ALGORITHM (every condition named then).
+    const std::size_t eq = item.find('=');
+    named = named || eq != std::string_view::npos;
+    s.condition_names.emplace_back(io::trim(item.substr(0, eq)));
+    try {
+      s.conditions.push_back(parse_algorithm(io::trim(eq == std::string_view::npos ? item : item.substr(eq + 1))));
+    } catch (const UsageError& e) {
+      throw UsageError(fmt::format("--conditions '{}': {}", o.conditions, e.what()));
+    }
+  }
+  if (!named) s.condition_names.clear();
+  validate_conditions(s);
   s.iterations = o.iterations;
   s.lambda = o.lambda;
   s.seed = o.seed;

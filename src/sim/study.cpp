@@ -4,6 +4,7 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <system_error>
@@ -80,15 +81,47 @@ ParticipantRecord watch_block(const StudySettings& settings, Algorithm condition
 
 }  // namespace
 
+std::string condition_name(const StudySettings& settings, std::size_t index) {
+  return settings.condition_names.empty() ? std::string(to_string(settings.conditions.at(index)))
+                                          : settings.condition_names.at(index);
+}
+
+void validate_conditions(const StudySettings& settings) {
+  const auto& conditions = settings.conditions;
+  if (conditions.size() < 2)
+    throw UsageError(fmt::format("--conditions: {} condition(s) given; a study compares two or more "
+                                 "(e.g. --conditions adaptive,random,fixed-block)", conditions.size()));
+  if (!settings.condition_names.empty() && settings.condition_names.size() != conditions.size())
+    throw UsageError(fmt::format("--conditions: {} names for {} conditions", settings.condition_names.size(),
+                                 conditions.size()));
+  for (std::size_t i = 0; i < conditions.size(); ++i) {
+    const std::string name = condition_name(settings, i);
+    const bool plain = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '-' || c == '_' || c == '.';
+    });
+    if (!plain)
+      throw UsageError(fmt::format("--conditions: the name '{}' is not a plain name (letters, digits, '-', '_', '.')",
+                                   name));
+    for (std::size_t j = 0; j < i; ++j)
+      if (condition_name(settings, j) == name)
+        throw UsageError(fmt::format("--conditions: '{}' is named twice; name each condition once (NAME=ALGORITHM "
+                                     "runs one algorithm under several names)",
+                                     name));
+  }
+}
+
 ParticipantRecord simulate_participant(const StudySettings& settings, int index) {
   validate(settings.geometry);
+  validate_conditions(settings);
   if (settings.participants < 1) throw UsageError("participants per condition must be >= 1");
-  if (index < 0 || index >= 2 * settings.participants) throw UsageError("participant index out of range");
+  const int people = static_cast<int>(settings.conditions.size()) * settings.participants;
+  if (index < 0 || index >= people) throw UsageError("participant index out of range");
   Rng rng = Rng::stream(settings.seed, static_cast<std::uint64_t>(index));
   Observer observer(settings.observer);
-  ParticipantRecord p = watch_block(settings, kStudyConditions[static_cast<std::size_t>(index / settings.participants)],
-                                    1, observer, rng);
-  p.id = participant_id(index, 2 * settings.participants);
+  const auto c = static_cast<std::size_t>(index / settings.participants);
+  ParticipantRecord p = watch_block(settings, settings.conditions[c], 1, observer, rng);
+  p.condition_name = condition_name(settings, c);
+  p.id = participant_id(index, people);
   // Likert answers: centred near the paper's adaptive-condition means (entertainment 6.1,
   // deception 4.8, intelligence 6.8, trust 2.2), rising (trust: falling) with the participant's
   // mean error; Gaussian noise; rounded and kept within 1-7 (a rating scale has no other values).
@@ -102,16 +135,20 @@ ParticipantRecord simulate_participant(const StudySettings& settings, int index)
 
 std::vector<ParticipantRecord> simulate_participant_within(const StudySettings& settings, int index) {
   validate(settings.geometry);
+  validate_conditions(settings);
   if (settings.participants < 1) throw UsageError("participants must be >= 1");
   if (index < 0 || index >= settings.participants) throw UsageError("participant index out of range");
   Rng rng = Rng::stream(settings.seed, static_cast<std::uint64_t>(index));
   Observer observer(settings.observer);
-  const bool adaptive_first = index % 2 == 0;
+  // Orders rotated by participant: each condition is seen in each position equally often when the
+  // number of participants is a multiple of the number of conditions.
+  const std::size_t n = settings.conditions.size();
   std::vector<ParticipantRecord> blocks;
-  for (int b = 0; b < 2; ++b) {
-    const Algorithm c = kStudyConditions[static_cast<std::size_t>(adaptive_first ? b : 1 - b)];
-    blocks.push_back(watch_block(settings, c, b + 1, observer, rng));
+  for (std::size_t b = 0; b < n; ++b) {
+    const std::size_t c = (b + static_cast<std::size_t>(index)) % n;
+    blocks.push_back(watch_block(settings, settings.conditions[c], static_cast<int>(b) + 1, observer, rng));
     blocks.back().id = participant_id(index, settings.participants);
+    blocks.back().condition_name = condition_name(settings, c);
   }
   return blocks;
 }
@@ -133,28 +170,52 @@ bool is_legacy_study_output(std::string_view name) {
 
 }  // namespace
 
+namespace {
+
+// The conditions as feint.toml and the logs name them, joined by `sep`.
+std::string condition_names(const StudySettings& settings, std::string_view sep) {
+  std::string out;
+  for (std::size_t c = 0; c < settings.conditions.size(); ++c) {
+    if (!out.empty()) out += sep;
+    out += condition_name(settings, c);
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string study_toml(const StudySettings& settings, std::string_view tool_version) {
+  const bool two = settings.conditions.size() == 2;
+  const std::string each = two ? "both conditions" : "every condition";
   const std::string design =
       settings.within
-          ? fmt::format("{} participants, each in both conditions (counterbalanced blocks of {} iterations)",
-                        settings.participants, settings.iterations)
+          ? fmt::format("{} participants, each in {} (counterbalanced blocks of {} iterations)",
+                        settings.participants, each, settings.iterations)
           : fmt::format("{} participants per condition, {} iterations", settings.participants, settings.iterations);
+  // Two conditions: Table 1 compares them; three or more: the models' omnibus test of condition and
+  // its pairs (Table 1 describes each condition).
+  const std::string compare =
+      two ? fmt::format("# The study compares its two conditions (Table 1 two-sample, the models, the "
+                        "questionnaire).\ncompare = \"{}\"\n\n",
+                        condition_names(settings, ","))
+          : fmt::format("# The study compares its {} conditions ({}): the models' test of condition, then each\n"
+                        "# pair. Table 1 describes each condition against the references.\n\n",
+                        settings.conditions.size(), condition_names(settings, ", "));
   return fmt::format(
       "# The design of this simulated study, written by feint simulate study (feint {}), read by\n"
       "# `feint analyze` (names are its options without the dashes; the command line wins).\n"
       "# {}, lambda {} (adaptive), seed {}.\n\n"
       "# {}\n"
       "design = \"{}\"\n\n"
-      "# The study compares its two conditions (Table 1 two-sample, the models, the questionnaire).\n"
-      "compare = \"adaptive,random\"\n\n"
+      "{}"
       "# Confusion on the paper's scale (eq. 4 without normalisation), where the paper's reference\n"
       "# 0.95 lies: the scores and the reference are on one scale (docs/metrics.md).\n"
       "confusion-norm = \"raw\"\n"
       "metric = [\"error=0.5\", \"confusion=0.95@raw\"]\n",
       tool_version, design, io::format_double(settings.lambda), settings.seed,
-      settings.within ? "Each participant saw both conditions: conditions within participants (paired tests)."
+      settings.within ? fmt::format("Each participant saw {}: conditions within participants (paired tests).", each)
                       : "Each participant saw one condition: conditions between participants.",
-      settings.within ? "within" : "between");
+      settings.within ? "within" : "between", compare);
 }
 
 io::FolderWriter study_folder_writer(bool replace) {
@@ -181,7 +242,7 @@ std::string log_text(const std::vector<ParticipantRecord>& blocks, const StudySe
                                        "robot_x,robot_y\n";
   std::vector<double> times;
   for (const auto& p : blocks) {
-    const std::string cond(to_string(p.condition));
+    const std::string& cond = p.condition_name;
     for (const auto& tr : p.trials) {
       const std::string key =
           settings.within ? fmt::format("{},{},{},{},{},{},{},", p.id, cond, tr.block, tr.iteration,
@@ -235,13 +296,13 @@ void write_log(const std::filesystem::path& logs, const std::string& id, const s
 void write_questionnaires(const std::vector<ParticipantRecord>& all, io::OutputFolder& folder) {
   std::string q = "participant,condition,entertainment,deception,intelligence,trust\n";
   for (const auto& p : all) {
-    q += fmt::format("{},{},{},{},{},{}\n", p.id, to_string(p.condition), p.likert[0], p.likert[1],
+    q += fmt::format("{},{},{},{},{},{}\n", p.id, p.condition_name, p.likert[0], p.likert[1],
                      p.likert[2], p.likert[3]);
   }
   io::write_file_atomically(folder.path("questionnaire.csv"), q);
   std::string yes_no = "participant,condition,intentional\n";
   for (const auto& p : all)
-    yes_no += fmt::format("{},{},{}\n", p.id, to_string(p.condition), p.intentional ? "yes" : "no");
+    yes_no += fmt::format("{},{},{}\n", p.id, p.condition_name, p.intentional ? "yes" : "no");
   io::write_file_atomically(folder.path("questionnaire_yesno.csv"), yes_no);
 }
 
@@ -256,7 +317,9 @@ std::vector<ParticipantRecord> write_study(const StudySettings& settings, const 
   fs::create_directories(logs, ec);
   if (ec) throw IoError(fmt::format("{}: cannot create directory: {}", logs.string(), ec.message()));
   std::vector<ParticipantRecord> all;
-  const int people = settings.within ? settings.participants : 2 * settings.participants;
+  validate_conditions(settings);
+  const int people =
+      settings.within ? settings.participants : static_cast<int>(settings.conditions.size()) * settings.participants;
   for (int i = 0; i < people; ++i) {
     std::vector<ParticipantRecord> blocks = settings.within ? simulate_participant_within(settings, i)
                                                             : std::vector{simulate_participant(settings, i)};

@@ -1,4 +1,5 @@
 // Kruskal–Wallis rank sum test, reproducing R 4.2's kruskal.test(y ~ g).
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -71,6 +72,7 @@ TestResult kruskal_wallis(std::span<const std::vector<double>> groups) {
   }
   const double h = (12.0 * between / (nd * (nd + 1.0)) - 3.0 * (nd + 1.0)) / tie_factor;
   r.statistic = h;
+  r.rank_epsilon_squared = std::max(0.0, h) / (nd - 1.0);
   // H can come out a rounding error below 0 when the groups' mean ranks are equal; R's pchisq
   // gives 1 there, Boost would reject a negative argument.
   r.p_value = h <= 0.0 ? 1.0

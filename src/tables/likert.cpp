@@ -177,42 +177,6 @@ std::vector<std::vector<std::size_t>> add_names(LikertAnalysis& a, const io::Que
   return members;
 }
 
-/// A respondent's value of name k: the answer to an item, or a composite's mean of its items
-/// (missing when any of them is).
-struct Answers {
-  const io::Questionnaire& q;
-  const std::vector<std::vector<std::size_t>>& members;  ///< items of each composite
-
-  std::optional<double> value(std::size_t k, std::size_t r) const {
-    const std::size_t n_items = q.items.size();
-    if (k < n_items) {
-      const auto& x = q.responses[k][r];
-      return x ? std::optional<double>(*x) : std::nullopt;
-    }
-    double sum = 0.0;
-    for (const auto i : members[k - n_items]) {
-      const auto& x = q.responses[i][r];
-      if (!x) return std::nullopt;
-      sum += *x;
-    }
-    return sum / static_cast<double>(members[k - n_items].size());
-  }
-
-  /// The values of name k over the respondents, and how many of them are missing.
-  std::pair<std::vector<double>, std::size_t> values_of(
-      std::size_t k, const std::vector<std::size_t>& resp) const {
-    std::pair<std::vector<double>, std::size_t> out{{}, 0};
-    for (const auto r : resp) {
-      if (const auto v = value(k, r)) {
-        out.first.push_back(*v);
-      } else {
-        ++out.second;
-      }
-    }
-    return out;
-  }
-};
-
 using detail::respondents_in;
 
 void check_condition(const io::Questionnaire& q, const std::vector<std::string>& conditions,

@@ -209,19 +209,25 @@ std::string render_selection(const std::vector<sim::SimulationSummary>& rows,
 
 std::string study_summary_text(const std::vector<sim::ParticipantRecord>& people,
                                const sim::StudySettings& s, const std::string& dir) {
+  std::string names;
+  for (std::size_t c = 0; c < s.conditions.size(); ++c)
+    names += (names.empty() ? "" : ", ") + sim::condition_name(s, c);
   std::string o =
-      s.within ? fmt::format("feint simulate study: {} participants, each in both conditions (adaptive, random; "
+      s.within ? fmt::format("feint simulate study: {} participants, each in {} conditions ({}; "
                              "counterbalanced blocks of {} iterations), seed {}\n  logs: {}/logs/P*.csv.gz\n  "
                              "questionnaire: none (not simulated for within designs)\n",
-                             s.participants, s.iterations, s.seed, dir)
-               : fmt::format("feint simulate study: {} participants ({} per condition: adaptive, random), {} "
+                             s.participants, s.conditions.size() == 2 ? "both" : "all", names, s.iterations, s.seed, dir)
+               : fmt::format("feint simulate study: {} participants ({} per condition: {}), {} "
                              "iterations, seed {}\n  logs: {}/logs/P*.csv.gz\n  questionnaire: {}/questionnaire.csv\n",
-                             people.size(), s.participants, s.iterations, s.seed, dir, dir);
-  for (auto cond : sim::kStudyConditions) {
+                             people.size(), s.participants, names, s.iterations, s.seed, dir, dir);
+  std::size_t width = 8;
+  for (std::size_t c = 0; c < s.conditions.size(); ++c) width = std::max(width, sim::condition_name(s, c).size());
+  for (std::size_t c = 0; c < s.conditions.size(); ++c) {
+    const std::string cond = sim::condition_name(s, c);
     double first = 0, last = 0;
     int nf = 0, nl = 0;
     for (const auto& p : people) {
-      if (p.condition != cond) continue;
+      if (p.condition_name != cond) continue;
       for (const auto& tr : p.trials) {
         if (tr.iteration <= 5) {
           first += tr.error;
@@ -233,8 +239,8 @@ std::string study_summary_text(const std::vector<sim::ParticipantRecord>& people
         }
       }
     }
-    o += fmt::format("  {:<8} mean error: iterations 1-5 {:.3f}, last 5 {:.3f}\n",
-                     sim::to_string(cond), nf ? first / nf : std::nan(""),
+    o += fmt::format("  {:<{}} mean error: iterations 1-5 {:.3f}, last 5 {:.3f}\n",
+                     cond, width, nf ? first / nf : std::nan(""),
                      nl ? last / nl : std::nan(""));
   }
   return o;

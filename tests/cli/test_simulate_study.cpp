@@ -200,3 +200,50 @@ TEST(SimulateStudyCli, TheStudyCarriesItsDesignAndIsAnalysedWithNoFlag) {
   EXPECT_NE(md.find("- Settings file: feint.toml"), std::string::npos);
   EXPECT_NE(read_text(out / "settings.toml").find("confusion-norm = \"raw\""), std::string::npos);
 }
+
+// Three conditions (data/demo-three, made by `feint simulate study --conditions
+// adaptive,random,fixed-block`): analysed with no flag, the conditions are compared by the omnibus
+// tests and their pairs, never by an arbitrary two of them (docs/analysis.md "Three or more
+// conditions").
+TEST(SimulateStudyCli, ThreeConditionsAreComparedByOmnibusTestsAndTheirPairsWithNoFlag) {
+  TempDir dir;
+  const auto out = dir / "out";
+  const auto r = run_feint("analyze " + shell_quote(std::string(FEINT_SOURCE_DIR) + "/data/demo-three") + " -o " +
+                           shell_quote(out.string()) + " --no-figures");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // No Table 1 comparison of two of the three, and no exposure table of two of them: said why.
+  EXPECT_FALSE(std::filesystem::exists(out / "table1_compare.csv"));
+  EXPECT_FALSE(std::filesystem::exists(out / "exposure_by_condition.csv"));
+  EXPECT_NE(r.err.find("no condition x exposure table: it compares two conditions and the study has 3"),
+            std::string::npos)
+      << r.err;
+  const std::string findings = read_text(out / "findings.json");
+  for (const char* id :
+       {"\"H1-model-condition-error\"", "\"H1-model-pair-error-adaptive-fixed-block\"",
+        "\"H1-model-pair-confusion-fixed-block-random\"", "\"H1-model-trend-error-random\"",
+        "\"H2-conditions-deception\"", "\"H2-pair-trust-adaptive-random\"", "\"H1-exposure-error\""})
+    EXPECT_NE(findings.find(id), std::string::npos) << id;
+  EXPECT_EQ(findings.find("\"H2-compare-"), std::string::npos);
+  // The questionnaire across the conditions: Kruskal-Wallis per item, then the pairs.
+  const std::string q = read_text(out / "likert_conditions.csv");
+  EXPECT_EQ(std::count(q.begin(), q.end(), '\n'), 1 + 4 + 3 * 4 * 2) << q.substr(0, 400);
+  EXPECT_NE(q.find("kruskal_wallis"), std::string::npos);
+  const std::string md = read_text(out / "report.md");
+  EXPECT_NE(md.find("Questionnaire across the conditions"), std::string::npos);
+  EXPECT_NE(md.find("- Design: conditions between participants"), std::string::npos) << md.substr(0, 2000);
+}
+
+TEST(SimulateStudyCli, ConditionsNameTheAlgorithmsOrGiveThemNames) {
+  TempDir dir;
+  const auto sim = dir / "sim";
+  const auto ok = run_feint("simulate study -p 2 -n 3 --conditions a=random,b=random,c=fixed-block --out " +
+                            shell_quote(sim.string()));
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("6 participants (2 per condition: a, b, c)"), std::string::npos) << ok.out;
+  const std::string q = read_text(sim / "questionnaire.csv");
+  EXPECT_NE(q.find("P05,c,"), std::string::npos) << q;
+  const auto bad = run_feint("simulate study --conditions adaptive --out " + shell_quote((dir / "x").string()));
+  EXPECT_EQ(bad.exit_code, 64);
+  EXPECT_NE(bad.err.find("1 condition(s) given; a study compares two or more"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "x"));
+}

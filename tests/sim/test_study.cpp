@@ -10,8 +10,10 @@
 #include <map>
 #include <sstream>
 
+#include "feint/error.hpp"
 #include "feint/io/csv.hpp"
 #include "feint/io/number.hpp"
+#include "feint/sim/options.hpp"
 #include "feint/sim/study.hpp"
 
 #include <unistd.h>
@@ -242,4 +244,111 @@ TEST(SimulatedStudy, GoalInferenceErrorFallsMoreUnderRandomThanUnderAdaptive) {
   EXPECT_LT(random, -0.002);
   EXPECT_LT(random, adaptive - 0.001);
   EXPECT_NEAR(mean(st.by_iteration[0].at(1)), mean(st.by_iteration[1].at(1)), 0.06);
+}
+
+// Three or more conditions (docs/simulation.md "Conditions"): participant i belongs to condition
+// i / N between participants; within participants every participant sees every condition once,
+// in an order rotated by participant, so each condition is seen in each position equally often.
+TEST(SimulatedStudy, ThreeConditionsBetweenAssignEachBlockOfParticipantsToOneCondition) {
+  StudySettings s;
+  s.participants = 3;
+  s.iterations = 4;
+  s.conditions = {Algorithm::adaptive, Algorithm::random, Algorithm::fixed_block};
+  std::vector<std::string> ids;
+  for (int i = 0; i < 9; ++i) {
+    const ParticipantRecord p = simulate_participant(s, i);
+    EXPECT_EQ(p.condition, s.conditions[static_cast<std::size_t>(i / 3)]) << i;
+    EXPECT_EQ(p.trials.size(), 4u);
+    ids.push_back(p.id);
+  }
+  EXPECT_EQ(ids.front(), "P01");
+  EXPECT_EQ(ids.back(), "P09");
+  EXPECT_THROW(simulate_participant(s, 9), feint::UsageError);
+  // The first two conditions' participants are those of a two-condition study with the same seed.
+  StudySettings two = s;
+  two.conditions = {Algorithm::adaptive, Algorithm::random};
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(simulate_participant(two, i).mean_error, simulate_participant(s, i).mean_error);
+}
+
+TEST(SimulatedStudy, ThreeConditionsWithinRotateTheOrderByParticipant) {
+  StudySettings s;
+  s.within = true;
+  s.participants = 6;
+  s.iterations = 3;
+  s.conditions = {Algorithm::adaptive, Algorithm::random, Algorithm::fixed_balanced};
+  std::map<std::pair<Algorithm, int>, int> position_count;  // (condition, block) -> participants
+  for (int i = 0; i < 6; ++i) {
+    const auto blocks = simulate_participant_within(s, i);
+    ASSERT_EQ(blocks.size(), 3u);
+    for (std::size_t b = 0; b < 3; ++b) {
+      EXPECT_EQ(blocks[b].condition, s.conditions[(b + static_cast<std::size_t>(i)) % 3]) << i << " " << b;
+      EXPECT_EQ(blocks[b].trials.front().block, static_cast<int>(b) + 1);
+      ++position_count[{blocks[b].condition, static_cast<int>(b) + 1}];
+    }
+  }
+  for (const auto& [key, n] : position_count) EXPECT_EQ(n, 2);  // 6 people: each position twice
+  EXPECT_EQ(position_count.size(), 9u);
+  // Two conditions: adaptive first for P01, P03, ..., random first for P02, P04, ...
+  s.conditions = {Algorithm::adaptive, Algorithm::random};
+  EXPECT_EQ(simulate_participant_within(s, 0).front().condition, Algorithm::adaptive);
+  EXPECT_EQ(simulate_participant_within(s, 1).front().condition, Algorithm::random);
+}
+
+TEST(SimulatedStudy, ConditionsMustBeTwoOrMoreAndDistinct) {
+  StudySettings s;
+  s.conditions = {Algorithm::adaptive};
+  try {
+    simulate_participant(s, 0);
+    FAIL() << "one condition accepted";
+  } catch (const feint::UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("1 condition(s) given; a study compares two or more"), std::string::npos)
+        << e.what();
+  }
+  s.conditions = {Algorithm::random, Algorithm::adaptive, Algorithm::random};
+  try {
+    simulate_participant_within(s, 0);
+    FAIL() << "a repeated condition accepted";
+  } catch (const feint::UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("'random' is named twice"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SimulatedStudy, ThreeConditionTomlNamesNoPairAndTwoConditionTomlComparesThem) {
+  StudySettings s;
+  const std::string two = study_toml(s, "test");
+  EXPECT_NE(two.find("compare = \"adaptive,random\"\n"), std::string::npos) << two;
+  s.conditions = {Algorithm::adaptive, Algorithm::random, Algorithm::fixed_block};
+  const std::string three = study_toml(s, "test");
+  EXPECT_EQ(three.find("compare ="), std::string::npos) << three;
+  EXPECT_NE(three.find("# The study compares its 3 conditions (adaptive, random, fixed-block)"), std::string::npos)
+      << three;
+  EXPECT_NE(three.find("design = \"between\""), std::string::npos);
+}
+
+TEST(SimulatedStudy, NamedConditionsRunOneAlgorithmUnderSeveralNames) {
+  StudyOptions o;
+  o.conditions = "a=random, b=random ,c=random";
+  const StudySettings s = study_settings(o);
+  ASSERT_EQ(s.conditions.size(), 3u);
+  EXPECT_EQ(s.condition_names, (std::vector<std::string>{"a", "b", "c"}));
+  ASSERT_EQ(s.participants, 20);
+  const ParticipantRecord p = simulate_participant(s, 45);  // the third block of 20
+  EXPECT_EQ(p.condition, Algorithm::random);
+  EXPECT_EQ(p.condition_name, "c");
+  EXPECT_NE(study_toml(s, "t").find("# The study compares its 3 conditions (a, b, c)"), std::string::npos);
+  o.conditions = "a=random,random";  // unnamed ones keep the algorithm's name
+  EXPECT_EQ(study_settings(o).condition_names, (std::vector<std::string>{"a", "random"}));
+  o.conditions = "x=random,x=adaptive";
+  EXPECT_THROW(study_settings(o), feint::UsageError);
+  o.conditions = "a b=random,adaptive";
+  EXPECT_THROW(study_settings(o), feint::UsageError);
+  o.conditions = "adaptive,coin";
+  try {
+    study_settings(o);
+    FAIL() << "an unknown algorithm accepted";
+  } catch (const feint::UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("--conditions 'adaptive,coin': unknown selection algorithm 'coin'"),
+              std::string::npos)
+        << e.what();
+  }
 }

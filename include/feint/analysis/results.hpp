@@ -22,6 +22,7 @@
 #include "feint/models/fitted_trend.hpp"
 #include "feint/tables/anova.hpp"
 #include "feint/tables/likert.hpp"
+#include "feint/tables/likert_conditions.hpp"
 #include "feint/tables/model.hpp"
 #include "feint/tables/table1.hpp"
 #include "feint/tables/yes_no.hpp"
@@ -94,6 +95,9 @@ struct StudyResults {
   std::optional<tables::ModelAnalysis> trend_model;  ///< metric ~ condition * iteration as a trend
   std::optional<tables::LikertAnalysis> likert;          ///< against the reference
   std::optional<tables::LikertAnalysis> likert_compare;  ///< A against B
+  /// Three or more conditions between participants, no pair named: Kruskal-Wallis per item, then
+  /// every pair (Holm over the pairs, protected by the omnibus test).
+  std::optional<tables::LikertConditions> likert_conditions;
   /// The yes/no questions (questionnaire_yesno.csv): proportions per condition, and with two
   /// conditions compared Fisher's exact test and the chi-square test (docs/yes-no.md).
   std::optional<tables::YesNoAnalysis> yes_no;

@@ -39,7 +39,8 @@ struct StudyOptions {
   std::string out;
   bool replace = false;  ///< --replace: replace an earlier `feint simulate study` folder whole
   int participants = 20;
-  std::string design = "between";  ///< between, or within (each participant in both conditions)
+  std::string design = "between";  ///< between, or within (each participant in every condition)
+  std::string conditions = "adaptive,random";  ///< two or more selection algorithms, comma-separated
   int iterations = 20;
   double lambda = 0.5;
   std::uint64_t seed = 1;

@@ -1,11 +1,12 @@
 // feint/sim/study.hpp - a simulated user study (selection.md "Simulated studies").
 //
-// N simulated participants per condition (adaptive, lambda 0.5; random) each watch a run of N
-// iterations chosen by their condition's algorithm (generate_run), with a fresh Observer; their pad
-// traces are written as pad-trace logs (formats.md), one gzipped CSV per participant, and a wide
-// 1-7 Likert questionnaire (entertainment, deception, intelligence, trust) is derived from each
-// participant's mean error plus noise. Participant i (0-based; the first N adaptive, the next N
-// random) draws everything from Rng::stream(seed, i).
+// N simulated participants per condition (by default adaptive, lambda 0.5, and random; any two or
+// more of the selection algorithms) each watch a run of N iterations chosen by their condition's
+// algorithm (generate_run), with a fresh Observer; their pad traces are written as pad-trace logs
+// (formats.md), one gzipped CSV per participant, and a wide 1-7 Likert questionnaire
+// (entertainment, deception, intelligence, trust) is derived from each participant's mean error
+// plus noise. Participant i (0-based; the first N in the first condition, the next N in the second,
+// ...) draws everything from Rng::stream(seed, i).
 #pragma once
 
 #include <array>
@@ -21,12 +22,23 @@
 
 namespace feint::sim {
 
+/// Conditions in order: adaptive, random (the seed paper's).
+inline constexpr std::array<Algorithm, 2> kStudyConditions = {Algorithm::adaptive, Algorithm::random};
+
 struct StudySettings {
   int participants = 20;  // per condition (within: in all)
-  /// Conditions within participants: each participant sees both conditions, one block of
-  /// `iterations` each, in counterbalanced order (adaptive first for P01, P03, ...; random first
-  /// for P02, P04, ...), with one observer whose memory carries over from the first block to the
-  /// second (the carry-over that counterbalancing balances). No questionnaire is simulated.
+  /// The conditions compared: two or more distinct selection algorithms, named in the logs by
+  /// to_string(Algorithm) (adaptive, random, fixed-block, fixed-balanced).
+  std::vector<Algorithm> conditions{kStudyConditions.begin(), kStudyConditions.end()};
+  /// The conditions' names in the logs and the questionnaire, one per condition, distinct; empty:
+  /// the algorithms' names. Naming lets a study run one algorithm under several labels (e.g. three
+  /// conditions all `random`: a null study of three conditions).
+  std::vector<std::string> condition_names;
+  /// Conditions within participants: each participant sees every condition, one block of
+  /// `iterations` each, in an order rotated by participant (participant i, 0-based, sees conditions
+  /// i mod C, i+1 mod C, ...: with the two default conditions, adaptive first for P01, P03, ... and
+  /// random first for P02, P04, ...), with one observer whose memory carries over from block to
+  /// block (the carry-over that counterbalancing balances). No questionnaire is simulated.
   bool within = false;
   int iterations = 20;
   double lambda = 0.5;    // of the adaptive condition
@@ -48,6 +60,7 @@ struct TrialRecord {
 struct ParticipantRecord {
   std::string id;  // P01, P02, ...
   Algorithm condition = Algorithm::adaptive;
+  std::string condition_name = "adaptive";  // as the logs name it (StudySettings::condition_names)
   std::vector<TrialRecord> trials;
   double mean_error = 0;
   std::array<int, 4> likert{};  // entertainment, deception, intelligence, trust (1-7)
@@ -62,16 +75,20 @@ struct ParticipantRecord {
 /// (trapezoids; exact because T is 0 or 1 and the pad stays in [0, 1]).
 double trial_error(const std::vector<PadSample>& pad, double target, double trim = 0.05);
 
-/// Participant `index` (0-based over both conditions) of a study.
+/// The name of condition `index` (StudySettings::condition_names, else the algorithm's name).
+std::string condition_name(const StudySettings& settings, std::size_t index);
+
+/// Throws UsageError unless there are two or more conditions, each named once (names: letters,
+/// digits, '-', '_' and '.'), and as many names as conditions when they are named.
+void validate_conditions(const StudySettings& settings);
+
+/// Participant `index` (0-based over all conditions) of a study.
 ParticipantRecord simulate_participant(const StudySettings& settings, int index);
 
 /// Participant `index` (0-based) of a within-participant study (settings.within): one record per
-/// condition, in the order seen, both with the participant's id; everything is drawn from
+/// condition, in the order seen, all with the participant's id; everything is drawn from
 /// Rng::stream(seed, index).
 std::vector<ParticipantRecord> simulate_participant_within(const StudySettings& settings, int index);
-
-/// Conditions in order: adaptive, random.
-inline constexpr std::array<Algorithm, 2> kStudyConditions = {Algorithm::adaptive, Algorithm::random};
 
 /// Writes DIR/logs/<participant>.csv.gz (columns participant, condition, iteration, strategy,
 /// variant, target, t, pad, pad_speed, robot_x, robot_y: the robot's position in metres at each
@@ -86,7 +103,7 @@ std::vector<ParticipantRecord> write_study(const StudySettings& settings, const 
                                            bool replace = false,
                                            std::string_view tool_version = "unknown");
 
-/// The study's feint.toml (written as DIR/feint.toml): the comparison of its two conditions, and
+/// The study's feint.toml (written as DIR/feint.toml): the comparison of its conditions, and
 /// confusion on the raw scale with the paper's references, so that `feint analyze DIR` compares the
 /// conditions with the scores and references on one scale, with no setting made by hand.
 std::string study_toml(const StudySettings& settings, std::string_view tool_version);

@@ -63,6 +63,9 @@ struct TestResult {
   std::optional<double> hedges_g;       ///< d times the exact gamma-function correction J(df)
   std::optional<double> rank_biserial;  ///< rank tests only
   std::optional<double> r_squared;      ///< ANOVA: R^2 (eta squared) = SS_between / SS_total
+  /// Kruskal-Wallis: rank epsilon squared H / (n - 1) (Tomczak & Tomczak 2014; R's
+  /// effectsize::rank_epsilon_squared), 0 when the groups' mean ranks are equal.
+  std::optional<double> rank_epsilon_squared;
   std::optional<bool> exact;            ///< rank tests: exact distribution (true) or normal approx.
   /// Confidence intervals of the effect sizes at `conf_level` (feint/stats/effect_size.hpp):
   /// d and g from the noncentral t, r from Fisher's z, eta squared from the noncentral F.
