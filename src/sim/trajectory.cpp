@@ -96,9 +96,13 @@ std::vector<Point> waypoints(Strategy s, Variant v, Target true_target, const Ge
   if (s == Strategy::optimal) throw std::invalid_argument("the optimal strategy has no version 2");
   // v2: the main strategy as if the false target were the true one, turning to the true target
   // v2_turn_remaining metres before the decoy path's end ("at the last moment").
-  const std::vector<Point> decoy = main_path(s, -sign, g);
+  return turn_before_end(main_path(s, -sign, g), g.v2_turn_remaining,
+                         {sign * g.target_distance / 2, g.target_height});
+}
+
+std::vector<Point> turn_before_end(const std::vector<Point>& decoy, double remaining, Point goal) {
   const double len = path_length(decoy);
-  const double cut = std::max(0.0, len - g.v2_turn_remaining);
+  const double cut = std::max(0.0, len - remaining);
   std::vector<Point> pts{decoy.front()};
   double acc = 0;
   for (std::size_t i = 1; i < decoy.size(); ++i) {
@@ -108,21 +112,25 @@ std::vector<Point> waypoints(Strategy s, Variant v, Target true_target, const Ge
     acc += seg;
   }
   pts.push_back(point_at(decoy, cut));
-  pts.push_back({sign * g.target_distance / 2, g.target_height});
+  pts.push_back(goal);
   return pts;
 }
 
 std::vector<TrajectorySample> trajectory(Strategy s, Variant v, Target true_target, const Geometry& g) {
-  const std::vector<Point> pts = waypoints(s, v, true_target, g);
+  return sample_polyline(waypoints(s, v, true_target, g), g.speed, g.sample_rate);
+}
+
+std::vector<TrajectorySample> sample_polyline(const std::vector<Point>& pts, double speed,
+                                              double sample_rate) {
   const double len = path_length(pts);
   // End time rounded up to 0.1 ms (the robot rests at the target for the remainder), so that a log
   // written with 4 decimals carries the exact sample times.
-  const double duration = std::ceil(len / g.speed * 1e4) / 1e4;
+  const double duration = std::ceil(len / speed * 1e4) / 1e4;
   std::vector<TrajectorySample> out;
   for (long i = 0;; ++i) {
-    const double t = static_cast<double>(i) / g.sample_rate;
+    const double t = static_cast<double>(i) / sample_rate;
     if (t >= duration - 1e-3) break;  // the end point is added below (no sample closer than 1 ms)
-    const Point p = point_at(pts, t * g.speed);
+    const Point p = point_at(pts, t * speed);
     out.push_back({t, p.x, p.y});
   }
   out.push_back({duration, pts.back().x, pts.back().y});  // ends exactly at the true target

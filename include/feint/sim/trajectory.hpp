@@ -59,6 +59,16 @@ std::vector<Point> waypoints(Strategy s, Variant v, Target true_target, const Ge
 std::vector<TrajectorySample> trajectory(Strategy s, Variant v, Target true_target,
                                          const Geometry& g);
 
+/// A polyline (start first) sampled as trajectory() samples a strategy's path: at `sample_rate` Hz
+/// at constant `speed`, plus its last point at length / speed rounded up to 0.1 ms. `pts` must hold
+/// at least one point; speed and rate > 0. The paths of sim/k_goal_paths.hpp are sampled with it.
+std::vector<TrajectorySample> sample_polyline(const std::vector<Point>& pts, double speed,
+                                              double sample_rate);
+
+/// v2's turn "at the last moment": the polyline `decoy` cut `remaining` metres (path length) before
+/// its end, then straight to `goal`. waypoints() builds every v2 path with it.
+std::vector<Point> turn_before_end(const std::vector<Point>& decoy, double remaining, Point goal);
+
 /// Pad coordinate of an x position: 0 at the left target, 1 at the right one (not clamped).
 double pad_coordinate(double x, const Geometry& g) noexcept;
 
