@@ -151,24 +151,28 @@ Evaluation Problem::evaluate(const Eigen::VectorXd& theta) const {
   return ev;
 }
 
-double Problem::profiled_reml(const Eigen::VectorXd& theta) const {
-  const Evaluation ev = evaluate(theta);
+double profiled_reml_at(const Evaluation& ev, double n, double p) {
   if (!ev.ok || !(ev.r2 > 0)) return std::numeric_limits<double>::infinity();
-  const double n = static_cast<double>(y.size());
-  const double p = static_cast<double>(X.cols());
   return ev.logdet_m + ev.logdet_x +
          (n - p) * (1.0 + std::log(2.0 * std::numbers::pi * ev.r2 / (n - p)));
 }
 
-double Problem::reml_deviance(const Eigen::VectorXd& varpar) const {
-  const Eigen::Index k = varpar.size() - 1;
-  const double sigma2 = varpar(k) * varpar(k);
-  const Evaluation ev = evaluate(varpar.head(k));
+double reml_deviance_at(const Evaluation& ev, double sigma, double n, double p) {
+  const double sigma2 = sigma * sigma;
   if (!ev.ok) return std::numeric_limits<double>::infinity();
-  const double n = static_cast<double>(y.size());
-  const double p = static_cast<double>(X.cols());
   return ev.logdet_m + ev.r2 / sigma2 + n * std::log(2.0 * std::numbers::pi * sigma2) +
          ev.logdet_x - p * std::log(2.0 * std::numbers::pi * sigma2);
+}
+
+double Problem::profiled_reml(const Eigen::VectorXd& theta) const {
+  return profiled_reml_at(evaluate(theta), static_cast<double>(y.size()),
+                          static_cast<double>(X.cols()));
+}
+
+double Problem::reml_deviance(const Eigen::VectorXd& varpar) const {
+  const Eigen::Index k = varpar.size() - 1;
+  return reml_deviance_at(evaluate(varpar.head(k)), varpar(k), static_cast<double>(y.size()),
+                          static_cast<double>(X.cols()));
 }
 
 Eigen::MatrixXd Problem::vcov_beta(const Eigen::VectorXd& varpar) const {

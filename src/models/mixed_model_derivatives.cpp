@@ -15,6 +15,7 @@
 // Exact derivatives make the fit a smooth function of the data to rounding, so the fit of y and
 // of c y agree to ~1e-12 (docs/mixed-model.md, "Scale invariance").
 #include <Eigen/Dense>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -95,11 +96,10 @@ ThetaDerivatives Problem::derivatives(const Eigen::VectorXd& theta) const {
   return d;
 }
 
-bool Problem::profiled_reml_derivatives(const Eigen::VectorXd& theta, Eigen::VectorXd& gradient,
-                                        Eigen::MatrixXd& hessian) const {
-  const ThetaDerivatives d = derivatives(theta);
+bool profiled_reml_derivatives_at(const ThetaDerivatives& d, double n, double p,
+                                  Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian) {
   if (!d.ev.ok || !(d.ev.r2 > 0)) return false;
-  const double np = static_cast<double>(y.size() - X.cols());
+  const double np = n - p;
   const double r2 = d.ev.r2;
   gradient = d.tr_pg + np * d.r2_gradient / r2;
   hessian = d.logdet_hessian +
@@ -107,11 +107,11 @@ bool Problem::profiled_reml_derivatives(const Eigen::VectorXd& theta, Eigen::Vec
   return true;
 }
 
-Eigen::MatrixXd Problem::reml_deviance_hessian(const Eigen::VectorXd& varpar) const {
-  const Eigen::Index nt = varpar.size() - 1;
-  const ThetaDerivatives d = derivatives(varpar.head(nt));
-  const double s = varpar(nt), s2 = s * s;
-  const double np = static_cast<double>(y.size() - X.cols());
+Eigen::MatrixXd reml_deviance_hessian_at(const ThetaDerivatives& d, double sigma, double n,
+                                         double p) {
+  const Eigen::Index nt = d.tr_pg.size();
+  const double s = sigma, s2 = s * s;
+  const double np = n - p;
   Eigen::MatrixXd H(nt + 1, nt + 1);
   H.topLeftCorner(nt, nt) = d.logdet_hessian + d.r2_hessian / s2;
   H.col(nt).head(nt) = -2 * d.r2_gradient / (s2 * s);
@@ -120,14 +120,56 @@ Eigen::MatrixXd Problem::reml_deviance_hessian(const Eigen::VectorXd& varpar) co
   return H;
 }
 
-std::vector<Eigen::MatrixXd> Problem::vcov_beta_jacobian(const Eigen::VectorXd& varpar) const {
-  const Eigen::Index nt = varpar.size() - 1;
-  const ThetaDerivatives d = derivatives(varpar.head(nt));
-  const double s = varpar(nt);
+std::vector<Eigen::MatrixXd> vcov_beta_jacobian_at(const ThetaDerivatives& d, double sigma) {
+  const double s = sigma;
   std::vector<Eigen::MatrixXd> J;
   for (const auto& Bk : d.B) J.push_back(s * s * d.C * Bk * d.C);
   J.push_back(2 * s * d.C);
   return J;
+}
+
+SatterthwaiteParts satterthwaite_parts(const Eigen::MatrixXd& deviance_hessian,
+                                       std::vector<Eigen::MatrixXd> jacobian, double sigma_s,
+                                       double sigma_y, int scale_exp) {
+  const Eigen::Index nv = deviance_hessian.rows();
+  Eigen::VectorXd du = Eigen::VectorXd::Ones(nv);  // d varpar / d (theta, u)
+  du(nv - 1) = sigma_s;
+  const Eigen::MatrixXd H = du.asDiagonal() * deviance_hessian * du.asDiagonal();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
+  Eigen::MatrixXd A_u = Eigen::MatrixXd::Zero(nv, nv);
+  for (Eigen::Index i = 0; i < nv; ++i) {
+    const double ev_i = es.eigenvalues()(i);
+    if (ev_i > 1e-8) A_u += es.eigenvectors().col(i) * es.eigenvectors().col(i).transpose() / ev_i;
+  }
+  A_u *= 2.0;
+  for (Eigen::Index k = 0; k < nv; ++k) jacobian[static_cast<std::size_t>(k)] *= du(k);
+  // Back to the units of y: d sigma = sigma_y d u; vcov(beta) scales by 2^(2k).
+  Eigen::VectorXd D = Eigen::VectorXd::Ones(nv);
+  D(nv - 1) = sigma_y;
+  SatterthwaiteParts out;
+  out.vcov_varpar = D.asDiagonal() * A_u * D.asDiagonal();
+  for (Eigen::Index k = 0; k < nv; ++k)
+    out.jac_vcov_beta.push_back(jacobian[static_cast<std::size_t>(k)].unaryExpr([&](double v) {
+      return std::ldexp(v, 2 * scale_exp);
+    }) / D(k));
+  return out;
+}
+
+bool Problem::profiled_reml_derivatives(const Eigen::VectorXd& theta, Eigen::VectorXd& gradient,
+                                        Eigen::MatrixXd& hessian) const {
+  return profiled_reml_derivatives_at(derivatives(theta), static_cast<double>(y.size()),
+                                      static_cast<double>(X.cols()), gradient, hessian);
+}
+
+Eigen::MatrixXd Problem::reml_deviance_hessian(const Eigen::VectorXd& varpar) const {
+  const Eigen::Index nt = varpar.size() - 1;
+  return reml_deviance_hessian_at(derivatives(varpar.head(nt)), varpar(nt),
+                                  static_cast<double>(y.size()), static_cast<double>(X.cols()));
+}
+
+std::vector<Eigen::MatrixXd> Problem::vcov_beta_jacobian(const Eigen::VectorXd& varpar) const {
+  const Eigen::Index nt = varpar.size() - 1;
+  return vcov_beta_jacobian_at(derivatives(varpar.head(nt)), varpar(nt));
 }
 
 }  // namespace feint::models::detail

@@ -61,6 +61,65 @@ struct Problem {
 
 Eigen::VectorXd optimise_theta(const Problem& problem);
 
+// The criteria and their derivatives from an evaluation, shared by Problem (random effects
+// grouped by participant) and CrossedProblem (crossed or nested random intercepts); n
+// observations, p fixed effects.
+
+/// lme4's profiled REML criterion: log|M| + log|X'H^-1X| + (n-p)(1 + log(2 pi r2 / (n-p)));
+/// infinite where the evaluation failed.
+double profiled_reml_at(const Evaluation& ev, double n, double p);
+/// lmerTest's devfun_vp (the REML deviance) at sigma.
+double reml_deviance_at(const Evaluation& ev, double sigma, double n, double p);
+/// Gradient and Hessian in theta of profiled_reml_at; false where the criterion is not finite.
+bool profiled_reml_derivatives_at(const ThetaDerivatives& d, double n, double p,
+                                  Eigen::VectorXd& gradient, Eigen::MatrixXd& hessian);
+/// Hessian of reml_deviance_at in varpar = (theta, sigma).
+Eigen::MatrixXd reml_deviance_hessian_at(const ThetaDerivatives& d, double sigma, double n,
+                                         double p);
+/// d (sigma^2 C) / d varpar_k, k over (theta, sigma).
+std::vector<Eigen::MatrixXd> vcov_beta_jacobian_at(const ThetaDerivatives& d, double sigma);
+
+/// lmerTest's Satterthwaite machinery (as_lmerModLT), made scale-free: the Hessian of the REML
+/// deviance and the Jacobian of vcov(beta), taken at (theta, sigma_s) in the units of
+/// y / 2^scale_exp, are carried to (theta, u = sigma / sigma_s) at u = 1, where the
+/// positive-eigenvalue cut (1e-8) of A = 2 H^-1 is made, then to (theta, sigma) in the units of y
+/// (sigma_y = sigma_s 2^scale_exp).
+struct SatterthwaiteParts {
+  Eigen::MatrixXd vcov_varpar;                 ///< A
+  std::vector<Eigen::MatrixXd> jac_vcov_beta;  ///< d vcov(beta) / d varpar_k
+};
+SatterthwaiteParts satterthwaite_parts(const Eigen::MatrixXd& deviance_hessian,
+                                       std::vector<Eigen::MatrixXd> jacobian, double sigma_s,
+                                       double sigma_y, int scale_exp);
+
+/// Random intercepts of several grouping factors, crossed or nested (lme4's Lambda diagonal with
+/// one theta per term; crossed_model_reml.cpp). Z's columns are the indicators of the levels, term
+/// by term (term k owns columns offset[k] .. offset[k+1]-1). Z'Z is not block diagonal, so the
+/// penalised least squares are one dense q x q system (q = the levels of all terms).
+struct CrossedProblem {
+  Eigen::MatrixXd X;
+  Eigen::VectorXd y;
+  std::vector<Eigen::Index> offset;
+  Eigen::MatrixXd ZtZ, ZtX, XtX;
+  Eigen::VectorXd Zty, Xty;
+
+  /// level[k][i]: the level (0 .. n_levels[k]-1) of observation i in term k.
+  CrossedProblem(Eigen::MatrixXd X, Eigen::VectorXd y,
+                 const std::vector<std::vector<std::size_t>>& level,
+                 const std::vector<std::size_t>& n_levels);
+  Eigen::Index n_terms() const { return static_cast<Eigen::Index>(offset.size()) - 1; }
+  double n() const { return static_cast<double>(y.size()); }
+  double p() const { return static_cast<double>(X.cols()); }
+  /// The diagonal of Lambda: theta_k on the columns of term k.
+  Eigen::VectorXd lambda(const Eigen::VectorXd& theta) const;
+  Evaluation evaluate(const Eigen::VectorXd& theta) const;
+  double profiled_reml(const Eigen::VectorXd& theta) const;
+  ThetaDerivatives derivatives(const Eigen::VectorXd& theta) const;
+};
+
+/// The REML optimum over theta >= 0 (crossed_model_reml.cpp).
+Eigen::VectorXd optimise_crossed_theta(const CrossedProblem& problem);
+
 /// Kenward-Roger's pieces (pbkrtest's vcovAdj_internal): the marginal covariance is
 /// S = sum_r gamma_r G_r with gamma = (the entries of D's lower triangle, sigma^2) and G_r the
 /// matching Z E_r Z' (E_r symmetric unit) or I; all products are formed per participant (S is

@@ -10,6 +10,7 @@
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <utility>
 
 #include "feint/error.hpp"
 #include "feint/models/mixed_model.hpp"
@@ -535,30 +536,13 @@ void store_satterthwaite(MixedModelFit& fit, const detail::Problem& problem, dou
   const Eigen::Index nv = fit.theta.size() + 1;
   Eigen::VectorXd vp_s(nv);
   vp_s << fit.theta, sigma_s;
-  Eigen::VectorXd du = Eigen::VectorXd::Ones(nv);  // d varpar / d (theta, u)
-  du(nv - 1) = sigma_s;
-  const Eigen::MatrixXd H =
-      du.asDiagonal() * problem.reml_deviance_hessian(vp_s) * du.asDiagonal();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(H);
-  Eigen::MatrixXd A_u = Eigen::MatrixXd::Zero(nv, nv);
-  for (Eigen::Index i = 0; i < nv; ++i) {
-    const double ev_i = es.eigenvalues()(i);
-    if (ev_i > 1e-8) A_u += es.eigenvectors().col(i) * es.eigenvectors().col(i).transpose() / ev_i;
-  }
-  A_u *= 2.0;
-  std::vector<Eigen::MatrixXd> J_u = problem.vcov_beta_jacobian(vp_s);
-  for (Eigen::Index k = 0; k < nv; ++k) J_u[static_cast<std::size_t>(k)] *= du(k);
-  // Back to the units of y: d sigma = sigma_y d u; vcov(beta) scales by 2^(2k).
+  detail::SatterthwaiteParts parts =
+      detail::satterthwaite_parts(problem.reml_deviance_hessian(vp_s),
+                                  problem.vcov_beta_jacobian(vp_s), sigma_s, fit.sigma, scale_exp);
   fit.varpar.resize(nv);
   fit.varpar << fit.theta, fit.sigma;
-  Eigen::VectorXd D = Eigen::VectorXd::Ones(nv);
-  D(nv - 1) = fit.sigma;
-  fit.vcov_varpar = D.asDiagonal() * A_u * D.asDiagonal();
-  fit.jac_vcov_beta.clear();
-  for (Eigen::Index k = 0; k < nv; ++k)
-    fit.jac_vcov_beta.push_back(J_u[static_cast<std::size_t>(k)].unaryExpr([&](double v) {
-      return up(v, 2, scale_exp);
-    }) / D(k));
+  fit.vcov_varpar = std::move(parts.vcov_varpar);
+  fit.jac_vcov_beta = std::move(parts.jac_vcov_beta);
 }
 
 // In the units of ys (scale-free), then back: Phi_A scales by 2^(2k), P_r by 2^(-4k) and W by
