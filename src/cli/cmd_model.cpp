@@ -29,6 +29,9 @@ void add_model_command(CLI::App& app) {
                 "With --trend: a random slope per participant, (1 + iteration | participant)");
   cmd->add_flag("--random-condition-slope", args->o.random_condition_slope,
                 "Conditions within participants: (1 + condition | participant)");
+  cmd->add_option("--random", args->o.random,
+                  "Random intercepts of the strategy beside (1 | participant) (repeatable): strategy "
+                  "(crossed) or participant:strategy (nested); needs the strategy column");
   cmd->add_option("--design", args->o.design, analysis::kDesignHelp);
   cmd->add_flag("--exposure", args->o.exposure,
                 "Fit metric ~ strategy * exposure + (1 | participant), exposure = earlier trials "
@@ -50,7 +53,7 @@ void add_model_command(CLI::App& app) {
                   "intervals) or none (default: tukey for pairwise/simple, none for poly)");
   add_scores_column_options(*cmd, args->o.columns);
   cmd->add_option("--strategy-column", args->o.strategy_column,
-                  "Name of the strategy column (--exposure)")
+                  "Name of the strategy column (--exposure, --random)")
       ->capture_default_str();
   add_report_options(*cmd, args->report, {.tests = true, .presentation = true});
   cmd->callback([args] { run_report(*args, commands::model_report); });

@@ -111,6 +111,7 @@ std::string model_report(const ModelCommandOptions& a, const analysis::ResolvedR
   o.random_condition_slope = a.random_condition_slope;
   const auto declared = models::parse_condition_design(a.design);
   o.exposure = a.exposure;
+  o.random_strategy = tables::parse_random_terms(a.random);
   o.alpha = r.alpha;
   o.conf_level = r.test.conf_level;
   o.p_adjust = r.p_adjust;
@@ -127,8 +128,10 @@ std::string model_report(const ModelCommandOptions& a, const analysis::ResolvedR
 
   io::ScoresOptions so = a.columns;
   so.metrics = o.metrics;
-  if (o.exposure && a.input == "-")
-    throw UsageError("--exposure reads the file twice: give a file, not standard input");
+  const bool strategy = o.exposure || !o.random_strategy.empty();
+  if (strategy && a.input == "-")
+    throw UsageError(fmt::format("{} reads the file twice: give a file, not standard input",
+                                 o.exposure ? "--exposure" : "--random"));
   const io::ScoresTable scores = io::load_scores(a.input, so);
   // Strategies are within participants whatever the conditions are; the conditions' design is
   // checked (and read off the data) only for the models of conditions.
@@ -138,9 +141,9 @@ std::string model_report(const ModelCommandOptions& a, const analysis::ResolvedR
     throw UsageError("--random-condition-slope: the conditions are between participants (a random slope of the "
                      "condition needs each participant in several conditions: --design within)");
   std::vector<std::string> strategies;
-  if (o.exposure) strategies = tables::load_strategies(scores, so, a.strategy_column);
+  if (strategy) strategies = tables::load_strategies(scores, so, a.strategy_column);
   const tables::ModelAnalysis analysis =
-      tables::build_model_analysis(scores, o, o.exposure ? &strategies : nullptr);
+      tables::build_model_analysis(scores, o, strategy ? &strategies : nullptr);
   return tables::render_model(analysis, r.format, r.presentation);
 }
 

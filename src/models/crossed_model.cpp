@@ -314,6 +314,12 @@ CrossedModelFit fit_crossed_model(const LongData& data, const std::vector<std::s
   // the likelihood-ratio tests.
   const MixedModelFit base = fit_mixed_model(data, spec.model, group_between);
   CrossedModelFit fit = fit_terms(data, strategy, spec, base);
+  // lmerTest's type-III table of this model: the base model's hypotheses, this model's covariance.
+  for (std::size_t t = 0; t < base.anova.size() && t < base.anova_hypotheses.size(); ++t) {
+    AnovaTerm row = contrast_md(fit.model, base.anova_hypotheses[t]);
+    row.term = base.anova[t].term;
+    fit.model.anova.push_back(row);
+  }
   for (const RandomIntercept t : spec.random_terms) {
     if (t == RandomIntercept::participant) continue;
     CrossedModelSpec reduced = spec;

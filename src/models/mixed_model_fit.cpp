@@ -570,6 +570,7 @@ void store_type3_anova(MixedModelFit& fit, const Layout& lay, const Design& des)
     row.term = lay.terms[t].name;
     fit.anova.push_back(row);
   }
+  fit.anova_hypotheses = hyp;
 }
 
 }  // namespace

@@ -37,7 +37,7 @@ std::vector<std::string> load_strategies(const io::ScoresTable& scores,
   const int cc = reader.column(options.condition_column);
   const int sc = reader.column(strategy_column);
   if (sc < 0)
-    throw InvalidData(fmt::format("{}: no column '{}': --exposure needs the strategy of each trial",
+    throw InvalidData(fmt::format("{}: no column '{}': --exposure and --random need the strategy of each trial",
                                   scores.path, strategy_column));
   std::map<std::tuple<std::string, std::string, long long>, std::string> by_key;
   while (reader.next()) {
@@ -88,8 +88,9 @@ void check_model_options(const io::ScoresTable& scores, const ModelOptions& opti
   if (options.exposure && (options.trend || options.random_slope))
     throw UsageError(
         "--exposure fits its own model (strategy * exposure); drop --trend/--random-slope");
-  if (options.exposure && (strategy == nullptr || strategy->size() != scores.records.size()))
-    throw std::invalid_argument("build_model_analysis: --exposure needs one strategy per record");
+  if ((options.exposure || !options.random_strategy.empty()) &&
+      (strategy == nullptr || strategy->size() != scores.records.size()))
+    throw std::invalid_argument("build_model_analysis: --exposure and --random need one strategy per record");
   check_condition_slope(options);
   if (!(options.alpha > 0 && options.alpha < 1)) throw UsageError("--alpha must be in (0, 1)");
   if (!(options.conf_level > 0 && options.conf_level < 1))
@@ -134,7 +135,8 @@ struct ModelInput {
 // The trials with a value of metric `mi`: group and time are condition and iteration, or strategy
 // and exposure. An iteration without any value is an error (not with exposure: its time is not
 // the iteration).
-models::LongData metric_data(const ModelInput& in, const std::string& metric, int mi) {
+models::LongData metric_data(const ModelInput& in, const std::string& metric, int mi,
+                             std::vector<std::string>& row_strategy) {
   const ModelOptions& options = in.options;
   models::LongData d;
   std::set<long long> iterations_with_value;
@@ -147,6 +149,7 @@ models::LongData metric_data(const ModelInput& in, const std::string& metric, in
     d.group.push_back(options.exposure ? (*in.strategy)[i] : r.condition);
     d.time.push_back(options.exposure ? in.exposure[i] : static_cast<double>(r.iteration));
     d.y.push_back(*v);
+    if (in.strategy) row_strategy.push_back((*in.strategy)[i]);
   }
   if (!options.exposure) {
     for (const long long it : in.iterations)
@@ -182,8 +185,8 @@ void count_missing(MetricModel& mm, const models::LongData& d, std::size_t n_ite
 }
 
 // Fits the model and writes its lme4 formula.
-void fit_metric(MetricModel& mm, const models::LongData& d, const ModelOptions& options,
-                const std::string& path) {
+void fit_metric(MetricModel& mm, const models::LongData& d, const std::vector<std::string>& strategy,
+                const ModelOptions& options, const std::string& path) {
   models::ModelSpec spec;
   spec.response = mm.metric;
   spec.group = options.exposure ? "strategy" : "condition";
@@ -193,8 +196,17 @@ void fit_metric(MetricModel& mm, const models::LongData& d, const ModelOptions& 
   spec.random_slope = options.random_slope;
   spec.random_group_slope = options.random_condition_slope;
   spec.ddf = options.ddf;
+  models::CrossedModelSpec crossed{spec, "strategy", {models::RandomIntercept::participant}};
+  crossed.random_terms.insert(crossed.random_terms.end(), options.random_strategy.begin(),
+                              options.random_strategy.end());
   try {
-    mm.fit = models::fit_mixed_model(d, spec, !options.exposure && !options.condition_within);
+    const bool between = !options.exposure && !options.condition_within;
+    if (options.random_strategy.empty()) {
+      mm.fit = models::fit_mixed_model(d, spec, between);
+    } else {
+      mm.crossed = models::fit_crossed_model(d, strategy, crossed, between);
+      mm.fit = mm.crossed->model;
+    }
   } catch (const InvalidData& e) {
     throw InvalidData(fmt::format("{}: {}", path, e.what()));  // name the file
   }
@@ -204,7 +216,8 @@ void fit_metric(MetricModel& mm, const models::LongData& d, const ModelOptions& 
   const std::string random = options.random_slope ? "1 + iteration"
                              : options.random_condition_slope && !one_group ? "1 + condition"
                                                                             : "1";
-  mm.formula = fmt::format("{} ~ {} + ({} | participant)", mm.metric, rhs, random);
+  mm.formula = mm.crossed ? fmt::format("{} ~ {} + {}", mm.metric, rhs, models::random_formula(crossed))
+                         : fmt::format("{} ~ {} + ({} | participant)", mm.metric, rhs, random);
 }
 
 // Participants per condition (not with exposure: there a participant has several strategies).
@@ -316,9 +329,10 @@ MetricModel build_metric_model(const ModelInput& in, const std::string& metric) 
     throw InvalidData(fmt::format("{}: no metric column '{}'", in.scores.path, metric));
   MetricModel mm;
   mm.metric = metric;
-  models::LongData d = metric_data(in, metric, mi);
+  std::vector<std::string> strategy;  // of d's rows, with --exposure or --random
+  models::LongData d = metric_data(in, metric, mi, strategy);
   count_missing(mm, d, in.iterations.size(), in.options.condition_within);
-  fit_metric(mm, d, in.options, in.scores.path);
+  fit_metric(mm, d, strategy, in.options, in.scores.path);
   if (!in.options.exposure) count_participants(mm, d);
   add_contrasts(mm, in.options, in.scores.path);
   add_emmeans(mm, in.options);
@@ -352,6 +366,28 @@ void validate(const ModelOptions& o) {
     throw UsageError(
         "--exposure fits its own model (strategy * exposure); drop --trend/--random-slope");
   check_condition_slope(o);
+  if (!o.random_strategy.empty() && (o.exposure || o.random_slope || o.random_condition_slope))
+    throw UsageError("--random strategy adds random intercepts of the strategy; it does not go with --exposure, "
+                     "--random-slope or --random-condition-slope");
+  if (!o.random_strategy.empty() && o.ddf == models::DdfMethod::kenward_roger)
+    throw UsageError("--random strategy: its models have Satterthwaite df only (drop --ddf kenward-roger)");
+}
+
+std::vector<models::RandomIntercept> parse_random_terms(const std::vector<std::string>& values) {
+  std::vector<models::RandomIntercept> out;
+  for (const auto& v : values) {
+    const std::string t(io::trim(v));
+    const auto term = t == "strategy"               ? models::RandomIntercept::strategy
+                      : t == "participant:strategy" ? models::RandomIntercept::participant_strategy
+                                                    : throw UsageError(fmt::format(
+                                                          "--random '{}': expected strategy ((1 | strategy), crossed "
+                                                          "with participant) or participant:strategy (nested)",
+                                                          v));
+    if (std::find(out.begin(), out.end(), term) != out.end())
+      throw UsageError(fmt::format("--random '{}' given twice", t));
+    out.push_back(term);
+  }
+  return out;
 }
 
 }  // namespace feint::tables

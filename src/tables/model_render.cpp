@@ -95,6 +95,19 @@ std::string missing_trials_note(const MetricModel& m, bool condition_within) {
       m.participants_with_missing == 1 ? "its" : "their");
 }
 
+// The strategy's random intercepts: the variance components, the boundary note and lmerTest's
+// ranova test of each strategy term (docs/crossed-random-effects.md).
+std::string crossed_note(const models::CrossedModelFit& c) {
+  std::string o = "Variance components:";
+  for (const auto& r : c.random) o += fmt::format(" {} {:.6g}{},", r.name, r.variance, r.at_boundary ? " (at 0)" : "");
+  o += fmt::format(" residual {:.6g}.", c.model.variance.residual);
+  for (const auto& t : c.term_tests)
+    o += fmt::format(" Likelihood-ratio test of {} (lmerTest's ranova, REML): LRT = {:.3f}, chi-squared(1), {}.",
+                     t.name, t.lrt, apa_p(t.p));
+  if (!c.note.empty()) o += " " + c.note;
+  return o;
+}
+
 std::string variance_note(const models::MixedModelFit& fit) {
   if (!fit.variance.icc && fit.spec.random_group_slope)
     return "With a random slope of the condition the share of the variance between participants "
@@ -170,7 +183,7 @@ std::vector<std::string> model_notes(const ModelAnalysis& a, const MetricModel& 
         "the slopes.");
   notes.push_back(sample_note(m));
   notes.push_back(missing_trials_note(m, o.condition_within));
-  notes.push_back(variance_note(fit));
+  notes.push_back(m.crossed ? crossed_note(*m.crossed) : variance_note(fit));
   if (fit.singular)
     notes.push_back(
         "Singular fit: a variance component is estimated at (or near) zero (lme4: isSingular); "
@@ -243,6 +256,10 @@ TextTable random_table(const MetricModel& m) {
     }
     row("participant", m.fit.spec.group + m.fit.group_levels.at(k), v.group_slopes[k - 1], corr);
   }
+  if (m.crossed)  // the strategy's random intercepts (crossed or nested), as VarCorr lists them
+    for (const auto& r : m.crossed->random)
+      if (r.term != models::RandomIntercept::participant)
+        row(r.name, "(Intercept)", r.variance, r.at_boundary ? "at 0" : "");
   row("Residual", "", v.residual, "");
   return t;
 }
@@ -382,6 +399,9 @@ void add_random_effect_records(std::vector<Record>& out, const MetricModel& m) {
   for (std::size_t j = 0; j < terms.size(); ++j)
     for (std::size_t i = j + 1; i < terms.size(); ++i)
       ran("participant", "cor__" + terms[j] + "." + terms[i], fit.variance.group_correlations.at(c++));
+  if (m.crossed)
+    for (const auto& r : m.crossed->random)
+      if (r.term != models::RandomIntercept::participant) ran(r.name, "var__(Intercept)", r.variance);
   ran("Residual", "var__Observation", fit.variance.residual);
   if (fit.variance.icc) ran("participant", "icc", *fit.variance.icc);
 }

@@ -15,6 +15,7 @@
 
 namespace {
 
+using feint::test::read_text;
 using feint::test::run_feint;
 using feint::test::shell_quote;
 using feint::test::TempDir;
@@ -572,4 +573,63 @@ TEST(ModelCli, EmmeansAndContrastsMatchEmmeans) {
   EXPECT_EQ(run_feint("model " + in + " --metric error --contrasts poly --adjust tukey").exit_code, 64);
   EXPECT_EQ(run_feint("model " + in + " --metric error --contrasts all").exit_code, 64);
   EXPECT_EQ(run_feint("model " + in + " --metric error --adjust holm").exit_code, 64);
+}
+
+// --random strategy / participant:strategy (docs/crossed-random-effects.md): the type-III table of
+// `feint model` equals lmerTest's anova(m) of the same model (tests/golden/models/
+// crossed_anova_golden.R on crossed_data.csv), and the strategy's variance is a random-effects row.
+TEST(ModelCli, RandomStrategyInterceptsEqualLmerTest) {
+  TempDir dir;
+  std::map<std::string, std::string> files;  // data set -> scores file
+  std::map<std::string, std::string> text;
+  for (const auto& r : parse_csv(feint::test::read_text(kGolden + "crossed_data.csv"))) {
+    if (r.size() < 6 || r[0] == "dataset") continue;
+    auto& t = text[r[0]];
+    if (t.empty()) t = "participant,condition,iteration,strategy,y\n";
+    t += r[1] + "," + r[2] + "," + r[3] + "," + r[4] + "," + r[5] + "\n";
+  }
+  std::size_t checked = 0;
+  for (const auto& [ds, body] : text) {
+    if (ds == "trend") continue;  // iteration as a number: --trend, checked in tests/models
+    const auto path = dir / (ds + ".csv");
+    write_text(path, body);
+    for (const std::string model : {"crossed", "nested"}) {
+      const auto r = run_feint("model " + shell_quote(path.string()) + " --metric y --format csv --random " +
+                               (model == "crossed" ? "strategy" : "participant:strategy"));
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      const auto rows = parse_csv(r.out);
+      std::map<std::string, std::size_t> col;
+      for (std::size_t i = 0; i < rows.at(0).size(); ++i) col[rows[0][i]] = i;
+      for (const auto& g : parse_csv(feint::test::read_text(kGolden + "crossed_anova_golden.csv"))) {
+        if (g.size() < 5 || g[0] != ds || g[1] != model) continue;
+        const std::string q = g[3] == "F value" ? "statistic" : g[3] == "Pr(>F)" ? "p.value" : g[3];
+        for (const auto& row : rows)
+          if (row.size() > col["term"] && row[col["table"]] == "anova" && row[col["term"]] == g[2]) {
+            const double want = std::stod(g[4]), got = std::stod(row.at(col.at(q)));
+            EXPECT_NEAR(got, want, 1e-6 * std::max(1.0, std::abs(want))) << ds << " " << model << " " << g[2] << " " << q;
+            ++checked;
+          }
+      }
+      const std::string group = model == "crossed" ? "strategy" : "participant:strategy";
+      EXPECT_NE(r.out.find("ran_pars,var__(Intercept)," + group + ","), std::string::npos) << r.out.substr(0, 600);
+    }
+  }
+  EXPECT_EQ(checked, 5u * 2 * 3 * 4);
+}
+
+TEST(ModelCli, RandomStrategyRefusesWhatItCannotFit) {
+  TempDir dir;
+  const auto path = dir / "s.csv";
+  write_text(path, "participant,condition,iteration,y\nP1,a,1,0.1\nP1,a,2,0.3\nP2,b,1,0.2\nP2,b,2,0.5\n");
+  const std::string in = shell_quote(path.string());
+  auto r = run_feint("model " + in + " --metric y --random strategies");
+  EXPECT_EQ(r.exit_code, 64);
+  EXPECT_NE(r.err.find("--random 'strategies': expected strategy"), std::string::npos) << r.err;
+  EXPECT_EQ(run_feint("model " + in + " --metric y --random strategy --exposure").exit_code, 64);
+  EXPECT_EQ(run_feint("model " + in + " --metric y --random strategy --ddf kenward-roger").exit_code, 64);
+  EXPECT_EQ(run_feint("model " + in + " --metric y --random strategy --random strategy").exit_code, 64);
+  EXPECT_EQ(run_feint("model - --metric y --random strategy", read_text(path)).exit_code, 64);
+  r = run_feint("model " + in + " --metric y --random strategy");
+  EXPECT_EQ(r.exit_code, 65);
+  EXPECT_NE(r.err.find("no column 'strategy': --exposure and --random need the strategy"), std::string::npos) << r.err;
 }

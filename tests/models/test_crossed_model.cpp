@@ -8,6 +8,8 @@
 // refusals.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <functional>
 #include <map>
@@ -189,6 +191,39 @@ void check_dataset(const std::string& dataset) {
     check_random(key, f);
     check_contrasts(dataset, key, f);
   }
+}
+
+// lmerTest's type-III table (anova(m)) of each model: tests/golden/models/crossed_anova_golden.R.
+void check_anova(const std::string& dataset) {
+  static const auto rows = feint::test::read_csv(feint::test::kModelGoldenDir + "crossed_anova_golden.csv");
+  for (const char* model : {"crossed", "nested"}) {
+    const CrossedModelFit f = fit(dataset, model);
+    std::size_t checked = 0;
+    for (std::size_t r = 1; r < rows.size(); ++r) {
+      if (rows[r][0] != dataset || rows[r][1] != model) continue;
+      const auto row = std::find_if(f.model.anova.begin(), f.model.anova.end(),
+                                    [&](const auto& a) { return a.term == rows[r][2]; });
+      ASSERT_NE(row, f.model.anova.end()) << dataset << " " << model << " " << rows[r][2];
+      ASSERT_TRUE(row->computed) << row->note;
+      const double want = std::stod(rows[r][4]);
+      const std::string w = dataset + " " + model + " " + rows[r][2];
+      const std::string& q = rows[r][3];
+      if (q == "NumDF") {
+        EXPECT_EQ(row->num_df, want) << w;
+      }
+      if (q == "DenDF") expect_close(row->den_df, want, "anova DenDF", w, kTol);
+      if (q == "F value") expect_close(row->f, want, "anova F", w, kTol);
+      if (q == "Pr(>F)") expect_close(row->p, want, "anova p", w, kTol * std::max(1.0, row->f));
+      ++checked;
+    }
+    EXPECT_EQ(checked, 4 * f.model.anova.size()) << dataset << " " << model;
+    EXPECT_EQ(f.model.anova.size(), 3u);
+  }
+}
+
+TEST(CrossedGolden, TypeThreeAnovaOfEveryDataSet) {
+  for (const char* ds : {"balanced", "unbalanced_missing", "adaptive_choice", "nested_strong", "singular_strategy", "trend"})
+    check_anova(ds);
 }
 
 TEST(CrossedGolden, Balanced) { check_dataset("balanced"); }

@@ -56,6 +56,7 @@ struct ModelCommandOptions {
   bool exposure = false;
   io::ScoresOptions columns;
   std::string strategy_column = "strategy";
+  std::vector<std::string> random;  ///< --random strategy / participant:strategy
   std::string ddf = "satterthwaite";
   bool emmeans = false;
   std::vector<std::string> contrasts;

@@ -71,7 +71,7 @@ struct CrossedModelFit {
   /// fit_mixed_model's, so that contrast(), contrast_md() and emm_contrasts() work on it
   /// unchanged. Its theta is the terms' theta in lme4's order (that of `random`), sigma,
   /// reml_criterion and singular are this model's; variance holds participant and residual
-  /// (no ICC); anova is empty (its type-III hypotheses are not exposed; see the docs).
+  /// (no ICC); anova is lmerTest's type-III table of this model (the base model's hypotheses).
   MixedModelFit model;
   /// lme4's order: the formula's, unless a later term has more levels than an earlier one, then
   /// by decreasing number of levels (mkReTrms: rev(order(nlevels))).

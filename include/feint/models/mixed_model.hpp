@@ -108,6 +108,10 @@ struct MixedModelFit {
   bool singular = false;
   VarianceComponents variance;
   std::vector<AnovaTerm> anova;  ///< type III, Satterthwaite
+  /// The hypothesis matrix L of each anova row (lmerTest's type-III contrasts; F = contrast_md(fit,
+  /// L)): a property of the fixed effects alone, so a model with other random effects and the same
+  /// fixed effects (fit_crossed_model) tests the same hypotheses.
+  std::vector<Eigen::MatrixXd> anova_hypotheses;
 
   // Satterthwaite machinery (lmerTest): the variance parameters (theta, sigma), the asymptotic
   // covariance 2 H^-1 of their REML deviance, and d vcov(beta) / d varpar.

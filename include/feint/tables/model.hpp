@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "feint/io/scores.hpp"
+#include "feint/models/crossed_model.hpp"
 #include "feint/models/emmeans.hpp"
 #include "feint/models/mixed_model.hpp"
 #include "feint/tables/writers.hpp"
@@ -33,6 +34,10 @@ struct ModelOptions {
   /// or `exposure`.
   bool random_condition_slope = false;
   bool exposure = false;      ///< metric ~ strategy * exposure + (1 | participant)
+  /// --random strategy / participant:strategy: random intercepts of the strategy beside
+  /// (1 | participant), crossed or nested (models::fit_crossed_model); needs the strategy of each
+  /// trial, not with the random slopes, --exposure or Kenward-Roger.
+  std::vector<models::RandomIntercept> random_strategy;
   /// The contrast A - B; default: the first two conditions in R's level order.
   std::optional<std::pair<std::string, std::string>> compare;
   double alpha = 0.05;
@@ -48,6 +53,10 @@ struct ModelOptions {
   /// --adjust; empty = emmeans' defaults (tukey for pairwise families, none for polynomials).
   std::optional<models::EmmAdjust> adjust;
 };
+
+/// `--random` values: "strategy" (crossed, (1 | strategy)) and "participant:strategy" (nested,
+/// (1 | participant:strategy)), each at most once. Throws UsageError naming a bad value.
+std::vector<models::RandomIntercept> parse_random_terms(const std::vector<std::string>& values);
 
 /// Throws UsageError for options that do not go together: --emmeans or --contrasts with --trend or
 /// --exposure, --compare with --exposure, --random-slope without --trend, --exposure with --trend
@@ -80,6 +89,9 @@ struct MetricModel {
   std::vector<ModelContrast>
       contrasts;               ///< per iteration (A - B), or per strategy (exposure slope)
   std::string group1, group2;  ///< A and B of the contrasts
+  /// --random strategy: the fit with the strategy's random intercepts (fit holds its fixed effects,
+  /// type-III table and Satterthwaite machinery; this its variance components and ranova tests).
+  std::optional<models::CrossedModelFit> crossed;
   std::vector<EmmTable> emmeans;        ///< --emmeans
   std::vector<EmmTable> emm_contrasts;  ///< --contrasts
 };
