@@ -15,6 +15,7 @@
 #include "feint/error.hpp"
 #include "feint/io/csv.hpp"
 #include "feint/io/trace.hpp"
+#include "pointer_design.hpp"
 #include "scratch_folder.hpp"
 
 namespace feint::analysis {
@@ -328,11 +329,15 @@ void analyze_questionnaire(const Study& study, const Comparison& compare, StudyR
   if (compare) {
     tables::LikertSettings lc = study.likert;
     lc.compare = compare;
+    lc.paired = within(r);  // each participant answered after each condition: compared paired
     r.likert_compare = tables::analyze_likert(q, lc);
-  } else if (q.has_condition && q.condition_names().size() > 2 && !within(r)) {
-    // Three or more conditions and no pair named: the omnibus test per item, then every pair.
+  } else if (q.has_condition && q.condition_names().size() > 2) {
+    // Three or more conditions and no pair named: the omnibus test per item (Friedman's within
+    // participants), then every pair.
     try {
-      r.likert_conditions = tables::analyze_likert_conditions(q, study.likert);
+      tables::LikertSettings lc = study.likert;
+      lc.paired = within(r);
+      r.likert_conditions = tables::analyze_likert_conditions(q, lc);
     } catch (const InvalidData& e) {
       note_left_out(d, "questionnaire", fmt::format("no comparison of the conditions' answers: {}", e.what()));
     }
@@ -351,6 +356,7 @@ void analyze_yes_no_answers(const Study& study, const Comparison& compare, Study
       std::find(groups.begin(), groups.end(), compare->first) != groups.end() &&
       std::find(groups.begin(), groups.end(), compare->second) != groups.end())
     s.compare = compare;
+  s.paired = within(r);  // each participant answered after each condition: McNemar's test
   r.yes_no = tables::analyze_yes_no(*study.yes_no_answers, s);
 }
 
@@ -367,7 +373,13 @@ void collect_figure_data(const Study& study, const Scored& sc, const tables::Tab
   if (!r.figures.labels.empty()) {
     // Read as the scorer read them (other labs' options: decimal mark, headerless files, ...).
     const io::TraceOptions topt = metrics::reading_options(sc.settings);
-    r.figures.traces = mean_traces(study.logs, topt, r.figures.labels, t.test.conf_level);
+    // Logs of K targets have no pad to average: their Design row says so instead (pointer_design.hpp).
+    if (const std::string k = detail::pointer_design_note(study.logs, topt); !k.empty()) {
+      r.design.note += (r.design.note.empty() ? "" : "; ") + k;
+      note_left_out(r.diagnostics, "traces", "no mean pad traces: the logs are of K targets and a pointer");
+    } else {
+      r.figures.traces = mean_traces(study.logs, topt, r.figures.labels, t.test.conf_level);
+    }
     for (const auto& m : metrics) {
       r.figures.exposure.push_back(
           metrics::exposure_trend(r.scores, r.figures.labels, m, t.test.conf_level));
@@ -492,6 +504,9 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
     const auto& [a, b] = *r.comparison->options.compare;
     r.hypotheses = parse_hypotheses(study.settings.hypotheses, a, b);
     one_sided_tests(study, r);
+  } else if (const auto conditions = r.scores.conditions(); conditions.size() > 2) {
+    // Three or more conditions and no pair named: the omnibus tests and their pairs answer them.
+    r.hypotheses = parse_hypotheses(study.settings.hypotheses, default_hypotheses(conditions));
   }
   r.findings = study_findings(r, t.metrics);
   for (auto& f : r.findings)

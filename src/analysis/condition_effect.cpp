@@ -83,6 +83,7 @@ std::optional<double> describe_condition_effect(Finding& f, const tables::Metric
     const auto e = stats::f_to_eta2(t->f, t->num_df, t->den_df, conf_level);
     f.effect_size = EffectSize{"eta2_p", e.estimate, e.low, e.high};
   }
+  f.omnibus = fit.group_levels.size() > 2;
   if (fit.group_levels.size() != 2) return std::nullopt;
   const std::string& a = fit.group_levels[0];
   const std::string& b = fit.group_levels[1];

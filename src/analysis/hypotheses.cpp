@@ -65,9 +65,28 @@ void set_key(Hypothesis& h, const std::string& key, const std::string& value, co
 
 }  // namespace
 
+std::vector<Hypothesis> default_hypotheses(const std::vector<std::string>& conditions) {
+  std::string names;
+  for (std::size_t i = 0; i < conditions.size(); ++i)
+    names += (i == 0 ? "" : i + 1 == conditions.size() ? " and " : ", ") + conditions[i];
+  return {
+      {"H1", fmt::format("Error and confusion differ among the conditions {}.", names),
+       {"error", "confusion"},
+       "two-sided",
+       false},
+      {"H2", fmt::format("The questionnaire answers differ among the conditions {}.", names),
+       {"questionnaire"},
+       "two-sided",
+       false},
+  };
+}
+
 std::vector<Hypothesis> parse_hypotheses(const std::vector<std::string>& settings, const std::string& a,
                                          const std::string& b) {
-  std::vector<Hypothesis> hs = default_hypotheses(a, b);
+  return parse_hypotheses(settings, default_hypotheses(a, b));
+}
+
+std::vector<Hypothesis> parse_hypotheses(const std::vector<std::string>& settings, std::vector<Hypothesis> hs) {
   for (const auto& text : settings) {
     const auto colon = text.find(':');
     const auto eq = text.find('=', colon == std::string::npos ? 0 : colon);

@@ -344,10 +344,13 @@ void add_likert_findings(std::vector<Finding>& out, const std::optional<tables::
     if (row.result.test != "mann_whitney" && row.result.test != "wilcoxon_signed_rank") continue;
     stats::TestResult primary = row.result;
     const stats::TestResult* t = t_row_of(*a, row);
+    // Paired (within participants): the signed-rank test of the differences A - B compares two
+    // conditions, not a mean with a reference.
+    const bool paired = between && a->paired;
     if (t) {
       primary.mean1 = t->mean1;
       primary.mean2 = t->mean2;
-      primary.mu = t->mu;
+      primary.mu = paired ? std::nullopt : t->mu;
       primary.estimate = t->estimate;
       primary.conf_low = t->conf_low;
       primary.conf_high = t->conf_high;
@@ -367,6 +370,13 @@ void add_likert_findings(std::vector<Finding>& out, const std::optional<tables::
                 : fmt::format("Does {} differ from the reference?", row.metric),
         what, primary, nullptr, between ? "questionnaire-compare" : "questionnaire", rules);
     f.measure = row.metric;
+    if (paired) {
+      const double lean = f.estimate ? *f.estimate : primary.rank_biserial.value_or(0.0);
+      f.contrast = "A - B";
+      f.direction = fmt::format("A {} B", lean > 0 ? ">" : lean < 0 ? "<" : "=");
+      f.test = "Wilcoxon signed-rank test (paired)";
+      if (row.result.alternative != stats::Alternative::two_sided) f.test = "one-sided " + f.test;
+    }
     if (between) detail::name_conditions(f, row.group1, row.group2);
     if (primary.log_bf10) {
       f.bf_note = fmt::format("JZS Bayes factor of the {} on the same answers (secondary to the {})",
@@ -398,7 +408,7 @@ void describe_omnibus(Finding& f, const tables::LikertConditions& a, std::size_t
   if (f.effect_size) {
     std::string e = fmt::format("{:.2f}", f.effect_size->value);
     if (e.rfind("0.", 0) == 0) e.erase(0, 1);
-    words += fmt::format("rank \u03b5\u00b2 = {}; ", e);
+    words += a.paired ? fmt::format("Kendall's W = {}; ", e) : fmt::format("rank \u03b5\u00b2 = {}; ", e);
   }
   if (const auto at = f.sentence.rfind("(" + f.statistics); at != std::string::npos) f.sentence.insert(at + 1, words);
 }
@@ -417,6 +427,9 @@ void add_likert_conditions_findings(std::vector<Finding>& out, const std::option
         fmt::format("{} across the {} conditions ({})", row.metric, a->conditions.size(), conditions), row.result,
         nullptr, "questionnaire-conditions", rules);
     omnibus.measure = row.metric;
+    omnibus.omnibus = true;
+    if (a->paired && a->kendalls_w[k])  // Friedman's effect size (the omnibus row has no field for it)
+      omnibus.effect_size = EffectSize{"kendalls_w", *a->kendalls_w[k], std::nullopt, std::nullopt};
     describe_omnibus(omnibus, *a, k);
     out.push_back(omnibus);
     for (const auto& pair : a->pairs) {
@@ -442,7 +455,9 @@ void add_yes_no_findings(std::vector<Finding>& out, const std::optional<tables::
                          const WordingRules& rules) {
   if (!a) return;
   for (const auto& row : a->rows) {
-    if (row.result.test != "fisher_exact") continue;
+    // Fisher's exact test between participants, McNemar's exact test within (docs/yes-no.md).
+    const bool paired = row.result.test == "mcnemar_exact";
+    if (row.result.test != "fisher_exact" && !paired) continue;
     const stats::TestResult& r = row.result;
     const std::string what = fmt::format("{} (yes/no): {} vs {}", row.metric, row.group1, row.group2);
     std::string title = what;  // a sentence starts with a capital, as every finding's
@@ -452,7 +467,7 @@ void add_yes_no_findings(std::vector<Finding>& out, const std::optional<tables::
                                    what, r, nullptr, "yes-no", rules);
     f.measure = row.metric;
     detail::name_conditions(f, row.group1, row.group2);
-    f.test = "Fisher's exact test";
+    f.test = paired ? "McNemar's exact test" : "Fisher's exact test";
     if (!r.computed || !r.mean1 || !r.mean2) {
       out.push_back(std::move(f));
       continue;
@@ -465,7 +480,8 @@ void add_yes_no_findings(std::vector<Finding>& out, const std::optional<tables::
     f.ci_low.reset();
     f.ci_high.reset();
     for (const auto& other : a->rows)
-      if (other.metric == row.metric && other.result.test == "prop_test" && other.result.computed) {
+      if (other.metric == row.metric && other.result.test == (paired ? "mcnemar" : "prop_test") &&
+          other.result.computed) {
         f.estimate = other.result.estimate;
         f.ci_low = other.result.conf_low;
         f.ci_high = other.result.conf_high;
@@ -476,7 +492,7 @@ void add_yes_no_findings(std::vector<Finding>& out, const std::optional<tables::
             ? fmt::format("; odds ratio {:.2f}, {:.0f}% CI [{:.2f}, {}]", *r.estimate, 100 * r.conf_level, *r.conf_low,
                           std::isinf(*r.conf_high) ? std::string("inf") : fmt::format("{:.2f}", *r.conf_high))
             : std::string();
-    f.statistics = "Fisher's exact test, " + tables::apa_p(*r.p_value);
+    f.statistics = f.test + ", " + tables::apa_p(*r.p_value);
     f.sentence = fmt::format(
         "{}: {} (yes {:.0f}% of {} vs {:.0f}% of {}{}; {}{}).", title, f.evidence, 100 * *r.mean1, r.n1,
         100 * *r.mean2, r.n2, odds, f.statistics,
@@ -495,6 +511,7 @@ struct ModelTest {
   bool is_f = false;
   bool singular = false;  // the model's fit is on the boundary (lme4: isSingular)
   enum class Kind { interaction, condition, slope } kind = Kind::interaction;
+  std::size_t level = 0;  // a slope's condition (its index in the group levels; 0 = the reference)
 };
 
 const tables::MetricModel* model_of(const tables::ModelAnalysis* a, const std::string& metric) {
@@ -524,13 +541,13 @@ void add_factor_model_tests(std::vector<ModelTest>& family, const tables::Metric
     family.push_back({"H1-model-interaction-" + metric,
                       fmt::format("Does the course of {} over the iterations differ between the conditions?", metric),
                       fmt::format("Condition \u00d7 iteration interaction of {}", metric), "model", m.formula + " (iteration as a factor)",
-                      tables::anova_apa(*t), f_as_test(*t), true, m.fit.singular, ModelTest::Kind::interaction});
+                      tables::anova_apa(*t), f_as_test(*t), true, m.fit.singular, ModelTest::Kind::interaction, 0});
   }
   if (const auto* t = find_term(m.fit, spec.group)) {
     family.push_back({"H1-model-condition-" + metric,
                       fmt::format("Does {} differ between the conditions, over all iterations?", metric),
                       fmt::format("Main effect of condition on {}", metric), "model", m.formula + " (iteration as a factor)",
-                      tables::anova_apa(*t), f_as_test(*t), true, m.fit.singular, ModelTest::Kind::condition});
+                      tables::anova_apa(*t), f_as_test(*t), true, m.fit.singular, ModelTest::Kind::condition, 0});
   }
 }
 
@@ -550,7 +567,7 @@ void add_trend_model_tests(std::vector<ModelTest>& family, const tables::MetricM
                       fmt::format("Difference of the linear slopes of {} over the iterations, {} minus {} ({})",
                                   metric, fit.group_levels[k], fit.group_levels[0], name),
                       "model-trend", m.formula + " (iteration as a linear trend)", "", c.test, false,
-                      fit.singular, ModelTest::Kind::slope});
+                      fit.singular, ModelTest::Kind::slope, k});
   }
 }
 
@@ -563,12 +580,14 @@ struct Relabelling {
 
 // How test k's relabelling p-value was counted (docs/findings.md): over every labelling, over the
 // drawn ones until h of them reached the statistic (p = h / drawn), or over all that were drawn.
-std::string labelling_words(const models::RelabelledConditionTests& rt, std::uint64_t counted, bool stopped) {
-  if (rt.exact) return fmt::format(" over all {} labellings of the participants", thousands(counted));
+std::string labelling_words(const models::RelabelledConditionTests& rt, std::uint64_t counted, bool stopped,
+                            bool within) {
+  const char* what = within ? "labellings (conditions swapped within participants)" : "labellings of the participants";
+  if (rt.exact) return fmt::format(" over all {} {}", thousands(counted), what);
   if (stopped)
-    return fmt::format(" (sequential: {} of {} labellings of the participants drawn at random reached the statistic)",
-                       rt.exceedances, thousands(counted - 1));
-  return fmt::format(" over {} labellings of the participants drawn at random", thousands(counted));
+    return fmt::format(" (sequential: {} of {} {} drawn at random reached the statistic)", rt.exceedances,
+                       thousands(counted - 1), what);
+  return fmt::format(" over {} {} drawn at random", thousands(counted), what);
 }
 
 // Whether some participant has trials in two conditions (conditions within participants).
@@ -581,43 +600,57 @@ bool conditions_within(const models::LongData& d) {
   return false;
 }
 
+// Test `mb`'s relabelled statistic, p-value and how it was counted.
+struct RelabelledTest {
+  const std::optional<double>& statistic;
+  const std::optional<double>& p;
+  std::string words;
+};
+
+RelabelledTest relabelled_test(const models::RelabelledConditionTests& rt, const ModelTest& mb, bool within) {
+  using K = ModelTest::Kind;
+  static const std::optional<double> none;
+  if (mb.kind == K::interaction)
+    return {rt.interaction_f, rt.p_interaction,
+            labelling_words(rt, rt.labellings_interaction, rt.stopped_interaction, within)};
+  if (mb.kind == K::condition)
+    return {rt.condition_f, rt.p_condition, labelling_words(rt, rt.labellings_condition, rt.stopped_condition, within)};
+  const std::size_t k = mb.level - 1;  // the slope family: one per condition but the first
+  if (mb.level == 0 || k >= rt.slope_differences_t.size()) return {none, none, ""};
+  return {rt.slope_differences_t[k], rt.p_slope_differences[k],
+          labelling_words(rt, rt.labellings_slopes[k], rt.stopped_slopes[k], within)};
+}
+
 // Relabelling p-values (docs/findings.md, "Mixed models: relabelling p-values"): whole
-// participants relabelled between the two conditions, both models refitted each time.
+// participants permuted between the conditions, or (conditions within participants) each
+// participant's conditions swapped, both models refitted each time.
 Relabelling relabel_family(const tables::MetricModel* any, const std::vector<ModelTest>& family) {
   Relabelling rl;
   rl.p.resize(family.size());
   rl.words.resize(family.size());
   if (!any || any->data.y.empty()) {
     rl.why_not = "the trials were not given to relabel";
-  } else if (any->fit.group_levels.size() != 2) {
-    rl.why_not = fmt::format("{} conditions (relabelling needs two)", any->fit.group_levels.size());
-  } else if (conditions_within(any->data)) {
-    rl.why_not = "the conditions are within participants, and the models' relabelling moves whole participants "
-                 "between conditions; swapping the conditions within participants is not implemented yet";
+  } else if (any->fit.group_levels.size() < 2) {
+    rl.why_not = "one condition (relabelling needs two or more)";
   } else if (!family.empty()) {
     try {
       models::RelabellingOptions ro;
       ro.permutations = kModelPermutations;
+      ro.within = conditions_within(any->data);
       const models::RelabelledConditionTests rt =
           models::relabel_condition_tests(any->data, any->fit.group_levels, ro);
       // The relabelled statistics must be the models' own (else the data differ from the fits').
       for (std::size_t i = 0; i < family.size() && rl.why_not.empty(); ++i) {
         const ModelTest& mb = family[i];
-        using K = ModelTest::Kind;
-        const std::optional<double>& s = mb.kind == K::interaction ? rt.interaction_f
-                                         : mb.kind == K::condition ? rt.condition_f
-                                                                   : rt.slope_difference_t;
-        const std::optional<double>& pr = mb.kind == K::interaction ? rt.p_interaction
-                                          : mb.kind == K::condition ? rt.p_condition
-                                                                    : rt.p_slope_difference;
-        rl.words[i] = mb.kind == K::interaction ? labelling_words(rt, rt.labellings_interaction, rt.stopped_interaction)
-                      : mb.kind == K::condition ? labelling_words(rt, rt.labellings_condition, rt.stopped_condition)
-                                                : labelling_words(rt, rt.labellings_slope, rt.stopped_slope);
+        const RelabelledTest t = relabelled_test(rt, mb, ro.within);
+        rl.words[i] = t.words;
         if (!mb.test.computed || !mb.test.statistic) continue;
+        const std::optional<double>& s = t.statistic;
         if (!s || std::fabs(*s - *mb.test.statistic) > 1e-6 * std::max(1.0, std::fabs(*mb.test.statistic)))
-          rl.why_not = fmt::format("the {} could not be reproduced from the trials", mb.kind == K::slope ? "slope difference's t" : "F");
+          rl.why_not = fmt::format("the {} could not be reproduced from the trials",
+                                   mb.kind == ModelTest::Kind::slope ? "slope difference's t" : "F");
         else
-          rl.p[i] = pr;
+          rl.p[i] = t.p;
       }
     } catch (const Error& e) {  // InvalidData or UsageError: the data cannot be relabelled
       rl.why_not = e.what();

@@ -86,10 +86,8 @@ void add_study_command(CLI::App& parent) {
                 "replace the folder of an earlier feint simulate study whole (never a folder "
                 "holding other files)");
   cmd->add_option("--design", opts->design, "between or within participants")->capture_default_str();
-  cmd->add_option("--conditions", opts->conditions,
-                  "the conditions compared, comma-separated: two or more of adaptive, random, fixed-block, "
-                  "fixed-balanced, each as ALGORITHM or NAME=ALGORITHM (e.g. a=random,b=random,c=random)")
-      ->capture_default_str();
+  cmd->add_option("--conditions", opts->conditions, "two or more of adaptive, random, fixed-block, fixed-balanced, "
+                  "each ALGORITHM or NAME=ALGORITHM (e.g. a=random,b=random)")->capture_default_str();
   cmd->add_option("--participants,-p", opts->participants, "participants per condition (within: in all)")
       ->capture_default_str()
       ->check(CLI::Range(1, 100000));
@@ -114,6 +112,8 @@ void add_study_command(CLI::App& parent) {
       "--observer", opts->observer,
       "NAME=VALUE: set a parameter of the simulated observer (repeatable), e.g. beta=1.5 "
       "noise_sd=0.1; the names and defaults are in docs/simulation.md");
+  cmd->add_option("--targets", opts->targets, "K >= 2 targets (K > 2: people point)")->capture_default_str();
+  cmd->add_option("--layout", opts->layout, "fixed (a row) or random (per round)")->capture_default_str();
   cmd->callback([opts] { run_study(*opts); });
 }
 

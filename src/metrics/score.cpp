@@ -20,6 +20,8 @@
 #include "feint/io/csv.hpp"
 #include "feint/io/number.hpp"
 #include "feint/io/output.hpp"
+#include "feint/io/pointer_trace.hpp"
+#include "feint/metrics/belief_point.hpp"
 
 namespace feint::metrics {
 
@@ -166,9 +168,41 @@ io::Rejection unscorable_rejection(const io::Trial& trial, const InvalidData& e)
   return r;
 }
 
+// A trial of a K-target log (formats.md "Logs of K targets and a pointer") scored as a belief point
+// (belief_point.hpp), in the scores table's columns: error and confusion in layout scales (at K = 2
+// on the paper's layout, the pad's scores). final_pad and the pad's belief-trace measures are not
+// defined for a point (written empty; flips 0); `target` is the true target's index.
+TrialScore score_pointer_trial(const io::Trial& t, const MetricSettings& m) {
+  Layout layout;
+  layout.start = {t.start_x, t.start_y};
+  for (std::size_t k = 0; k < t.targets_x.size(); ++k) layout.targets.push_back({t.targets_x[k], t.targets_y[k]});
+  std::vector<MapPoint> points(t.belief_x.size());
+  for (std::size_t i = 0; i < points.size(); ++i) points[i] = {t.belief_x[i], t.belief_y[i]};
+  BeliefPointScore b;
+  try {
+    b = score_belief_points(t.times, points, layout, t.target_index, t.pad_speed, m);
+  } catch (const InvalidData& e) {
+    throw InvalidData(fmt::format("{}:{}: {} (trial {})", t.file, t.line, e.what(), t.label()));
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  TrialScore s;
+  s.n_samples = b.n_samples;
+  s.duration = b.duration;
+  s.error = b.error;
+  s.confusion = b.confusion;
+  s.reversal_time = b.reversal_time;
+  s.reversals = b.reversals;
+  s.final_pad = nan;
+  s.overspeed_segments = b.overspeed_segments;
+  s.signed_area = s.max_deviation = s.time_deceived = s.final_belief_time = nan;
+  s.flips = 0;
+  return s;
+}
+
 // The summary's counts: the reader's, less the trials rejected after reading. Every row read must
 // end up either scored or rejected.
-void count_rows_and_trials(ScoreSummary& summary, const io::TraceReader& reader,
+template <class Reader>
+void count_rows_and_trials(ScoreSummary& summary, const Reader& reader,
                            std::uint64_t trials_scored, std::uint64_t unscorable_trials,
                            std::uint64_t unscorable_rows) {
   summary.files = reader.files_read();
@@ -385,30 +419,24 @@ std::string sidecar_json(const ScoreSettings& settings, const std::string& outpu
 
 }  // namespace
 
-ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSettings& settings,
+namespace {
+
+// Reads every trial with `reader` and scores it with `score` (pad or pointer logs).
+template <class Reader>
+ScoreSummary score_loop(Reader& reader, const std::vector<std::string>& files, const ScoreSettings& settings,
                         const std::function<void(const io::Trial&, const TrialScore&)>& on_trial,
-                        const std::function<void(const io::Rejection&)>& on_reject) {
-  settings.metrics.validate();
-  const auto files = io::expand_inputs(inputs);
-  io::TraceOptions opt = reading_options(settings);
+                        const io::TraceOptions& opt,
+                        TrialScore (*score)(const io::Trial&, const MetricSettings&),
+                        ScoreProgress& progress) {
   ScoreSummary summary;
   Durations durations;
-  ScoreProgress progress;
-  if (settings.on_error == OnError::skip) {
-    opt.on_reject = [&](const io::Rejection& r) {
-      if (on_reject) on_reject(r);
-      ++progress.trials_rejected;
-      if (settings.on_progress) settings.on_progress(progress);
-    };
-  }
-  io::TraceReader reader(files, opt);
   io::Trial trial;
   // Trials the reader accepted whose score cannot be represented (not finite): rejected here.
   std::uint64_t unscorable_trials = 0, unscorable_rows = 0;
   while (reader.next(trial)) {
     TrialScore s;
     try {
-      s = score_trial(trial, settings.metrics);
+      s = score(trial, settings.metrics);
     } catch (const InvalidData& e) {
       if (settings.on_error != OnError::skip) throw;
       const io::Rejection r = unscorable_rejection(trial, e);
@@ -433,6 +461,30 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
   report_diagnostics(summary, reader.diagnostics(), settings);
   if (summary.trials_scored == 0) throw_nothing_scored(summary, files);
   return summary;
+}
+
+}  // namespace
+
+ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSettings& settings,
+                        const std::function<void(const io::Trial&, const TrialScore&)>& on_trial,
+                        const std::function<void(const io::Rejection&)>& on_reject) {
+  settings.metrics.validate();
+  const auto files = io::expand_inputs(inputs);
+  io::TraceOptions opt = reading_options(settings);
+  ScoreProgress progress;
+  if (settings.on_error == OnError::skip) {
+    opt.on_reject = [&](const io::Rejection& r) {
+      if (on_reject) on_reject(r);
+      ++progress.trials_rejected;
+      if (settings.on_progress) settings.on_progress(progress);
+    };
+  }
+  if (!files.empty() && io::is_pointer_log(files.front(), opt)) {
+    io::PointerTraceReader reader(files, opt);
+    return score_loop(reader, files, settings, on_trial, opt, &score_pointer_trial, progress);
+  }
+  io::TraceReader reader(files, opt);
+  return score_loop(reader, files, settings, on_trial, opt, &score_trial, progress);
 }
 
 ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSettings& settings,

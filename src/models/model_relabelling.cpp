@@ -12,6 +12,7 @@
 
 #include "feint/error.hpp"
 #include "feint/stats/permutation.hpp"
+#include "relabelling_general.hpp"
 #include "relabelling_refit.hpp"
 
 namespace feint::models {
@@ -26,8 +27,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 void check_arguments(const LongData& data, const std::vector<std::string>& group_levels,
                      const RelabellingOptions& options) {
-  if (group_levels.size() != 2)
-    throw UsageError(fmt::format("relabel_condition_tests: needs two conditions, got {}", group_levels.size()));
+  if (group_levels.size() < 2)
+    throw UsageError(fmt::format("relabel_condition_tests: needs two or more conditions, got {}", group_levels.size()));
   if (options.permutations == 0) throw UsageError("relabel_condition_tests: permutations must be >= 1");
   const std::size_t n = data.y.size();
   if (data.participant.size() != n || data.group.size() != n || data.time.size() != n)
@@ -160,6 +161,7 @@ RelabelledConditionTests relabel_condition_tests(const LongData& data,
                                                  const std::vector<std::string>& group_levels,
                                                  const RelabellingOptions& options) {
   check_arguments(data, group_levels, options);
+  if (options.within || group_levels.size() > 2) return detail::relabel_general(data, group_levels, options);
   const Membership m = assign_participants(data, group_levels);
   const detail::RefitData d = detail::summarise(data, m.row_person, m.in_b.size());
   FactorModel factor(d);
@@ -170,6 +172,10 @@ RelabelledConditionTests relabel_condition_tests(const LongData& data,
   out.condition_f = observed.condition_f;
   out.slope_difference_t = observed.slope_t;
   relabelling_p_values(factor, trend, m, options, observed, out);
+  out.slope_differences_t = {out.slope_difference_t};
+  out.p_slope_differences = {out.p_slope_difference};
+  out.labellings_slopes = {out.labellings_slope};
+  out.stopped_slopes = {out.stopped_slope};
   return out;
 }
 

@@ -337,6 +337,7 @@ struct MeasureResult {
 // Which finding of a measure speaks for it (results_paragraphs): lower is better.
 int headline_rank(const Finding& f) {
   if (f.strength == Strength::not_computable) return 4;
+  if (f.omnibus) return -1;  // the test across the conditions, before any of their pairs
   const bool comparison = !one_sample(f) && (!f.contrast.empty() || !f.direction.empty());
   if (comparison && f.member.empty() && f.means && finite(f.estimate)) return 0;
   if (comparison && finite(f.estimate)) return 1;

@@ -73,7 +73,9 @@ std::vector<ReportTable> tables(const analysis::StudyResults& r) {
         [&](OutputFormat f) { return tables::render_likert(*r.likert, f); });
   }
   if (r.likert_compare) {
-    add("questionnaire-compare", "Questionnaire between the conditions", "likert_compare",
+    add("questionnaire-compare",
+        r.likert_compare->paired ? "Questionnaire within participants" : "Questionnaire between the conditions",
+        "likert_compare",
         [&](OutputFormat f) { return tables::render_likert(*r.likert_compare, f); });
   }
   if (r.likert_conditions) {
@@ -81,7 +83,11 @@ std::vector<ReportTable> tables(const analysis::StudyResults& r) {
         [&](OutputFormat f) { return tables::render_likert_conditions(*r.likert_conditions, f); });
   }
   if (r.yes_no) {
-    add("yes-no", r.yes_no->rows.empty() ? "Yes/no questions" : "Yes/no questions between the conditions", "yes_no",
+    add("yes-no",
+        r.yes_no->rows.empty()         ? "Yes/no questions"
+        : r.yes_no->settings.paired ? "Yes/no questions within participants"
+                                    : "Yes/no questions between the conditions",
+        "yes_no",
         [&](OutputFormat f) { return tables::render_yes_no(*r.yes_no, f); });
   }
   // The paper-shaped tables show M, p and the label; t, df, d [CI] and BF (the CSV's) go under them.
@@ -130,6 +136,7 @@ std::vector<std::pair<std::string, std::string>> design_rows(const analysis::Stu
         fmt::format("{} ({})", cond.empty() ? "(none)" : cond, count(n, "participant")));
   }
   const auto its = r.scores.iterations();
+  const auto conditions = r.scores.conditions();
   return {
       {"Study folder", c.study_folder},
       {"Conditions", fmt::format("{}", fmt::join(per_condition, ", "))},
@@ -142,7 +149,11 @@ std::vector<std::pair<std::string, std::string>> design_rows(const analysis::Stu
                                                 r.comparison->options.paired ? ", paired by participant" : "",
                                                 r.comparison_note.empty() ? ""
                                                     : " (" + r.comparison_note + ")")
-                                  : "none (set compare = \"A,B\")"},
+                                  : conditions.size() > 2
+                                      ? fmt::format("all {} conditions: the omnibus tests, then each pair (set "
+                                                    "compare = \"A,B\" to compare one pair)",
+                                                    conditions.size())
+                                      : "none (set compare = \"A,B\")"},
       {"Questionnaire", (c.questionnaire.empty() ? std::string("none") : c.questionnaire) +
                             (r.yes_no ? "; yes/no questions: questionnaire_yesno.csv" : "")},
       {"Settings file", c.config.empty() ? "none" : c.config},

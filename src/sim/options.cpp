@@ -58,6 +58,12 @@ StudySettings study_settings(const StudyOptions& o) {
   }
   s.observer.pad_speed = o.pad_speed;
   for (const auto& kv : o.observer) set_parameter(s.observer, kv);
+  if (o.targets < 2) throw UsageError(fmt::format("--targets {}: a study needs 2 or more targets", o.targets));
+  if (o.layout != "fixed" && o.layout != "random")
+    throw UsageError(fmt::format("--layout '{}': expected fixed (a row at the paper's height) or random (drawn "
+                                 "per round)", o.layout));
+  s.targets = o.targets;
+  s.random_layout = o.layout == "random";
   validate(s.geometry);
   validate(s.observer);
   return s;

@@ -14,6 +14,8 @@
 #include "feint/error.hpp"
 #include "feint/io/number.hpp"
 #include "feint/io/output.hpp"
+#include "feint/metrics/belief_point.hpp"
+#include "feint/sim/k_goal_paths.hpp"
 #include "feint/sim/robot_path.hpp"
 
 namespace feint::sim {
@@ -47,11 +49,48 @@ std::string participant_id(int index, int total) {
 
 }  // namespace
 
+bool is_pointer_study(const StudySettings& settings) noexcept {
+  return settings.targets != 2 || settings.random_layout;
+}
+
+metrics::Layout round_layout(const StudySettings& settings, int index, int round) {
+  if (settings.targets < 2)
+    throw UsageError(fmt::format("--targets {}: a study needs 2 or more targets", settings.targets));
+  const auto k = static_cast<std::size_t>(settings.targets);
+  if (!settings.random_layout) return row_layout(k, settings.geometry);
+  // Its own stream per participant and round: the layouts do not depend on the participant's answers.
+  Rng rng = Rng::stream(settings.seed ^ 0x6c61796f7574ULL,
+                        (static_cast<std::uint64_t>(index) << 20) + static_cast<std::uint64_t>(round));
+  return metrics::draw_layout(rng, settings.region, k);
+}
+
 namespace {
 
-// One block of a participant: the condition's run, watched by `observer`.
+// A round of a pointer study: the round's map, the true target (drawn uniformly), the robot's path
+// for the strategy (sim::k_goal_paths) and the participant's pointer.
+void watch_round(const StudySettings& settings, int index, int round, const Iteration& it, TrialRecord& tr,
+                 Rng& rng) {
+  tr.layout = round_layout(settings, index, round);
+  tr.target_index = rng.bounded(static_cast<std::uint32_t>(settings.targets));
+  KGoalPathSettings ks;
+  ks.geometry = settings.geometry;
+  ks.observer.beta = settings.observer.beta;
+  tr.robot = k_goal_trajectory(tr.layout, tr.target_index, it.strategy,
+                               it.strategy == Strategy::optimal ? Variant::main : it.variant, ks);
+  tr.pointer = watch_pointer(tr.robot, tr.layout, settings.observer, rng);
+  std::vector<double> times;
+  std::vector<metrics::MapPoint> points;
+  for (const auto& q : tr.pointer) {
+    times.push_back(q.t);
+    points.push_back({q.x, q.y});
+  }
+  tr.error = metrics::score_belief_points(times, points, tr.layout, tr.target_index, std::nullopt, {}).error;
+}
+
+// One block of a participant: the condition's run, watched by `observer` (rounds numbered from
+// `round0` for the layouts of a pointer study).
 ParticipantRecord watch_block(const StudySettings& settings, Algorithm condition, int block, Observer& observer,
-                              Rng& rng) {
+                              Rng& rng, int index, int round0) {
   ParticipantRecord p;
   p.condition = condition;
   RunSettings run;
@@ -68,9 +107,13 @@ ParticipantRecord watch_block(const StudySettings& settings, Algorithm condition
     tr.strategy = it.strategy;
     tr.variant = it.variant;
     tr.target = it.target;
-    const auto path = trajectory(it.strategy, it.variant, it.target, settings.geometry);
-    tr.pad = observer.watch(path, it.strategy, it.variant, it.target, settings.geometry, rng);
-    tr.error = trial_error(tr.pad, it.target == Target::left ? 0.0 : 1.0);
+    if (is_pointer_study(settings)) {
+      watch_round(settings, index, round0 + static_cast<int>(i), it, tr, rng);
+    } else {
+      const auto path = trajectory(it.strategy, it.variant, it.target, settings.geometry);
+      tr.pad = observer.watch(path, it.strategy, it.variant, it.target, settings.geometry, rng);
+      tr.error = trial_error(tr.pad, it.target == Target::left ? 0.0 : 1.0);
+    }
     observer.remember(it.strategy, it.variant);
     sum += tr.error;
     p.trials.push_back(std::move(tr));
@@ -119,7 +162,7 @@ ParticipantRecord simulate_participant(const StudySettings& settings, int index)
   Rng rng = Rng::stream(settings.seed, static_cast<std::uint64_t>(index));
   Observer observer(settings.observer);
   const auto c = static_cast<std::size_t>(index / settings.participants);
-  ParticipantRecord p = watch_block(settings, settings.conditions[c], 1, observer, rng);
+  ParticipantRecord p = watch_block(settings, settings.conditions[c], 1, observer, rng, index, 0);
   p.condition_name = condition_name(settings, c);
   p.id = participant_id(index, people);
   // Likert answers: centred near the paper's adaptive-condition means (entertainment 6.1,
@@ -146,7 +189,8 @@ std::vector<ParticipantRecord> simulate_participant_within(const StudySettings& 
   std::vector<ParticipantRecord> blocks;
   for (std::size_t b = 0; b < n; ++b) {
     const std::size_t c = (b + static_cast<std::size_t>(index)) % n;
-    blocks.push_back(watch_block(settings, settings.conditions[c], static_cast<int>(b) + 1, observer, rng));
+    blocks.push_back(watch_block(settings, settings.conditions[c], static_cast<int>(b) + 1, observer, rng, index,
+                                 static_cast<int>(b) * settings.iterations));
     blocks.back().id = participant_id(index, settings.participants);
     blocks.back().condition_name = condition_name(settings, c);
   }
@@ -184,6 +228,22 @@ std::string condition_names(const StudySettings& settings, std::string_view sep)
 
 }  // namespace
 
+namespace {
+
+// What feint.toml says of a pointer study (nothing for the paper's study: its file is unchanged).
+std::string pointer_toml(const StudySettings& settings) {
+  if (!is_pointer_study(settings)) return {};
+  return fmt::format(
+      "\n# {} targets, {}.\n"
+      "# The participants point on the map (logs of K targets and a pointer, docs/formats.md): error\n"
+      "# and confusion are in layout scales (the largest distance between two targets;\n"
+      "# docs/many-targets.md).\n",
+      settings.targets,
+      settings.random_layout ? "placed per round at random (--layout random)" : "in a fixed row (--layout fixed)");
+}
+
+}  // namespace
+
 std::string study_toml(const StudySettings& settings, std::string_view tool_version) {
   const bool two = settings.conditions.size() == 2;
   const std::string each = two ? "both conditions" : "every condition";
@@ -215,7 +275,7 @@ std::string study_toml(const StudySettings& settings, std::string_view tool_vers
       tool_version, design, io::format_double(settings.lambda), settings.seed,
       settings.within ? fmt::format("Each participant saw {}: conditions within participants (paired tests).", each)
                       : "Each participant saw one condition: conditions between participants.",
-      settings.within ? "within" : "between", compare);
+      settings.within ? "within" : "between", compare) + pointer_toml(settings);
 }
 
 io::FolderWriter study_folder_writer(bool replace) {
@@ -271,6 +331,43 @@ std::string log_text(const std::vector<ParticipantRecord>& blocks, const StudySe
   return text;
 }
 
+// A participant's log of K targets and a pointer (formats.md "Logs of K targets and a pointer"):
+// metres to 0.1 mm, the true target's index, the round's layout on every row.
+std::string pointer_log_text(const std::vector<ParticipantRecord>& blocks, const StudySettings& settings) {
+  std::string text = settings.within ? "participant,condition,block,iteration,strategy,variant,target,t,"
+                                     : "participant,condition,iteration,strategy,variant,target,t,";
+  text += "belief_x,belief_y,start_x,start_y,";
+  for (int k = 0; k < settings.targets; ++k) text += fmt::format("target{}_x,target{}_y,", k, k);
+  text += "robot_x,robot_y\n";
+  for (const auto& p : blocks) {
+    for (const auto& tr : p.trials) {
+      std::string key = settings.within ? fmt::format("{},{},{},{},{},{},{},", p.id, p.condition_name, tr.block,
+                                                      tr.iteration, to_string(tr.strategy), to_string(tr.variant),
+                                                      tr.target_index)
+                                        : fmt::format("{},{},{},{},{},{},", p.id, p.condition_name, tr.iteration,
+                                                      to_string(tr.strategy), to_string(tr.variant), tr.target_index);
+      std::string layout = format_metres(tr.layout.start.x) + ',' + format_metres(tr.layout.start.y) + ',';
+      for (const auto& g : tr.layout.targets) layout += format_metres(g.x) + ',' + format_metres(g.y) + ',';
+      for (std::size_t i = 0; i < tr.pointer.size(); ++i) {
+        const auto& q = tr.pointer[i];
+        text += key;
+        text += io::format_double(q.t - tr.pointer.front().t);
+        text += ',';
+        text += format_metres(q.x);
+        text += ',';
+        text += format_metres(q.y);
+        text += ',';
+        text += layout;
+        text += format_metres(tr.robot[i].x);
+        text += ',';
+        text += format_metres(tr.robot[i].y);
+        text += '\n';
+      }
+    }
+  }
+  return text;
+}
+
 // DIR/logs/<id>.csv.gz, written under a temporary name and renamed into place.
 void write_log(const std::filesystem::path& logs, const std::string& id, const std::string& text) {
   namespace fs = std::filesystem;
@@ -292,7 +389,7 @@ void write_log(const std::filesystem::path& logs, const std::string& id, const s
   }
 }
 
-// The questionnaires of a between-participants study (one row per participant).
+// The questionnaires: one row per participant (between) or per participant and condition (within).
 void write_questionnaires(const std::vector<ParticipantRecord>& all, io::OutputFolder& folder) {
   std::string q = "participant,condition,entertainment,deception,intelligence,trust\n";
   for (const auto& p : all) {
@@ -304,6 +401,24 @@ void write_questionnaires(const std::vector<ParticipantRecord>& all, io::OutputF
   for (const auto& p : all)
     yes_no += fmt::format("{},{},{}\n", p.id, p.condition_name, p.intentional ? "yes" : "no");
   io::write_file_atomically(folder.path("questionnaire_yesno.csv"), yes_no);
+}
+
+// The questionnaires of a within-participants study, answered after each condition: one row per
+// participant and condition (in the order the blocks were seen). The answers follow that block's
+// mean error as simulate_participant's do, drawn from streams of their own (seed ^ "question",
+// row) so that the logs are the same as without a questionnaire.
+void write_within_questionnaires(const StudySettings& settings, std::vector<ParticipantRecord>& blocks,
+                                 io::OutputFolder& folder) {
+  constexpr std::uint64_t kQuestionnaireStreams = 0x7175657374696f6eULL;
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    Rng rng = Rng::stream(settings.seed ^ kQuestionnaireStreams, i);
+    ParticipantRecord& p = blocks[i];
+    const double e = p.mean_error - 0.45;
+    p.likert = {likert(5.9 + 2.0 * e + 0.7 * rng.normal()), likert(4.7 + 6.0 * e + 0.8 * rng.normal()),
+                likert(6.3 + 2.0 * e + 0.6 * rng.normal()), likert(2.4 - 3.0 * e + 0.8 * rng.normal())};
+    p.intentional = rng.uniform() < 1 / (1 + std::exp(-(p.likert[1] - 4.5)));
+  }
+  write_questionnaires(blocks, folder);
 }
 
 }  // namespace
@@ -323,13 +438,21 @@ std::vector<ParticipantRecord> write_study(const StudySettings& settings, const 
   for (int i = 0; i < people; ++i) {
     std::vector<ParticipantRecord> blocks = settings.within ? simulate_participant_within(settings, i)
                                                             : std::vector{simulate_participant(settings, i)};
-    write_log(logs, blocks.front().id, log_text(blocks, settings));
+    write_log(logs, blocks.front().id,
+              is_pointer_study(settings) ? pointer_log_text(blocks, settings) : log_text(blocks, settings));
     for (auto& p : blocks) {
-      for (auto& tr : p.trials) tr.pad.clear();  // the traces are on disk; keep the summary small
+      for (auto& tr : p.trials) {  // the traces are on disk; keep the summary small
+        tr.pad.clear();
+        tr.pointer.clear();
+        tr.robot.clear();
+      }
       all.push_back(std::move(p));
     }
   }
-  if (!settings.within) write_questionnaires(all, folder);
+  if (settings.within)
+    write_within_questionnaires(settings, all, folder);
+  else
+    write_questionnaires(all, folder);
   io::write_file_atomically(folder.path("feint.toml"), study_toml(settings, tool_version));
   folder.commit(tool_version);
   return all;

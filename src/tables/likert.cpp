@@ -215,14 +215,48 @@ Block comparison_block(const io::Questionnaire& q, const std::vector<std::string
   return b;
 }
 
+/// Within participants: each participant's A answer beside their B answer (resp1[i] and resp2[i]
+/// are one participant); those with only one of the two are left out and listed in `unpaired`.
+Block paired_block(const io::Questionnaire& q, const std::vector<std::string>& conditions,
+                   const std::pair<std::string, std::string>& compare,
+                   std::vector<std::string>& unpaired) {
+  const auto& [ga, gb] = compare;
+  check_condition(q, conditions, ga, "--compare");
+  check_condition(q, conditions, gb, "--compare");
+  if (ga == gb)
+    throw UsageError(fmt::format("--compare {},{}: a condition against itself", ga, gb));
+  std::map<std::string, std::size_t> in_a, in_b;
+  for (const auto& [group, rows] : {std::pair{&ga, &in_a}, std::pair{&gb, &in_b}})
+    for (const auto r : respondents_in(q, *group))
+      if (!rows->emplace(q.participants[r], r).second)
+        throw InvalidData(fmt::format("{}: participant {} answered twice in condition {}; a paired "
+                                      "comparison needs one answer per participant and condition",
+                                      q.source, q.participants[r], *group));
+  Block b{ga, gb, {}, {}};
+  for (const auto r : respondents_in(q, ga)) {
+    const auto other = in_b.find(q.participants[r]);
+    if (other == in_b.end()) {
+      unpaired.push_back(q.participants[r]);
+      continue;
+    }
+    b.resp1.push_back(r);
+    b.resp2.push_back(other->second);
+  }
+  for (const auto r : respondents_in(q, gb))
+    if (in_a.count(q.participants[r]) == 0) unpaired.push_back(q.participants[r]);
+  return b;
+}
+
 /// The blocks: A against B (--compare), the one --condition, or each condition in turn.
 std::vector<Block> analysis_blocks(LikertAnalysis& a, const io::Questionnaire& q,
                                    const LikertSettings& settings) {
   const auto conditions = q.condition_names();
   std::vector<Block> blocks;
   if (settings.compare) {
-    Block b = comparison_block(q, conditions, *settings.compare);
+    Block b = settings.paired ? paired_block(q, conditions, *settings.compare, a.unpaired)
+                              : comparison_block(q, conditions, *settings.compare);
     a.two_sample = true;
+    a.paired = settings.paired;
     blocks.push_back(std::move(b));
   } else if (!settings.condition.empty()) {
     check_condition(q, conditions, settings.condition, "--condition");
@@ -282,7 +316,23 @@ void add_tests(LikertAnalysis& a, const Answers& answers, const Block& b, std::s
   primary.metric = paper.metric = a.names[k];
   primary.group1 = paper.group1 = b.group1;
   primary.group2 = paper.group2 = b.group2;
-  if (a.two_sample) {
+  std::size_t nonzero = 0;  // the signed-rank test's n for the interval of r
+  if (a.paired) {
+    auto [y, miss_y] = answers.values_of(k, b.resp2);
+    a.summaries.push_back(
+        summarize(a.names[k], comp, b.group2, y, miss_y, q.scale_min, q.scale_max, a.neutral));
+    // Aligned pairs, NaN where an answer is missing: both tests drop that pair (as R's paired
+    // tests drop incomplete pairs).
+    std::vector<double> xa, yb, diff;
+    for (std::size_t i = 0; i < b.resp1.size(); ++i) {
+      xa.push_back(answers.value(k, b.resp1[i]).value_or(std::nan("")));
+      yb.push_back(answers.value(k, b.resp2[i]).value_or(std::nan("")));
+      diff.push_back(xa.back() - yb.back());
+      nonzero += !std::isnan(diff.back()) && diff.back() != 0.0;
+    }
+    primary.result = stats::wilcoxon_signed_rank(diff, 0.0, settings.test);
+    paper.result = stats::t_test_paired(xa, yb, settings.test);
+  } else if (a.two_sample) {
     auto [y, miss_y] = answers.values_of(k, b.resp2);
     a.summaries.push_back(
         summarize(a.names[k], comp, b.group2, y, miss_y, q.scale_min, q.scale_max, a.neutral));
@@ -294,9 +344,9 @@ void add_tests(LikertAnalysis& a, const Answers& answers, const Block& b, std::s
   }
   // effect-size intervals (r: n = non-zero differences for the signed-rank test) and the JZS
   // Bayes factor of the t test
-  std::size_t nonzero = 0;
-  for (double v : x) nonzero += !std::isnan(v) && v != a.reference;
-  stats::add_effect_size_intervals(primary.result, a.two_sample ? 0 : nonzero);
+  if (!a.two_sample)
+    for (double v : x) nonzero += !std::isnan(v) && v != a.reference;
+  stats::add_effect_size_intervals(primary.result, a.two_sample && !a.paired ? 0 : nonzero);
   stats::add_effect_size_intervals(paper.result);
   stats::add_bayes_factor(paper.result, settings.bf_prior_r);
   if (comp) primary.cronbach_alpha = paper.cronbach_alpha = alpha_of.at(k);
@@ -349,6 +399,30 @@ void analyse_block(LikertAnalysis& a, const Answers& answers, const Block& b,
   label_block(a, first_row, settings);
 }
 
+/// What a paired (within-participant) comparison shows, and who was left out.
+void add_paired_notes(LikertAnalysis& a, const Block& b) {
+  a.notes.push_back(fmt::format(
+      "A = {}, B = {}, within participants: each participant's answer after A is paired with their "
+      "answer after B ({} participants answered in both). Single Likert items are ordinal: the "
+      "Wilcoxon signed-rank test on the differences A - B (R's wilcox.test(x, y, paired = TRUE)) is "
+      "the primary analysis, with the matched-pairs rank-biserial correlation r (positive: A answers "
+      "higher); the paired t-test (t.test(x, y, paired = TRUE)) with d_z is shown beside it. A pair "
+      "missing either answer is left out of that item.",
+      b.group1, b.group2, b.resp1.size()));
+  a.notes.push_back(
+      "Signed-rank p-values are exact when fewer than 50 pairs differ, with no tied and no zero "
+      "differences, otherwise from the normal approximation with continuity and tie corrections (R's "
+      "rules; column 'dist' of the table, 'exact' of the CSV/JSON, says which ran). Pairs with equal "
+      "answers (zero differences) are dropped by the signed-rank test, as in R.");
+  if (!a.unpaired.empty()) {
+    std::vector<std::string> shown(a.unpaired.begin(),
+                                   a.unpaired.begin() + std::min<std::ptrdiff_t>(10, std::ssize(a.unpaired)));
+    a.notes.push_back(fmt::format("Left out: {} participant{} answered in only one of the two conditions ({}{}).",
+                                  a.unpaired.size(), a.unpaired.size() == 1 ? "" : "s", join(shown),
+                                  a.unpaired.size() > shown.size() ? ", ..." : ""));
+  }
+}
+
 /// The note's first part: what the table shows and how it was made.
 void add_method_notes(LikertAnalysis& a, const io::Questionnaire& q,
                       const LikertSettings& settings, bool has_composites,
@@ -359,7 +433,9 @@ void add_method_notes(LikertAnalysis& a, const io::Questionnaire& q,
                                                     : "the scale midpoint";
   notes.push_back(fmt::format("Scale {}-{}; neutral point {} (for % below / at / above).",
                               q.scale_min, q.scale_max, fmt_number(a.neutral)));
-  if (a.two_sample) {
+  if (a.paired) {
+    add_paired_notes(a, blocks.front());
+  } else if (a.two_sample) {
     notes.push_back(fmt::format(
         "A = {}, B = {}. Single Likert items are ordinal: the Mann-Whitney U test (R's "
         "wilcox.test(x, y)) is the primary analysis, with the rank-biserial correlation r = "
@@ -380,12 +456,12 @@ void add_method_notes(LikertAnalysis& a, const io::Questionnaire& q,
         "t-tests against 3.5) is the t-test column; for single items the Wilcoxon column is the "
         "recommended one.");
   }
-  if (a.two_sample) {
+  if (a.two_sample && !a.paired) {
     notes.push_back(
         "Mann-Whitney p-values are exact when both groups have fewer than 50 answers and there are "
         "no ties, otherwise from the normal approximation with continuity and tie corrections (R's "
         "rules; column 'dist' of the table, 'exact' of the CSV/JSON, says which ran).");
-  } else {
+  } else if (!a.two_sample) {
     notes.push_back(
         "Signed-rank p-values are exact when n < 50 with no ties and no answers equal to R, "
         "otherwise from the normal approximation with continuity and tie corrections (R's rules; "

@@ -27,10 +27,14 @@ std::string omnibus_label(const TidyRow& row, double alpha) {
 
 TextTable omnibus_table(const LikertConditions& a) {
   TextTable t;
-  t.caption = fmt::format("Questionnaire across the {} conditions: Kruskal-Wallis test per item", a.conditions.size());
+  t.caption = a.paired ? fmt::format("Questionnaire across the {} conditions within participants: Friedman test per item",
+                                     a.conditions.size())
+                       : fmt::format("Questionnaire across the {} conditions: Kruskal-Wallis test per item",
+                                     a.conditions.size());
   t.header = {"Item"};
   for (const auto& c : a.conditions) t.header.push_back("M " + c);
-  for (const char* h : {"n", "H", "df", "p", "E2", "inference"}) t.header.emplace_back(h);
+  for (const char* h : {"n", a.paired ? "X2" : "H", "df", "p", a.paired ? "W" : "E2", "inference"})
+    t.header.emplace_back(h);
   t.right_align.assign(t.header.size(), true);
   t.right_align[0] = false;
   for (std::size_t k = 0; k < a.omnibus.size(); ++k) {
@@ -44,7 +48,7 @@ TextTable omnibus_table(const LikertConditions& a) {
     cells.push_back(fixed(row.result.statistic, 2));
     cells.push_back(row.result.df ? io::format_double(*row.result.df) : "");
     cells.push_back(format_p(row.result.p_value));
-    cells.push_back(fixed(row.result.rank_epsilon_squared, 3));
+    cells.push_back(fixed(a.paired ? a.kendalls_w[k] : row.result.rank_epsilon_squared, 3));
     cells.push_back(omnibus_label(row, a.settings.alpha));
     t.rows.push_back({std::move(cells), false});
   }
@@ -54,10 +58,14 @@ TextTable omnibus_table(const LikertConditions& a) {
 TextTable pairs_table(const LikertConditions& a) {
   TextTable t;
   t.caption = "Questionnaire: each pair of conditions (Holm over the pairs of an item, protected by its omnibus test)";
-  t.header = {"Item", "A", "B", "M A", "M B", "W", "p", "p Holm", "r", "t", "df", "p Holm", "BF10", "inference"};
+  t.header = {"Item", "A", "B", "M A", "M B", a.paired ? "V" : "W", "p", "p Holm", "r", "t", "df", "p Holm", "BF10",
+              "inference"};
   t.right_align.assign(t.header.size(), true);
   for (std::size_t j = 0; j < 3; ++j) t.right_align[j] = false;
-  t.groups = {{"Mann-Whitney U (primary)", 5, 4}, {"Welch t-test", 9, 4}};
+  if (a.paired)
+    t.groups = {{"Wilcoxon signed-rank, paired (primary)", 5, 4}, {"Paired t-test", 9, 4}};
+  else
+    t.groups = {{"Mann-Whitney U (primary)", 5, 4}, {"Welch t-test", 9, 4}};
   for (std::size_t k = 0; k < a.names.size(); ++k) {
     for (const auto& pair : a.pairs) {
       const TidyRow& rank = pair.rows[2 * k];

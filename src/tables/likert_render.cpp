@@ -83,8 +83,8 @@ void set_item_table_header(Builder& b, const LikertAnalysis& a, bool adj, bool h
   if (a.two_sample) {
     const auto& ga = a.settings.compare->first;
     const auto& gb = a.settings.compare->second;
-    t.caption = fmt::format("Likert items: {} (A) against {} (B), scale {}-{}", ga, gb, a.scale_min,
-                            a.scale_max);
+    t.caption = fmt::format("Likert items: {} (A) against {} (B){}, scale {}-{}", ga, gb,
+                            a.paired ? " within participants" : "", a.scale_min, a.scale_max);
     for (const char* h : {"n A", "n B", "Mdn A", "Mdn B", "IQR A", "IQR B", "M A", "M B"}) {
       head.emplace_back(h);
     }
@@ -95,7 +95,7 @@ void set_item_table_header(Builder& b, const LikertAnalysis& a, bool adj, bool h
   }
   const std::size_t desc_count = head.size() - desc_first;
   const std::size_t rank_first = head.size();
-  head.emplace_back(a.two_sample ? "W" : "V");
+  head.emplace_back(a.two_sample && !a.paired ? "W" : "V");
   b.p_columns.push_back(head.size());
   head.emplace_back("p");
   if (adj) {
@@ -120,9 +120,12 @@ void set_item_table_header(Builder& b, const LikertAnalysis& a, bool adj, bool h
   t.right_align[0] = false;
 
   t.groups.push_back({"Descriptives", desc_first, desc_count});
-  t.groups.push_back({a.two_sample ? "Mann-Whitney U (primary)" : "Wilcoxon signed-rank (primary)",
+  t.groups.push_back({a.paired       ? "Wilcoxon signed-rank, paired (primary)"
+                      : a.two_sample ? "Mann-Whitney U (primary)"
+                                     : "Wilcoxon signed-rank (primary)",
                       rank_first, rank_count});
-  t.groups.push_back({a.two_sample         ? "Welch t-test"
+  t.groups.push_back({a.paired                ? "Paired t-test"
+                       : a.two_sample         ? "Welch t-test"
                        : a.settings.paper ? "One-sample t-test (the paper's analysis)"
                                           : "One-sample t-test",
                       t_first, t_count});

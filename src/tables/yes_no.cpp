@@ -3,10 +3,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include <fmt/format.h>
 
 #include "feint/error.hpp"
+#include "feint/stats/paired_proportions.hpp"
 #include "respondents.hpp"
 
 namespace feint::tables {
@@ -34,7 +36,7 @@ YesNoSummary summarise(const io::Questionnaire& q, std::size_t item, const std::
 /// Checks the compared conditions exist and are independent (Fisher's and the chi-square test
 /// compare two independent groups).
 void check_comparison(const io::Questionnaire& q, const std::vector<std::string>& groups,
-                      const std::pair<std::string, std::string>& compare) {
+                      const std::pair<std::string, std::string>& compare, bool paired) {
   if (!q.has_condition)
     throw UsageError(fmt::format("--compare {},{}: {} has no condition column (use --condition-column)",
                                  compare.first, compare.second, q.source));
@@ -44,6 +46,7 @@ void check_comparison(const io::Questionnaire& q, const std::vector<std::string>
                                    compare.second, q.source, c, fmt::join(groups, ", ")));
   if (compare.first == compare.second)
     throw UsageError(fmt::format("--compare {0},{0}: a condition against itself", compare.first));
+  if (paired) return;  // the same participants in both: paired by add_paired_rows
   if (const auto shared =
           detail::shared_participant(q, respondents_in(q, compare.first), respondents_in(q, compare.second)))
     throw InvalidData(fmt::format("{}: participant {} answered in both conditions {} and {}; Fisher's exact "
@@ -65,6 +68,62 @@ TidyRow comparison_row(const std::string& question, const std::string& a, const 
   return row;
 }
 
+/// Each participant's row in condition c; InvalidData when they answered twice in it.
+std::map<std::string, std::size_t> rows_by_participant(const io::Questionnaire& q, const std::string& c) {
+  std::map<std::string, std::size_t> rows;
+  for (const auto r : respondents_in(q, c))
+    if (!rows.emplace(q.participants[r], r).second)
+      throw InvalidData(fmt::format("{}: participant {} answered twice in condition {}; a paired comparison needs "
+                                    "one answer per participant and condition",
+                                    q.source, q.participants[r], c));
+  return rows;
+}
+
+/// Within participants: per question the table of pairs (the participants who answered it in both
+/// conditions), McNemar's exact test, then mcnemar.test. Returns who answered in only one condition.
+std::vector<std::string> add_paired_rows(YesNoAnalysis& a, const io::Questionnaire& q,
+                                         const std::pair<std::string, std::string>& ab) {
+  const auto in_a = rows_by_participant(q, ab.first);
+  const auto in_b = rows_by_participant(q, ab.second);
+  std::vector<std::string> unpaired;
+  for (const auto& [p, _] : in_a)
+    if (in_b.count(p) == 0) unpaired.push_back(p);
+  for (const auto& [p, _] : in_b)
+    if (in_a.count(p) == 0) unpaired.push_back(p);
+  for (std::size_t i = 0; i < q.items.size(); ++i) {
+    stats::PairedYesNoTable t;
+    for (const auto& [p, ra] : in_a) {
+      const auto other = in_b.find(p);
+      if (other == in_b.end() || !q.responses[i][ra] || !q.responses[i][other->second]) continue;
+      const bool ya = *q.responses[i][ra] == 1, yb = *q.responses[i][other->second] == 1;
+      ++(ya ? (yb ? t.yes_yes : t.yes_no) : (yb ? t.no_yes : t.no_no));
+    }
+    a.rows.push_back(comparison_row(q.items[i], ab.first, ab.second, stats::mcnemar_exact(t, a.settings.test),
+                                    a.settings.alpha));
+    a.rows.push_back(comparison_row(q.items[i], ab.first, ab.second, stats::mcnemar_test(t), a.settings.alpha));
+  }
+  return unpaired;
+}
+
+void add_paired_notes(YesNoAnalysis& a, const std::vector<std::string>& unpaired) {
+  const auto& [ga, gb] = *a.settings.compare;
+  std::string left_out;
+  if (!unpaired.empty()) {
+    std::vector<std::string> shown(unpaired.begin(), unpaired.begin() + std::min<std::ptrdiff_t>(10, std::ssize(unpaired)));
+    left_out = fmt::format(" Left out: {} participant{} answered in only one of the two conditions ({}{}).",
+                           unpaired.size(), unpaired.size() == 1 ? "" : "s", fmt::join(shown, ", "),
+                           unpaired.size() > shown.size() ? ", ..." : "");
+  }
+  a.notes.push_back(fmt::format(
+      "{} against {}, within participants: each participant's answer after {} is paired with theirs after {} "
+      "(a pair missing either answer is left out of that question). McNemar's exact test (primary: the binomial "
+      "test of the discordant pairs, R's binom.test(b, b + c)) with the conditional odds ratio b/c of yes in A "
+      "and its exact interval; beside it R's mcnemar.test (chi-square, continuity-corrected) with the "
+      "difference of the paired proportions p_A - p_B. A>B / A<B: p < {:g}; n.s. otherwise (no test here gives "
+      "evidence of no difference).{}",
+      ga, gb, ga, gb, a.settings.alpha, left_out));
+}
+
 }  // namespace
 
 io::QuestionnaireOptions yes_no_load_options() {
@@ -82,13 +141,17 @@ YesNoAnalysis analyze_yes_no(const io::Questionnaire& q, const YesNoSettings& se
   a.source = q.source;
   a.questions = q.items;
   a.groups = q.has_condition ? q.condition_names() : std::vector<std::string>{""};
-  if (settings.compare) check_comparison(q, a.groups, *settings.compare);
+  if (settings.compare) check_comparison(q, a.groups, *settings.compare, settings.paired);
   for (std::size_t i = 0; i < q.items.size(); ++i)
     for (const auto& g : a.groups) a.summaries.push_back(summarise(q, i, g, settings.test.conf_level));
   a.notes.push_back(fmt::format(
       "Proportion of yes with its exact (Clopper–Pearson) and Wilson {:g}% intervals; empty answers "
       "are left out of n.", 100 * settings.test.conf_level));
   if (!settings.compare) return a;
+  if (settings.paired) {
+    add_paired_notes(a, add_paired_rows(a, q, *settings.compare));
+    return a;
+  }
   const auto& [ga, gb] = *settings.compare;
   for (std::size_t i = 0; i < q.items.size(); ++i) {
     const auto& sa = *std::find_if(a.summaries.begin(), a.summaries.end(),
@@ -143,19 +206,26 @@ std::string render_records(const YesNoAnalysis& a, OutputFormat format) {
 
 TextTable comparison_table(const YesNoAnalysis& a) {
   TextTable t;
-  t.caption = fmt::format("Yes/no questions: {} against {}", a.settings.compare->first, a.settings.compare->second);
+  t.caption = fmt::format("Yes/no questions: {} against {}{}", a.settings.compare->first, a.settings.compare->second,
+                          a.settings.paired ? " within participants" : "");
   t.header = {"Question", "Test", "Estimate", "CI", "Statistic", "p", "Inference"};
   t.right_align = {false, false, true, true, true, true, false};
   for (const auto& row : a.rows) {
     const auto& r = row.result;
-    const bool fisher = r.test == "fisher_exact";
+    const bool odds_ratio = r.test == "fisher_exact" || r.test == "mcnemar_exact";
     std::string estimate = "–", ci = "–", statistic = "–";
     if (r.computed && r.estimate) {
-      estimate = fisher ? fmt::format("OR = {:.2f}", *r.estimate) : fmt::format("Δ = {:.2f}", *r.estimate);
-      ci = fmt::format("[{:.2f}, {:.2f}]", *r.conf_low, *r.conf_high);
+      estimate = odds_ratio ? fmt::format("OR = {:.2f}", *r.estimate) : fmt::format("Δ = {:.2f}", *r.estimate);
+      if (r.conf_low && r.conf_high) ci = fmt::format("[{:.2f}, {:.2f}]", *r.conf_low, *r.conf_high);
     }
-    if (r.computed && r.statistic) statistic = fmt::format("χ²({:g}) = {:.2f}", *r.df, *r.statistic);
-    t.rows.push_back({{row.metric, fisher ? "Fisher's exact" : "χ² (Yates)", estimate, ci, statistic,
+    if (r.computed && r.statistic)
+      statistic = r.df ? fmt::format("χ²({:g}) = {:.2f}", *r.df, *r.statistic)
+                       : fmt::format("b = {:g}", *r.statistic);
+    const char* test = r.test == "fisher_exact"    ? "Fisher's exact"
+                       : r.test == "mcnemar_exact" ? "McNemar exact"
+                       : r.test == "mcnemar"       ? "McNemar χ²"
+                                                   : "χ² (Yates)";
+    t.rows.push_back({{row.metric, test, estimate, ci, statistic,
                        r.computed ? format_p(r.p_value) : "–", row.label}});
   }
   return t;

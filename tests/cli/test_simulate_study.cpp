@@ -85,7 +85,10 @@ TEST(SimulateStudyCli, AWithinDesignGivesEachParticipantBothConditionsInCounterb
                            " --participants 4 --iterations 3 --seed 9");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("4 participants, each in both conditions"), std::string::npos) << r.out;
-  EXPECT_FALSE(std::filesystem::exists(out / "questionnaire.csv"));
+  // A questionnaire answered after each condition: one row per participant and condition.
+  const std::string q = read_text(out / "questionnaire.csv");
+  EXPECT_EQ(std::count(q.begin(), q.end(), '\n'), 1 + 4 * 2) << q;
+  EXPECT_NE(q.find("\nP02,random,"), std::string::npos) << q;
   EXPECT_NE(read_text(out / "feint.toml").find("\ndesign = \"within\"\n"), std::string::npos);
   for (const char* id : {"P01", "P02", "P03", "P04"}) {
     feint::io::CsvReader csv((out / "logs" / (std::string(id) + ".csv.gz")).string());
@@ -231,6 +234,14 @@ TEST(SimulateStudyCli, ThreeConditionsAreComparedByOmnibusTestsAndTheirPairsWith
   const std::string md = read_text(out / "report.md");
   EXPECT_NE(md.find("Questionnaire across the conditions"), std::string::npos);
   EXPECT_NE(md.find("- Design: conditions between participants"), std::string::npos) << md.substr(0, 2000);
+  EXPECT_NE(md.find("- Comparison: all 3 conditions: the omnibus tests, then each pair"), std::string::npos);
+  // The Results answer the hypotheses across the conditions with the omnibus tests, not a pair.
+  EXPECT_NE(md.find("**H1** (exploratory): Error and confusion differ among the conditions adaptive, random and "
+                    "fixed-block. Error: partial *η*² = "),
+            std::string::npos)
+      << md.substr(0, 3000);
+  EXPECT_NE(md.find("Deception: rank *ε*² = "), std::string::npos);
+  EXPECT_EQ(md.find("No hypothesis was tested"), std::string::npos);
 }
 
 TEST(SimulateStudyCli, ConditionsNameTheAlgorithmsOrGiveThemNames) {

@@ -74,6 +74,9 @@ struct Finding {
   /// confirmatory hypothesis with a direction (docs/findings.md "Hypotheses"); else two-sided.
   stats::Alternative alternative = stats::Alternative::two_sided;
   std::string member;          ///< for a family: which member the numbers describe ("test 3")
+  /// The test across three or more conditions that protects their pairs (the models' condition F,
+  /// a questionnaire item's Kruskal-Wallis test): it speaks for its measure in a Results paragraph.
+  bool omnibus = false;
 };
 
 /// Fills the structured fields (test, estimate and CI as a difference `lhs - rhs`, direction,

@@ -25,6 +25,13 @@ struct Hypothesis {
 /// confusion) and H2 (the questionnaire differs between A and B). Exploratory unless declared.
 std::vector<Hypothesis> default_hypotheses(const std::string& a, const std::string& b);
 
+/// Three or more conditions compared together (no pair named): H1 (error and confusion differ
+/// among them) and H2 (the questionnaire answers differ among them), both two-sided.
+std::vector<Hypothesis> default_hypotheses(const std::vector<std::string>& conditions);
+
+/// The study's hypotheses: `defaults` changed and added to by `ID:KEY=VALUE` settings, as below.
+std::vector<Hypothesis> parse_hypotheses(const std::vector<std::string>& settings, std::vector<Hypothesis> defaults);
+
 /// The study's hypotheses: the defaults, changed and added to by `ID:KEY=VALUE` settings (feint.toml
 /// `[hypotheses.ID]` tables, `--hypothesis` on the command line). KEY is statement, measures (a
 /// comma-separated list of error, confusion, questionnaire), direction (greater, less, two-sided)

@@ -17,6 +17,7 @@
 // the whole trial is handed to `on_reject` (with the number of rows it had) and reading goes on.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -45,6 +46,17 @@ struct Trial {
   /// robot_y columns; empty when the log has neither (then sim::robot_path rebuilds the path).
   std::vector<double> robot_x;
   std::vector<double> robot_y;
+  /// Logs of K targets and a pointer (formats.md; io/pointer_trace.hpp); empty for pad logs. The
+  /// pointer (m) at each sample, the true target's index (also in `target`), the start and the K
+  /// targets (m), constant within the trial.
+  std::vector<double> belief_x;
+  std::vector<double> belief_y;
+  std::size_t target_index = 0;
+  double start_x = 0;
+  double start_y = 0;
+  std::vector<double> targets_x;
+  std::vector<double> targets_y;
+  bool is_pointer() const noexcept { return !belief_x.empty(); }
   std::string file;                 // file of the trial's first row (`<stdin>` for `-`)
   std::uint64_t line = 0;           // physical line of its first row (header = line 1)
   std::uint64_t rows = 0;           // rows read for this trial (== times.size() + padding_rows when valid)

@@ -13,11 +13,19 @@
 // variance between participants and independent trials within them (compound symmetry). Where the
 // trials of a participant are correlated in time, the interaction F is too liberal (the split-plot
 // ANOVA's sphericity problem), and where the participant variance is estimated at 0 the condition F
-// forgets that trials are clustered. Relabelling whole participants between the two conditions
-// (each keeps all of their trials) and refitting gives each statistic's distribution under the
-// null that the condition changes nothing, whatever the dependence within a participant:
+// forgets that trials are clustered. Relabelling and refitting gives each statistic's distribution
+// under the null that the condition changes nothing, whatever the dependence within a participant:
+// between participants, whole participants are permuted between the conditions (each keeps all of
+// their trials; the group sizes are kept); within participants, each participant's own conditions
+// are permuted among themselves (a block of trials keeps its trials and moves to another condition
+// of the same participant: with two conditions, a swap or not per participant, 2^P labellings):
 //
 //     p = #{labellings b : s_b >= s_obs} / B_total,   s = F (interaction, condition) or |t| (slope)
+//
+// With C >= 3 conditions the slope family has C - 1 tests (each condition's slope minus the first
+// condition's), each with its own p-value from the same labellings: the findings Holm-adjust them
+// with the two F tests, as they do the models' own p-values, rather than merging them into one
+// max|t| that would need a separate answer to "which slope differs".
 //
 // over every labelling when there are at most `permutations + 1`. Otherwise the labellings are
 // drawn uniformly (stats::for_each_labelling_while; seeded, the same on every machine) and each
@@ -34,8 +42,12 @@
 // participants), so that by Woodbury one REML evaluation factorises an r x r matrix, r = the
 // patterns present (1 when every participant has every trial), and the linear trend's is 2 x 2 per
 // condition. theta is found by Brent's method, or in closed form when every participant has every
-// trial (the REML criterion then splits into two strata). The observed statistics equal fit_mixed_model's F
-// and t (tested to 1e-6).
+// trial (the REML criterion then splits into two strata). That fast path is for two conditions
+// between participants; within participants and with three or more conditions each labelling is
+// a dense refit in the cell-means parametrisation (X'V^-1 X = sum_i X_i'X_i - sum_k c_k A_k with
+// A_k the label-dependent sums of u_i u_i' per size class, one K x K Cholesky factor per REML
+// evaluation, theta by Brent's method; src/models/relabelling_general.cpp). The observed
+// statistics equal fit_mixed_model's F and t (tested to 1e-6).
 #pragma once
 
 #include <cstdint>
@@ -55,6 +67,10 @@ struct RelabellingOptions {
   /// [alpha / 1.5, 1.5 alpha] gets the other side of alpha with probability below 0.4 %
   /// (docs/findings.md, "Mixed models: relabelling p-values").
   std::uint64_t exceedances = 50;
+  /// The conditions are within participants: a labelling permutes each participant's own
+  /// conditions among themselves (all trials of a condition move together; with two conditions a
+  /// swap or not per participant), instead of moving whole participants between the conditions.
+  bool within = false;
 };
 
 /// The observed statistics and their relabelling p-values. A statistic is empty when the observed
@@ -76,13 +92,25 @@ struct RelabelledConditionTests {
   bool stopped_interaction = false, stopped_condition = false, stopped_slope = false;
   std::uint64_t exceedances = 0;  ///< RelabellingOptions::exceedances when sampled, 0 when exact
   std::uint64_t not_computable = 0;
+  /// The slope family, one entry per condition but the first (group_levels[k] minus
+  /// group_levels[0], k = 1, 2, ...), each test with its own relabelling p-value from the same
+  /// labellings (the findings Holm-adjust them with the F tests). With two conditions, entry 0
+  /// equals slope_difference_t, p_slope_difference, labellings_slope and stopped_slope.
+  std::vector<std::optional<double>> slope_differences_t, p_slope_differences;
+  std::vector<std::uint64_t> labellings_slopes;
+  std::vector<bool> stopped_slopes;
 };
 
-/// Relabels the participants of `data` between the two conditions `group_levels` (the first is
-/// the reference of the slope difference) and refits both random-intercept models under each
-/// labelling. Throws InvalidData when a participant has trials in both conditions or in a
-/// condition not named, and UsageError unless there are exactly two levels, each with a
-/// participant, or when permutations == 0.
+/// Relabels `data` between the conditions `group_levels` (the first is the reference of the slope
+/// differences) and refits both random-intercept models under each labelling. Between
+/// participants (options.within false) whole participants are permuted between the conditions,
+/// the group sizes kept: P! / (n_1! ... n_C!) labellings; with two conditions by the fast refit
+/// above, with three or more by a dense refit (K x K, K = conditions x iterations). Within
+/// participants each participant's own conditions are permuted among themselves, all of a
+/// condition's trials moving together: prod_i (C_i)! labellings (2^P with two conditions), each a
+/// dense refit. Throws InvalidData when a participant has trials in a condition not named or
+/// (between) in two conditions, and UsageError for fewer than two levels, a condition without a
+/// participant (between), or permutations == 0.
 RelabelledConditionTests relabel_condition_tests(const LongData& data, const std::vector<std::string>& group_levels,
                                                  const RelabellingOptions& options = {});
 

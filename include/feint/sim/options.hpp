@@ -48,6 +48,8 @@ struct StudyOptions {
   double pad_speed = 0.8;
   std::string participant_model = "goal-inference";
   std::vector<std::string> observer;  // KEY=VALUE
+  int targets = 2;                    ///< K >= 2 targets on the map (2 + fixed = the paper's study)
+  std::string layout = "fixed";       ///< fixed (a row) or random (drawn per round)
 };
 
 /// The study's settings; the heuristic participant model gets feint 0.1's observer with its own

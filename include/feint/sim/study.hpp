@@ -16,7 +16,9 @@
 #include <vector>
 
 #include "feint/io/output_folder.hpp"
+#include "feint/metrics/layout.hpp"
 #include "feint/sim/observer.hpp"
+#include "feint/sim/pointer_participant.hpp"
 #include "feint/sim/selection.hpp"
 #include "feint/sim/trajectory.hpp"
 
@@ -45,7 +47,22 @@ struct StudySettings {
   std::uint64_t seed = 1;
   Geometry geometry;
   ObserverParams observer = goal_inference_observer();
+  /// Targets on the map, K >= 2 (`--targets`). With 2 and a fixed layout the study is the paper's
+  /// (pad-trace logs); otherwise each participant points (sim/pointer_participant.hpp) and the logs
+  /// are logs of K targets and a pointer (formats.md).
+  int targets = 2;
+  /// `--layout`: false = fixed (row_layout: K targets evenly spaced on the paper's row); true =
+  /// drawn per round from `region` with metrics::draw_layout, seeded per participant and round.
+  bool random_layout = false;
+  metrics::LayoutRegion region;
 };
+
+/// True when the study's participants point on a map (K > 2 targets, or a layout drawn per round).
+bool is_pointer_study(const StudySettings& settings) noexcept;
+
+/// Round `round` (0-based over all of a participant's rounds) of participant `index`: row_layout,
+/// or draw_layout(Rng::stream(seed ^ 0x6c61796f7574, index * 2^20 + round), region, K).
+metrics::Layout round_layout(const StudySettings& settings, int index, int round);
 
 struct TrialRecord {
   int iteration = 0;  // 1-based, within its condition
@@ -54,7 +71,13 @@ struct TrialRecord {
   Variant variant = Variant::main;
   Target target = Target::left;
   std::vector<PadSample> pad;
-  double error = 0;  // trial_error() of the trace
+  double error = 0;  // trial_error() of the trace (pointer studies: the belief point's error)
+  // Pointer studies (is_pointer_study): the round's map, the true target's index, the pointer and
+  // the robot at each sample.
+  metrics::Layout layout;
+  std::size_t target_index = 0;
+  std::vector<PointerSample> pointer;
+  std::vector<TrajectorySample> robot;
 };
 
 struct ParticipantRecord {

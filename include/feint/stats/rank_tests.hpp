@@ -57,6 +57,26 @@ TestResult mann_whitney(std::span<const double> x, std::span<const double> y,
                         const TestOptions& options = {}, bool correct = true,
                         std::optional<bool> exact = std::nullopt);
 
+/// Friedman rank sum test, R's `friedman.test(y)` for an n x k matrix y (participants x
+/// conditions; R's `friedman.test(y ~ condition | participant)` on an unreplicated complete block
+/// design is the same test).
+///
+/// `blocks[i]` holds block i's k values; a block with a NaN value is dropped (R's complete.cases).
+/// Values are ranked within each block (average ranks for ties), R_j = the rank sum of condition j,
+/// and X^2 = 12 sum_j (R_j - n(k+1)/2)^2 / (n k (k+1) - sum(t^3 - t)/(k - 1)) over the tie groups t
+/// of every block, on the chi-square law with k - 1 df (upper tail).
+///
+/// Result: test "friedman", method "Friedman rank sum test", statistic ("chi-squared"), df, p_value,
+/// n1 = complete blocks, and Kendall's W = X^2 / (n (k - 1)) (kendalls_w below; effectsize's
+/// kendalls_w with its tie correction is the same number). `note` says how many blocks were
+/// dropped. Not computable when fewer than 2 conditions, no complete block, or every block is
+/// all tied (0/0; R returns NaN).
+TestResult friedman_test(std::span<const std::vector<double>> blocks);
+
+/// Kendall's coefficient of concordance W of a Friedman result, X^2 / (n (k - 1)) with n = n1 and
+/// k - 1 = df; nullopt when the test was not computed.
+std::optional<double> kendalls_w(const TestResult& friedman);
+
 namespace detail {
 
 /// Average ranks of `values` (R's `rank(ties.method = "average")`), and sum over tie groups of

@@ -6,7 +6,8 @@
 // scale midpoint): the Wilcoxon signed-rank test (R's wilcox.test(x, mu = R); primary, because a
 // single item is ordinal) with the rank-biserial correlation, and beside it the one-sample t-test
 // with Cohen's d (the paper's analysis). Between two conditions: Mann-Whitney U with the
-// rank-biserial correlation, and Welch's t-test. Composite scales: per-respondent mean of their
+// rank-biserial correlation, and Welch's t-test; within participants (`paired`) the signed-rank test
+// on the differences and the paired t-test. Composite scales: per-respondent mean of their
 // items (complete cases), Cronbach's raw alpha (psych::alpha) and alpha if each item is dropped.
 #pragma once
 
@@ -46,6 +47,12 @@ struct LikertSettings {
   std::optional<double> reference;  ///< default: the scale midpoint (min + max) / 2
   std::string condition;            ///< one-sample mode: only this condition ("" = each)
   std::optional<std::pair<std::string, std::string>> compare;  ///< two-sample mode: (A, B)
+  /// With `compare`: the conditions are within participants (each answered after each
+  /// condition). Each participant's A answer is paired with their B answer: the Wilcoxon
+  /// signed-rank test on the differences A - B (R's wilcox.test(x, y, paired = TRUE)) with the
+  /// matched-pairs rank-biserial r, and the paired t-test with d_z and the JZS Bayes factor.
+  /// Participants who answered in only one of the two conditions are left out and named in a note.
+  bool paired = false;
   stats::TestOptions test;                                     ///< alternative, conf_level
   double alpha = 0.05;
   stats::PAdjustMethod p_adjust = stats::PAdjustMethod::none;
@@ -89,6 +96,8 @@ struct LikertAnalysis {
   double reference = 4.0;
   double neutral = 4.0;  ///< scale midpoint
   bool two_sample = false;
+  bool paired = false;  ///< two-sample mode within participants (settings.paired)
+  std::vector<std::string> unpaired;  ///< participants who answered in only one of A and B
   std::vector<std::string> groups;  ///< one-sample: analysed conditions ("" = no condition column)
   std::vector<std::string> names;   ///< items, then composites
   std::vector<bool> is_composite;
@@ -102,7 +111,8 @@ struct LikertAnalysis {
 
 /// Assembles the analysis. Throws UsageError for options that do not fit the data (unknown
 /// condition/item, composite naming an unknown item), InvalidData when two-sample groups share a
-/// participant (Mann-Whitney and Welch need independent groups).
+/// participant (Mann-Whitney and Welch need independent groups; settings.paired pairs them instead)
+/// or, paired, when a participant answered twice in one condition.
 LikertAnalysis analyze_likert(const io::Questionnaire& questionnaire,
                               const LikertSettings& settings);
 

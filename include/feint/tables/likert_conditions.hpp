@@ -9,8 +9,15 @@
 // pairwise.wilcox.test(y, g, p.adjust.method = "holm") for the Mann-Whitney p-values). The pairs
 // are read only after the omnibus test: a pair is labelled as differing only when its item's
 // Kruskal-Wallis test is significant at alpha (protected, as Fisher's LSD protects its pairs).
+//
+// Within participants (settings.paired: each participant answered after each condition), the
+// omnibus test is Friedman's (R's friedman.test(y ~ condition | participant) on the participants who
+// answered in every condition) with Kendall's W (R's effectsize::kendalls_w), and each pair is
+// compared paired (Wilcoxon signed-rank on the differences with the matched-pairs r, primary; the
+// paired t with d_z and the JZS Bayes factor beside it), Holm over the pairs and protected as above.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,8 +33,12 @@ struct LikertConditions {
   std::string source;
   std::vector<std::string> conditions;  ///< in the questionnaire's order
   std::vector<std::string> names;       ///< items, then composites
-  /// Per name: the Kruskal-Wallis test (group1 = the conditions joined by ", ", group2 empty).
+  bool paired = false;  ///< within participants (settings.paired): Friedman and paired pairs
+  /// Per name: the Kruskal-Wallis test, or Friedman's within participants (group1 = the conditions
+  /// joined by ", ", group2 empty).
   std::vector<TidyRow> omnibus;
+  /// Per name, within participants: Kendall's W of the Friedman test (empty between).
+  std::vector<std::optional<double>> kendalls_w;
   /// Per pair (i < j in the conditions' order): the two-condition analysis, whose p_adjusted is
   /// Holm over the pairs of each name and whose labels are protected by the omnibus test.
   std::vector<LikertAnalysis> pairs;
@@ -36,7 +47,7 @@ struct LikertConditions {
 
 /// The analysis above. Throws UsageError when the questionnaire has no condition column or fewer
 /// than two conditions, InvalidData when a participant answered in two conditions (the tests
-/// compare independent groups).
+/// compare independent groups; settings.paired compares them within participants instead).
 LikertConditions analyze_likert_conditions(const io::Questionnaire& questionnaire, const LikertSettings& settings);
 
 /// text / markdown / latex: the omnibus table and the pairs table with the note; csv / json: the

@@ -5,6 +5,8 @@
 // intervals. Between two conditions: Fisher's exact test (primary: exact at any size) with the
 // conditional maximum-likelihood odds ratio and its interval, and beside it the chi-square test of
 // two proportions with the difference p_A - p_B and its interval (R's prop.test, Yates-corrected).
+// Within participants (`paired`): McNemar's exact test with the conditional odds ratio, and R's
+// mcnemar.test beside it (feint/stats/paired_proportions.hpp).
 // docs/yes-no.md has the formulas and a worked example.
 #pragma once
 
@@ -28,6 +30,11 @@ io::QuestionnaireOptions yes_no_load_options();
 struct YesNoSettings {
   io::QuestionnaireOptions load = yes_no_load_options();  ///< columns, items, delimiter
   std::optional<std::pair<std::string, std::string>> compare;  ///< (A, B); none = describe only
+  /// With `compare`: within participants (each answered after each condition). Each participant's
+  /// answer in A is paired with theirs in B: McNemar's exact test (binomial on the discordant pairs,
+  /// primary) with the conditional odds ratio b/c, and R's mcnemar.test beside it; participants
+  /// without both answers are left out (named in a note).
+  bool paired = false;
   stats::TestOptions test;  ///< alternative, conf_level
   double alpha = 0.05;
 };
@@ -52,7 +59,8 @@ struct YesNoAnalysis {
 };
 
 /// Throws UsageError when `settings.compare` names a condition the answers do not have, or
-/// InvalidData when the two compared conditions share a participant.
+/// InvalidData when the two compared conditions share a participant (not paired) or, paired, a
+/// participant answered twice in one condition.
 YesNoAnalysis analyze_yes_no(const io::Questionnaire& answers, const YesNoSettings& settings);
 
 /// Loads `path` with settings.load and analyses it.

@@ -1,0 +1,21 @@
+// Relabelling p-values for the designs the two-condition fast refit (relabelling_refit.hpp) does
+// not cover: the conditions within participants (each participant's conditions permuted among
+// themselves, all of a condition's trials moving together), and three or more conditions between
+// participants (whole participants permuted between the conditions, group sizes kept). Each
+// labelling is a dense REML refit of both random-intercept models in the cell-means
+// parametrisation; see feint/models/model_relabelling.hpp for the method.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "feint/models/model_relabelling.hpp"
+
+namespace feint::models::detail {
+
+/// The relabelling p-values of `data` under `options.within` (swaps within participants) or
+/// between participants with any number (>= 2) of conditions `group_levels`.
+RelabelledConditionTests relabel_general(const LongData& data, const std::vector<std::string>& group_levels,
+                                         const RelabellingOptions& options);
+
+}  // namespace feint::models::detail
