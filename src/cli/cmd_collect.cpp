@@ -55,8 +55,7 @@ void add_collect_command(CLI::App& app) {
       "Run a study: serve the paper's data-collection game (Fig. 8) to participants' browsers, "
       "choose each round's strategy with the condition's algorithm, and write pad-trace logs and "
       "the questionnaire into STUDY in the layout 'feint analyze STUDY' reads. Settings may also "
-      "be "
-      "given in the [collect] section of STUDY/feint.toml (see docs/collect.md).");
+      "be given in the [collect] section of STUDY/feint.toml (see docs/collect.md).");
   cmd->add_option("study", args->study,
                   "Study folder (created files: logs/, practice/, collect/, questionnaire*.csv)")
       ->required();
@@ -113,6 +112,7 @@ void add_collect_command(CLI::App& app) {
   cmd->add_option("--idle-timeout", args->o.idle_timeout,
                   "Seconds a kept-alive connection may wait for its next request (default 10)")
       ->check(CLI::Range(1, 3600));
+  collect::add_design_options(*cmd, args->o);  // --targets, --layout, --belief
   cmd->callback([cmd, args] { run(*cmd, *args); });
 }
 

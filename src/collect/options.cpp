@@ -1,5 +1,6 @@
 #include "feint/collect/options.hpp"
 
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <unistd.h>
@@ -69,12 +70,42 @@ Settings study_settings(const CollectOptions& a, const fs::path& study) {
     while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) s.consent.append(buf, n);
     std::fclose(f);
   }
+  s.targets = a.targets;
+  if (a.layout != "fixed" && a.layout != "random")
+    throw UsageError(fmt::format("--layout '{}': expected fixed or random", a.layout));
+  s.layout = a.layout == "random" ? LayoutMode::random : LayoutMode::fixed;
+  if (!a.belief.empty() && a.belief != "pad" && a.belief != "pointer")
+    throw UsageError(fmt::format("--belief '{}': expected pad or pointer", a.belief));
+  const bool pointer =
+      a.belief == "pointer" || (a.belief.empty() && (a.targets != 2 || a.layout == "random"));
+  s.belief = pointer ? BeliefInput::pointer : BeliefInput::pad;
+  if (a.belief == "pad" && a.targets != 2) {
+    throw UsageError(fmt::format(
+        "--belief pad with --targets {}: the pad shows a belief between two targets only; use "
+        "--belief pointer (the participant points at the map)",
+        a.targets));
+  }
+  if (a.belief == "pad" && a.layout == "random") {
+    throw UsageError(
+        "--belief pad with --layout random: the pad is for the paper's fixed two targets; use "
+        "--belief pointer");
+  }
   s.completion_url = a.completion_url;
   if (!s.completion_url.empty() && s.completion_url.rfind("https://", 0) != 0 &&
       s.completion_url.rfind("http://", 0) != 0) {
     throw UsageError("--completion-url must start with https:// or http://");
   }
   return s;
+}
+
+void add_design_options(CLI::App& cmd, CollectOptions& o) {
+  cmd.add_option("--targets", o.targets, "Targets on the map, K >= 2 (default 2)")
+      ->check(CLI::Range(std::size_t{2}, std::size_t{26}));
+  cmd.add_option("--layout", o.layout,
+                 "fixed (the targets in a row, K = 2: the paper's) or random (drawn per round)");
+  cmd.add_option("--belief", o.belief,
+                 "pad (the paper's 1-D pad; K = 2, the default) or pointer (a point held on the "
+                 "map; the default and required for K > 2)");
 }
 
 ServerOptions server_options(const CollectOptions& a) {
@@ -106,9 +137,13 @@ std::string start_message(const fs::path& study, const Settings& s, const std::s
   const std::string shown_host = host.find(':') != std::string::npos ? "[" + host + "]" : host;
   std::string conditions;
   for (const auto& x : s.conditions) conditions += (conditions.empty() ? "" : ", ") + x.name;
-  std::string out = fmt::format(
-      "feint collect: study {} ({}; {} practice + {} rounds; pad speed {}/s)\n", study.string(),
-      conditions, s.practice, s.iterations, io::format_double(s.pad_speed));
+  const std::string belief =
+      s.belief == BeliefInput::pad
+          ? fmt::format("pad speed {}/s", io::format_double(s.pad_speed))
+          : fmt::format("{} targets, {} layout, belief a point held on the map", s.targets,
+                        s.layout == LayoutMode::random ? "random" : "fixed");
+  std::string out = fmt::format("feint collect: study {} ({}; {} practice + {} rounds; {})\n",
+                                study.string(), conditions, s.practice, s.iterations, belief);
   out += fmt::format("port: {}\n", server.port());
   out += fmt::format("participants: http://{}:{}/\n", shown_host, server.port());
   out += fmt::format("admin:        http://{}:{}/admin?token={}\n", shown_host, server.port(),
@@ -148,6 +183,16 @@ std::string study_toml(const Settings& s, std::string_view tool_version) {
       "metric = [\"error=0.5\", \"confusion=0.95@raw\"]\n\n"
       "# The questionnaire's answers are whole numbers 1-7.\n"
       "likert-scale = \"1-7\"\n";
+  if (s.belief == BeliefInput::pointer) {
+    out += fmt::format(
+        "\n# Belief as a point held on the map, {} targets, layout {}: the logs have the columns\n"
+        "# t, belief_x, belief_y, start_x, start_y, target0_x ... target{}_y, robot_x, robot_y (m),\n"
+        "# target = the true target's index. The design, pinned for feint collect (a restart with\n"
+        "# other values would mix two designs) and read by feint analyze:\n"
+        "[collect]\ntargets = {}\nlayout = \"{}\"\nbelief = \"pointer\"\n",
+        s.targets, s.layout == LayoutMode::random ? "random" : "fixed", s.targets - 1, s.targets,
+        s.layout == LayoutMode::random ? "random" : "fixed");
+  }
   return out;
 }
 

@@ -28,6 +28,13 @@ inline constexpr std::string_view kLegacyLogHeader =
 inline constexpr std::string_view kAssignmentHeader = "participant,index,condition,assigned_utc\n";
 inline constexpr std::string_view kEventsHeader = "time_utc,participant,event,detail\n";
 
+/// The round's map, true target and robot path (layouts.cpp): a pad study keeps the paper's layout
+/// (target 0 is the left one); a pointer study draws or fixes its layout, and at K > 2 its true
+/// target uniformly, from streams of the study's seed keyed by participant, kind and iteration.
+void place_round(Round& r, const Settings& s, std::size_t index);
+/// The checks of targets, layout and belief (UsageError saying what to change).
+void validate_design(const Settings& s);
+
 template <class P>
 ParticipantStatus make_status(const P& p, const Settings& s) {
   ParticipantStatus st;

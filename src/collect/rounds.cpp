@@ -307,6 +307,74 @@ std::string round_rows(const std::string& id, const std::string& condition, int 
   return block;
 }
 
+// A pointer study's trace: the belief point held on the map, t from the first touch.
+void validate_pointer_trace(const std::vector<PointerSample>& s, const Round& r,
+                            const Settings& settings, const std::string& name) {
+  auto bad = [&](const std::string& why) {
+    return Rejection(422, "invalid_trace", name + ": " + why);
+  };
+  if (s.size() < 2) throw bad("fewer than 2 samples");
+  if (s.size() > settings.max_samples) {
+    throw Rejection(
+        413, "too_many_samples",
+        fmt::format("{}: {} samples (at most {})", name, s.size(), settings.max_samples));
+  }
+  if (s.front().t != 0) throw bad("the first sample must be at t = 0 (the first touch)");
+  const MapBounds b = map_bounds(settings);
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (!std::isfinite(s[i].t) || !std::isfinite(s[i].x) || !std::isfinite(s[i].y))
+      throw bad(fmt::format("sample {} is not a number", i + 1));
+    if (s[i].x < b.x_min || s[i].x > b.x_max || s[i].y < b.y_min || s[i].y > b.y_max) {
+      throw bad(fmt::format("sample {}: ({}, {}) is outside the map [{}, {}] x [{}, {}] m", i + 1,
+                            io::format_double(s[i].x), io::format_double(s[i].y),
+                            io::format_double(b.x_min), io::format_double(b.x_max),
+                            io::format_double(b.y_min), io::format_double(b.y_max)));
+    }
+    if (i > 0 && !(s[i].t > s[i - 1].t))
+      throw bad(fmt::format("sample {}: times must increase", i + 1));
+  }
+  if (s.back().t != r.duration()) {
+    throw bad(fmt::format("the last sample must be at the end of the round, t = {}",
+                          io::format_double(r.duration())));
+  }
+}
+
+// A pointer study's rows: the trial's layout repeated on every row (constant within a trial), the
+// robot's exact position on its polyline at each sample.
+std::string pointer_rows(const std::string& id, const std::string& condition, int iteration,
+                         const Round& r, double speed, const std::vector<PointerSample>& s) {
+  std::string key =
+      fmt::format("{},{},{},{},{},{},", id, condition, iteration, sim::to_string(r.strategy),
+                  sim::to_string(r.variant), r.target_index);
+  std::string layout;
+  auto point = [&layout](double x, double y) {
+    layout += ',';
+    detail::append_metres(layout, x);
+    layout += ',';
+    detail::append_metres(layout, y);
+  };
+  point(r.layout.start.x, r.layout.start.y);
+  for (const auto& q : r.layout.targets) point(q.x, q.y);
+  std::string block;
+  block.reserve(s.size() * (key.size() + layout.size() + 64));
+  for (const auto& x : s) {
+    block += key;
+    detail::append_double(block, x.t);
+    block += ',';
+    detail::append_double(block, x.x);
+    block += ',';
+    detail::append_double(block, x.y);
+    block += layout;
+    const sim::Point robot = sim::position_on_path(r.waypoints, speed, x.t);
+    block += ',';
+    detail::append_metres(block, robot.x);
+    block += ',';
+    detail::append_metres(block, robot.y);
+    block += '\n';
+  }
+  return block;
+}
+
 // Once the commit is done: the round counts as saved only when its rows were written; sets the
 // participant's new status in `st` and returns the error to answer with.
 template <class P, class Done>
@@ -326,13 +394,48 @@ std::exception_ptr record_saved_round(P& p, int k, int iteration, const Done& do
 
 void Study::submit_round(const std::string& id, RoundKind kind, int iteration,
                          std::vector<PadSample> samples, Then<ParticipantStatus> then) {
+  if (settings_.belief != BeliefInput::pad) {
+    return then(std::make_exception_ptr(Rejection(
+                    400, "malformed", "this study takes pointer samples (lines 't,x,y')")),
+                {});
+  }
+  const std::size_t n = samples.size();
+  auto rows = [this, id, kind, iteration, s = std::move(samples)](
+                  const Round& r, const std::string& condition, bool legacy) {
+    const std::string name = fmt::format("{} round {}", to_string(kind), iteration);
+    validate_trace(s, r, settings_, name);
+    return round_rows(id, condition, iteration, r, settings_, s, legacy);
+  };
+  submit_rows(id, kind, iteration, n, std::move(rows), std::move(then));
+}
+
+void Study::submit_round(const std::string& id, RoundKind kind, int iteration,
+                         std::vector<PointerSample> samples, Then<ParticipantStatus> then) {
+  if (settings_.belief != BeliefInput::pointer) {
+    return then(std::make_exception_ptr(
+                    Rejection(400, "malformed", "this study takes pad samples (lines 't,pad')")),
+                {});
+  }
+  const std::size_t n = samples.size();
+  auto rows = [this, id, kind, iteration, s = std::move(samples)](
+                  const Round& r, const std::string& condition, bool) {
+    const std::string name = fmt::format("{} round {}", to_string(kind), iteration);
+    validate_pointer_trace(s, r, settings_, name);
+    return pointer_rows(id, condition, iteration, r, settings_.geometry.speed, s);
+  };
+  submit_rows(id, kind, iteration, n, std::move(rows), std::move(then));
+}
+
+void Study::submit_rows(const std::string& id, RoundKind kind, int iteration, std::size_t samples,
+                        RowsOf rows,
+                        Then<ParticipantStatus> then) {
   std::shared_ptr<Participant> p;
   try {
     p = find(id);
   } catch (...) {
     return then(std::current_exception(), {});
   }
-  exclusive(p, [this, p, id, kind, iteration, s = std::move(samples),
+  exclusive(p, [this, p, id, kind, iteration, samples, rows = std::move(rows),
                 then = std::move(then)]() mutable {
     const int k = static_cast<int>(kind);
     const std::string name = fmt::format("{} round {}", to_string(kind), iteration);
@@ -353,16 +456,15 @@ void Study::submit_round(const std::string& id, RoundKind kind, int iteration,
         r = plan_for(*p, kind, iteration);
         legacy = p->legacy_log[k];
       }
-      validate_trace(s, r, settings_, name);
       // The round and its `saved` event in one commit: synced together with whatever other
       // rounds arrived meanwhile (group commit); the event is written only when the round was.
-      commit.push_back({path, std::string(legacy ? detail::kLegacyLogHeader : detail::kLogHeader),
-                        round_rows(id, settings_.conditions[p->condition].name, iteration, r,
-                                   settings_, s, legacy)});
+      commit.push_back(
+          {path, legacy ? std::string(detail::kLegacyLogHeader) : log_header(settings_),
+           rows(r, settings_.conditions[p->condition].name, legacy)});
       commit.push_back(
           {dir_ / "collect" / "events.csv", std::string(detail::kEventsHeader),
            fmt::format("{},{},saved,{}\n", detail::utc_now(), id,
-                       csv_field(fmt::format("{} ({} samples)", name, s.size())))});
+                       csv_field(fmt::format("{} ({} samples)", name, samples)))});
     } catch (...) {
       const auto e = std::current_exception();
       then(e, {});
@@ -472,6 +574,12 @@ Round Study::start_round(const std::string& id) {
 
 ParticipantStatus Study::submit_round(const std::string& id, RoundKind kind, int iteration,
                                       const std::vector<PadSample>& samples) {
+  return wait_for<ParticipantStatus>(
+      [&](auto then) { submit_round(id, kind, iteration, samples, std::move(then)); });
+}
+
+ParticipantStatus Study::submit_round(const std::string& id, RoundKind kind, int iteration,
+                                      const std::vector<PointerSample>& samples) {
   return wait_for<ParticipantStatus>(
       [&](auto then) { submit_round(id, kind, iteration, samples, std::move(then)); });
 }

@@ -128,7 +128,7 @@ std::string status_json(const Study& study, const ParticipantStatus& st) {
                                                    : fmt::format("{{\"name\":{},\"question\":{}}}",
                                                                  io::json_quote(s.yes_no_item),
                                                                  io::json_quote(s.yes_no_question));
-  return fmt::format(
+  std::string out = fmt::format(
       "{{\"participant\":{},\"stage\":\"{}\",\"practice\":{},\"iterations\":{},\"practice_saved\":{"
       "},"
       "\"rounds_saved\":{},\"pad_speed\":{},\"target_distance\":{},\"target_height\":{},"
@@ -137,6 +137,16 @@ std::string status_json(const Study& study, const ParticipantStatus& st) {
       st.practice_saved, st.rounds_saved, io::json_number(s.pad_speed),
       io::json_number(s.geometry.target_distance), io::json_number(s.geometry.target_height),
       io::json_quote(s.consent), io::json_quote(s.completion_url), items, yes_no);
+  if (s.belief == BeliefInput::pointer) {  // the page draws the map in these bounds (metres)
+    const MapBounds b = map_bounds(s);
+    out.pop_back();
+    out += fmt::format(
+        ",\"belief\":\"pointer\",\"targets\":{},\"sample_rate\":{},"
+        "\"map\":{{\"x_min\":{},\"x_max\":{},\"y_min\":{},\"y_max\":{}}}}}",
+        s.targets, io::json_number(s.geometry.sample_rate), io::json_number(b.x_min),
+        io::json_number(b.x_max), io::json_number(b.y_min), io::json_number(b.y_max));
+  }
+  return out;
 }
 
 using io::html_escape;
@@ -242,6 +252,32 @@ std::vector<PadSample> parse_trace(std::string_view body) {
       throw Rejection(400, "malformed", fmt::format("trace line {}: expected 't,pad'", line));
     }
     out.push_back({*t, *pad});
+  }
+  return out;
+}
+
+/// A pointer study's body: lines `t,x,y` (metres on the map).
+std::vector<PointerSample> parse_pointer_trace(std::string_view body) {
+  std::vector<PointerSample> out;
+  std::size_t line = 0;
+  while (!body.empty()) {
+    ++line;
+    const auto nl = body.find('\n');
+    std::string_view l = body.substr(0, nl);
+    body = nl == std::string_view::npos ? std::string_view() : body.substr(nl + 1);
+    if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
+    if (l.empty()) continue;
+    const auto c1 = l.find(',');
+    const auto c2 = c1 == std::string_view::npos ? c1 : l.find(',', c1 + 1);
+    std::optional<double> v[3];
+    if (c2 != std::string_view::npos) {
+      v[0] = io::parse_double(l.substr(0, c1));
+      v[1] = io::parse_double(l.substr(c1 + 1, c2 - c1 - 1));
+      v[2] = io::parse_double(l.substr(c2 + 1));
+    }
+    if (!v[0] || !v[1] || !v[2])
+      throw Rejection(400, "malformed", fmt::format("trace line {}: expected 't,x,y'", line));
+    out.push_back({*v[0], *v[1], *v[2]});
   }
   return out;
 }
@@ -504,6 +540,14 @@ Then<Round> round_answer(Study& study, const RequestInfo& info, const std::strin
     json_array(out, "t", r.path, &sim::TrajectorySample::t);
     json_array(out, "x", r.path, &sim::TrajectorySample::x);
     json_array(out, "y", r.path, &sim::TrajectorySample::y);
+    if (study.settings().belief == BeliefInput::pointer) {  // the round's map
+      out += fmt::format(",\"start\":[{},{}],\"layout\":[", io::json_number(r.layout.start.x),
+                         io::json_number(r.layout.start.y));
+      for (std::size_t k = 0; k < r.layout.targets.size(); ++k)
+        out += fmt::format("{}[{},{}]", k ? "," : "", io::json_number(r.layout.targets[k].x),
+                           io::json_number(r.layout.targets[k].y));
+      out += ']';
+    }
     out += '}';
     reply({200, "application/json", std::move(out)});
   };
@@ -518,9 +562,11 @@ void submit_round_request(Study& study, const Form& query, const std::string& pa
   const auto it = io::parse_integer(form_value(query, "iteration"));
   if (!it || *it < 1 || *it > 100000)
     throw Rejection(400, "malformed", "iteration must be a whole number >= 1");
-  auto samples = parse_trace(body);
-  study.submit_round(participant, kind == "practice" ? RoundKind::practice : RoundKind::main,
-                     static_cast<int>(*it), std::move(samples), std::move(then));
+  const RoundKind k = kind == "practice" ? RoundKind::practice : RoundKind::main;
+  if (study.settings().belief == BeliefInput::pointer)
+    return study.submit_round(participant, k, static_cast<int>(*it), parse_pointer_trace(body),
+                              std::move(then));
+  study.submit_round(participant, k, static_cast<int>(*it), parse_trace(body), std::move(then));
 }
 
 }  // namespace

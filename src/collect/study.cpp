@@ -102,6 +102,7 @@ void validate(const Settings& s) {
     throw UsageError("yes-no-item: use letters, digits, '_' or '-'");
   }
   if (s.max_samples < 2) throw UsageError("max-samples must be >= 2");
+  detail::validate_design(s);
 }
 
 bool valid_participant_id(const std::string& id) noexcept {
@@ -124,7 +125,8 @@ Study::Study(fs::path dir, Settings settings)
       throw IoError(
           fmt::format("{}: cannot create folder: {}", (dir_ / sub).string(), ec.message()));
   }
-  // The robot's paths: one per (strategy, variant, target), the same for every participant.
+  // The robot's paths: one per (strategy, variant, target), the same for every participant
+  // (pointer studies plan each round's path on its own layout).
   for (const auto st : {sim::Strategy::exaggerating, sim::Strategy::switching,
                         sim::Strategy::ambiguous, sim::Strategy::optimal})
     for (const auto v : {sim::Variant::main, sim::Variant::v2})
@@ -167,8 +169,10 @@ Round Study::plan_round(std::size_t index, std::size_t condition, RoundKind kind
     r.variant = it.variant;
     r.target = it.target;
   }
-  r.path = paths_.at({static_cast<int>(r.strategy), static_cast<int>(r.variant),
-                      static_cast<int>(r.target)});
+  if (settings_.belief == BeliefInput::pad)
+    r.path = paths_.at({static_cast<int>(r.strategy), static_cast<int>(r.variant),
+                        static_cast<int>(r.target)});
+  detail::place_round(r, settings_, index);
   return r;
 }
 
@@ -190,8 +194,10 @@ Round Study::plan_for(Participant& p, RoundKind kind, int iteration) const {
   r.strategy = it.strategy;
   r.variant = it.variant;
   r.target = it.target;
-  r.path = paths_.at({static_cast<int>(r.strategy), static_cast<int>(r.variant),
-                      static_cast<int>(r.target)});
+  if (settings_.belief == BeliefInput::pad)
+    r.path = paths_.at({static_cast<int>(r.strategy), static_cast<int>(r.variant),
+                        static_cast<int>(r.target)});
+  detail::place_round(r, settings_, p.index);
   return r;
 }
 
@@ -273,6 +279,11 @@ static void keep_complete_lines(const fs::path& path, const fs::path& damaged_di
 
 namespace {
 
+/// The fields of a row under a pointer study's header.
+std::size_t pointer_columns(const std::string& header) {
+  return static_cast<std::size_t>(std::count(header.begin(), header.end(), ',')) + 1;
+}
+
 /// What a participant's round log holds, read row by row.
 struct LogScan {
   std::size_t good_end = 0;  ///< bytes up to the end of the last complete round (or the header)
@@ -281,10 +292,23 @@ struct LogScan {
 };
 
 /// Whether the first line of a log is its header; `legacy` is set from its layout.
+/// `pointer` is a pointer study's header ("" for a pad study): a study's logs have one layout.
 bool is_log_header(std::string_view line, const std::string& id, const std::string& where,
-                   bool& legacy) {
-  if (std::string(line) + "\n" == kLogHeader || std::string(line) + "\n" == kLegacyLogHeader) {
-    legacy = std::string(line) + "\n" == kLegacyLogHeader;
+                   bool& legacy, const std::string& pointer) {
+  const std::string with_newline = std::string(line) + "\n";
+  if (!pointer.empty()) {
+    if (with_newline == pointer) return true;
+    const auto f0 = io::split_csv_line(std::string(line), ',');
+    if (f0.size() != pointer_columns(pointer) || f0[0] != id) {
+      throw InvalidData(fmt::format(
+          "{}:1: not a log of this study (expected the header '{}'): a pad log, or a study of "
+          "another number of targets; the settings must not change during a study",
+          where, io::trim(pointer)));
+    }
+    return false;  // rows without a header, as below
+  }
+  if (with_newline == kLogHeader || with_newline == kLegacyLogHeader) {
+    legacy = with_newline == kLegacyLogHeader;
     return true;
   }
   const auto f0 = io::split_csv_line(std::string(line), ',');
@@ -300,7 +324,9 @@ bool is_log_header(std::string_view line, const std::string& id, const std::stri
 // A round is complete at its row with t = its duration (round_duration(iteration)); rounds must
 // be 1, 2, ... Throws InvalidData for a row feint collect did not write.
 LogScan scan_log(const std::string& content, const std::string& id, const std::string& where,
-                 bool& legacy, const std::function<double(int)>& round_duration) {
+                 bool& legacy, const std::string& pointer,
+                 const std::function<double(int)>& round_duration) {
+  const std::size_t pointer_fields = pointer.empty() ? 0 : pointer_columns(pointer);
   LogScan scan;
   std::size_t pos = 0;
   int current = 0;  // iteration of the rows being read
@@ -314,7 +340,7 @@ LogScan scan_log(const std::string& content, const std::string& id, const std::s
     const std::size_t next = nl + 1;
     if (!header) {
       header = true;
-      if (is_log_header(line, id, where, legacy)) {
+      if (is_log_header(line, id, where, legacy, pointer)) {
         scan.good_end = next;
         pos = next;
         continue;
@@ -322,7 +348,7 @@ LogScan scan_log(const std::string& content, const std::string& id, const std::s
       scan.headerless = true;
     }
     const auto f = io::split_csv_line(std::string(line), ',');
-    if (f.size() != (legacy ? 9U : 11U) || f[0] != id) {
+    if (f.size() != (pointer.empty() ? (legacy ? 9U : 11U) : pointer_fields) || f[0] != id) {
       throw InvalidData(
           fmt::format("{}: a row that feint collect did not write: '{}'", where, line));
     }
@@ -370,9 +396,11 @@ void Study::recover_log(Participant& p, RoundKind kind) {
   std::error_code ec;
   if (content.empty() && !fs::is_regular_file(path, ec)) return;
   const std::string where = path.string();
-  const LogScan scan = scan_log(content, p.id, where, p.legacy_log[k], [&](int iteration) {
-    return plan_for(p, kind, iteration).duration();
-  });
+  const std::string header = log_header(settings_);
+  const std::string pointer = settings_.belief == BeliefInput::pointer ? header : std::string();
+  const LogScan scan =
+      scan_log(content, p.id, where, p.legacy_log[k], pointer,
+               [&](int iteration) { return plan_for(p, kind, iteration).duration(); });
   const int complete = scan.complete;
   // A log without a complete round (empty, header only, cut in its header or in its first
   // round) is set aside whole: `feint analyze` never sees a log without rows, and the next round
@@ -380,7 +408,7 @@ void Study::recover_log(Participant& p, RoundKind kind) {
   const std::size_t good_end = complete == 0 ? 0 : scan.good_end;
   if (scan.headerless && good_end > 0) {
     const fs::path aside = log_aside(dir_, p.id, kind);
-    const std::string_view log_header = p.legacy_log[k] ? kLegacyLogHeader : kLogHeader;
+    const std::string_view log_header = p.legacy_log[k] ? kLegacyLogHeader : header;
     detail::replace_with_content(path, std::string(log_header) + content.substr(0, good_end),
                                  aside);
     record_event(p.id, "recovered",

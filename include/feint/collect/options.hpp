@@ -12,6 +12,10 @@
 #include "feint/collect/server.hpp"
 #include "feint/collect/study.hpp"
 
+namespace CLI {
+class App;
+}
+
 namespace feint::collect {
 
 /// The options with their defaults (the paper's study on this computer).
@@ -39,11 +43,19 @@ struct CollectOptions {
   std::vector<std::string> trusted_proxies;
   std::size_t max_connections = 0;
   int idle_timeout = 10;
+  std::size_t targets = 2;       // K
+  std::string layout = "fixed";  // fixed | random
+  std::string belief;            // pad | pointer; empty: pad for K = 2, pointer for K > 2
 };
+
+/// Registers --targets, --layout and --belief on `feint collect` (kept here so that the command
+/// line stays thin).
+void add_design_options(CLI::App& cmd, CollectOptions& o);
 
 /// The study's settings: conditions parsed, NAME=QUESTION items split, the consent file read
 /// (relative to `study`). Throws UsageError naming the option (--item, --yes-no,
-/// --completion-url), IoError when the consent file cannot be read.
+/// --completion-url, --layout, --belief: --belief pad with --targets > 2 or --layout random),
+/// IoError when the consent file cannot be read.
 Settings study_settings(const CollectOptions& o, const std::filesystem::path& study);
 
 /// The server's options (signals stop it). Throws UsageError for a port outside [0, 65535].

@@ -34,6 +34,7 @@
 #include <tuple>
 #include <vector>
 
+#include "feint/metrics/layout.hpp"
 #include "feint/sim/selection.hpp"
 #include "feint/sim/trajectory.hpp"
 
@@ -54,6 +55,12 @@ struct Condition {
 /// (`adaptive:0.3` is named `adaptive-0.3`). Throws UsageError.
 Condition parse_condition(const std::string& text, double default_lambda);
 
+/// How the participant gives their belief: the paper's 1-D pad (K = 2 only), or a point held on
+/// the map (docs/collect.md "Many targets and a pointer").
+enum class BeliefInput { pad, pointer };
+/// The targets of a round: the same for the whole study, or drawn per round (metrics::draw_layout).
+enum class LayoutMode { fixed, random };
+
 struct Settings {
   std::vector<Condition> conditions{{"adaptive", sim::Algorithm::adaptive, 0.5},
                                     {"random", sim::Algorithm::random, 0.5}};
@@ -71,7 +78,28 @@ struct Settings {
   std::string consent;              // shown before the first round when not empty
   std::string completion_url;       // the completion page links (and redirects) here when not empty
   std::size_t max_samples = 20000;  // per round
+  std::size_t targets = 2;                   // K >= 2
+  LayoutMode layout = LayoutMode::fixed;     // random: drawn per round from `region`
+  BeliefInput belief = BeliefInput::pad;     // pointer: required when K > 2
+  metrics::LayoutRegion region;              // where random layouts are drawn, and their spacing
 };
+
+/// The rectangle of the map (metres) a pointer study draws and accepts belief points in: the
+/// layouts' rectangle (the fixed layout's targets, or the random layouts' region) and the start,
+/// widened by 1 m on every side.
+struct MapBounds {
+  double x_min = 0, x_max = 0, y_min = 0, y_max = 0;
+};
+MapBounds map_bounds(const Settings& s);
+
+/// The fixed layout of K targets: start (0, 0), the targets evenly spaced in a row at
+/// target_height from x = -target_distance / 2 to +target_distance / 2 (at K = 2 the paper's).
+metrics::Layout fixed_layout(const Settings& s);
+
+/// The log's header for a study's K and belief input (pad: today's 1-D layout; pointer:
+/// participant, condition, iteration, strategy, variant, target, t, belief_x, belief_y, start_x,
+/// start_y, target0_x, target0_y, ..., robot_x, robot_y).
+std::string log_header(const Settings& s);
 
 /// Throws UsageError naming the setting when one is out of range.
 void validate(const Settings& s);
@@ -108,6 +136,9 @@ struct Round {
   sim::Variant variant = sim::Variant::main;
   sim::Target target = sim::Target::left;
   std::vector<sim::TrajectorySample> path;
+  metrics::Layout layout;               // the round's map (pad studies: the paper's layout)
+  std::size_t target_index = 0;         // the true target, 0..K-1 (pad: left 0, right 1)
+  std::vector<sim::Point> waypoints;    // pointer studies: the robot's polyline (k_goal_waypoints)
   double duration() const noexcept { return path.empty() ? 0.0 : path.back().t; }
 };
 
@@ -127,6 +158,14 @@ struct ParticipantStatus {
 struct PadSample {
   double t = 0;
   double pad = 0.5;
+};
+
+/// A pointer study's sample: the belief as a point on the map (metres), t seconds after the trial
+/// began (the participant's first touch).
+struct PointerSample {
+  double t = 0;
+  double x = 0;
+  double y = 0;
 };
 
 /// The completion of an asynchronous Study operation: the error (Rejection, IoError...) or the
@@ -157,6 +196,11 @@ class Study {
   /// Throws Rejection: 404 unknown, 409 duplicate/out_of_order, 422 invalid trace.
   ParticipantStatus submit_round(const std::string& id, RoundKind kind, int iteration,
                                  const std::vector<PadSample>& samples);
+  /// The same for a pointer study (422 invalid_trace: first t = 0, times increasing, finite,
+  /// inside map_bounds, last at the round's end; 400 malformed in a pad study, and the pad form
+  /// in a pointer study).
+  ParticipantStatus submit_round(const std::string& id, RoundKind kind, int iteration,
+                                 const std::vector<PointerSample>& samples);
   /// Appends the questionnaire answers (item -> 1..7, yes/no item -> "yes"/"no").
   ParticipantStatus submit_questionnaire(const std::string& id,
                                          const std::map<std::string, std::string>& answers);
@@ -178,6 +222,8 @@ class Study {
   void start_round(const std::string& id, Then<Round> then);
   void submit_round(const std::string& id, RoundKind kind, int iteration,
                     std::vector<PadSample> samples, Then<ParticipantStatus> then);
+  void submit_round(const std::string& id, RoundKind kind, int iteration,
+                    std::vector<PointerSample> samples, Then<ParticipantStatus> then);
   void submit_questionnaire(const std::string& id, std::map<std::string, std::string> answers,
                             Then<ParticipantStatus> then);
   void record_event(const std::string& participant, const std::string& event,
@@ -210,6 +256,12 @@ class Study {
   std::filesystem::path log_path(const std::string& id, RoundKind kind) const;
   /// plan_round() from the participant's cached run and the cached trajectories.
   Round plan_for(Participant& p, RoundKind kind, int iteration) const;
+  /// The common part of both submit_round forms: order, recovery, then `rows` (validates and
+  /// formats the round's rows; legacy: the log has the old pad layout) in one commit.
+  using RowsOf =
+      std::function<std::string(const Round&, const std::string& condition, bool legacy)>;
+  void submit_rows(const std::string& id, RoundKind kind, int iteration, std::size_t samples,
+                   RowsOf rows, Then<ParticipantStatus> then);
   std::string event_line(const std::string& participant, const std::string& event,
                          const std::string& detail) const;
   /// Runs `op` when no other operation of `p` is in flight; `op` must call release(p) once done.
