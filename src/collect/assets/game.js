@@ -255,7 +255,7 @@
     if (pointerStudy()) {
       round = null; belief = null; holding = false;
       $('left').hidden = true; $('right').hidden = true;
-      $('instructions').textContent = 'Press Start, then hold the mouse button or your finger on the map ' +
+      $('instructions').textContent = 'Press \u201cWatch the robot\u201d, then hold the mouse button or your finger on the map ' +
         'where you think the robot (grey) is going; the robot starts when you first touch. Move it whenever ' +
         'you change your mind. When you let go, your last point counts.';
     }
