@@ -233,8 +233,9 @@ Response admin_json(const Study& study,
   return {200, "application/json", body + "]}"};
 }
 
-std::vector<PadSample> parse_trace(std::string_view body) {
-  std::vector<PadSample> out;
+// Calls f(line number, line) for each non-empty line of a trace body (LF or CRLF).
+template <typename F>
+void for_each_body_line(std::string_view body, F&& f) {
   std::size_t line = 0;
   while (!body.empty()) {
     ++line;
@@ -242,7 +243,13 @@ std::vector<PadSample> parse_trace(std::string_view body) {
     std::string_view l = body.substr(0, nl);
     body = nl == std::string_view::npos ? std::string_view() : body.substr(nl + 1);
     if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
-    if (l.empty()) continue;
+    if (!l.empty()) f(line, l);
+  }
+}
+
+std::vector<PadSample> parse_trace(std::string_view body) {
+  std::vector<PadSample> out;
+  for_each_body_line(body, [&](std::size_t line, std::string_view l) {
     const auto comma = l.find(',');
     const auto t =
         comma == std::string_view::npos ? std::nullopt : io::parse_double(l.substr(0, comma));
@@ -252,21 +259,14 @@ std::vector<PadSample> parse_trace(std::string_view body) {
       throw Rejection(400, "malformed", fmt::format("trace line {}: expected 't,pad'", line));
     }
     out.push_back({*t, *pad});
-  }
+  });
   return out;
 }
 
 /// A pointer study's body: lines `t,x,y` (metres on the map).
 std::vector<PointerSample> parse_pointer_trace(std::string_view body) {
   std::vector<PointerSample> out;
-  std::size_t line = 0;
-  while (!body.empty()) {
-    ++line;
-    const auto nl = body.find('\n');
-    std::string_view l = body.substr(0, nl);
-    body = nl == std::string_view::npos ? std::string_view() : body.substr(nl + 1);
-    if (!l.empty() && l.back() == '\r') l.remove_suffix(1);
-    if (l.empty()) continue;
+  for_each_body_line(body, [&](std::size_t line, std::string_view l) {
     const auto c1 = l.find(',');
     const auto c2 = c1 == std::string_view::npos ? c1 : l.find(',', c1 + 1);
     std::optional<double> v[3];
@@ -278,7 +278,7 @@ std::vector<PointerSample> parse_pointer_trace(std::string_view body) {
     if (!v[0] || !v[1] || !v[2])
       throw Rejection(400, "malformed", fmt::format("trace line {}: expected 't,x,y'", line));
     out.push_back({*v[0], *v[1], *v[2]});
-  }
+  });
   return out;
 }
 
