@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "feint/error.hpp"
+#include "finite_score.hpp"
 
 namespace feint::metrics {
 
@@ -196,18 +197,6 @@ WindowIntegrals integrate_window(const Trace& tr, double a, double b, std::size_
   return r;
 }
 
-// A score that is not a finite number must never be written: the trial is invalid (e.g. a point
-// moving faster than the largest double, for the raw confusion).
-void reject_non_finite(const BeliefPointScore& s) {
-  for (const auto& [name, value] : {std::pair<const char*, double>{"error", s.error},
-                                    {"confusion", s.confusion}}) {
-    if (!std::isfinite(value)) {
-      throw InvalidData(fmt::format("{} is not a finite number ({}; the trial's {} samples span "
-                                    "{} s)", name, value, s.n_samples, s.duration));
-    }
-  }
-}
-
 }  // namespace
 
 BeliefPointScore score_belief_points(std::span<const double> times,
@@ -243,7 +232,7 @@ BeliefPointScore score_belief_points(std::span<const double> times,
   } else {
     s.confusion = std::ldexp(in.moving / tau, tr.k);  // 2^-k twice in w^2, once in tau
   }
-  reject_non_finite(s);
+  detail::reject_non_finite(s);
   return s;
 }
 

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "feint/error.hpp"
+#include "finite_score.hpp"
 #include "feint/io/number.hpp"
 
 namespace feint::metrics {
@@ -314,18 +315,6 @@ WindowIntegrals integrate_window(const ScaledTime& w, std::span<const double> pa
   return r;
 }
 
-// A score that is not a finite number must never be written: the trial is invalid (e.g. a
-// segment moving faster than the largest double pad units per second, for the raw confusion).
-void reject_non_finite(const TrialScore& s) {
-  for (const auto& [name, value] : {std::pair<const char*, double>{"error", s.error},
-                                    {"confusion", s.confusion}}) {
-    if (!std::isfinite(value)) {
-      throw InvalidData(fmt::format("{} is not a finite number ({}; the trial's {} samples span "
-                                    "{} s)", name, value, s.n_samples, s.duration));
-    }
-  }
-}
-
 }  // namespace
 
 TrialScore score_trace(std::span<const double> times, std::span<const double> pads, double target,
@@ -362,7 +351,7 @@ TrialScore score_trace(std::span<const double> times, std::span<const double> pa
     s.confusion = std::ldexp(in.moving / tau, w.k);
   }
   belief.finish(pads, w, a, b, w.k, s);
-  reject_non_finite(s);
+  detail::reject_non_finite(s);
   return s;
 }
 
