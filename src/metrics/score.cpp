@@ -21,7 +21,7 @@
 #include "feint/io/number.hpp"
 #include "feint/io/output.hpp"
 #include "feint/io/pointer_trace.hpp"
-#include "feint/metrics/belief_point.hpp"
+#include "score_detail.hpp"
 
 namespace feint::metrics {
 
@@ -81,6 +81,15 @@ void append_row(std::string& buf, const io::Trial& t, const TrialScore& s) {
   fmt::format_to(std::back_inserter(buf), "{},", s.flips);
   num(s.time_deceived);
   if (!std::isnan(s.final_belief_time)) fmt::format_to(std::back_inserter(buf), "{}", s.final_belief_time);
+  if (const auto& p = s.pointer) {
+    buf.push_back(',');
+    num(p->auc);
+    num(p->mad);
+    num(p->mad_time);
+    fmt::format_to(std::back_inserter(buf), "{},{},", p->xpos_flips, p->ypos_flips);
+    num(p->initiation_time);
+    if (!std::isnan(p->idle_time)) fmt::format_to(std::back_inserter(buf), "{}", p->idle_time);
+  }
   buf.push_back('\n');
 }
 
@@ -166,37 +175,6 @@ io::Rejection unscorable_rejection(const io::Trial& trial, const InvalidData& e)
   r.rows = trial.rows;
   r.reason = e.what();
   return r;
-}
-
-// A trial of a K-target log (formats.md "Logs of K targets and a pointer") scored as a belief point
-// (belief_point.hpp), in the scores table's columns: error and confusion in layout scales (at K = 2
-// on the paper's layout, the pad's scores). final_pad and the pad's belief-trace measures are not
-// defined for a point (written empty; flips 0); `target` is the true target's index.
-TrialScore score_pointer_trial(const io::Trial& t, const MetricSettings& m) {
-  Layout layout;
-  layout.start = {t.start_x, t.start_y};
-  for (std::size_t k = 0; k < t.targets_x.size(); ++k) layout.targets.push_back({t.targets_x[k], t.targets_y[k]});
-  std::vector<MapPoint> points(t.belief_x.size());
-  for (std::size_t i = 0; i < points.size(); ++i) points[i] = {t.belief_x[i], t.belief_y[i]};
-  BeliefPointScore b;
-  try {
-    b = score_belief_points(t.times, points, layout, t.target_index, t.pad_speed, m);
-  } catch (const InvalidData& e) {
-    throw InvalidData(fmt::format("{}:{}: {} (trial {})", t.file, t.line, e.what(), t.label()));
-  }
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  TrialScore s;
-  s.n_samples = b.n_samples;
-  s.duration = b.duration;
-  s.error = b.error;
-  s.confusion = b.confusion;
-  s.reversal_time = b.reversal_time;
-  s.reversals = b.reversals;
-  s.final_pad = nan;
-  s.overspeed_segments = b.overspeed_segments;
-  s.signed_area = s.max_deviation = s.time_deceived = s.final_belief_time = nan;
-  s.flips = 0;
-  return s;
 }
 
 // The summary's counts: the reader's, less the trials rejected after reading. Every row read must
@@ -309,8 +287,10 @@ void refuse_inputs_as_outputs(const std::vector<std::string>& files,
   }
 }
 
-void append_header(std::string& buf) {
-  const auto& cols = score_columns();
+// The header; logs of K targets and a pointer add the pointer measures' columns at the end.
+void append_header(std::string& buf, bool pointer) {
+  auto cols = score_columns();
+  if (pointer) cols.insert(cols.end(), detail::pointer_score_columns().begin(), detail::pointer_score_columns().end());
   for (std::size_t i = 0; i < cols.size(); ++i) {
     buf += cols[i];
     buf.push_back(i + 1 < cols.size() ? ',' : '\n');
@@ -481,7 +461,7 @@ ScoreSummary score_each(const std::vector<std::string>& inputs, const ScoreSetti
   }
   if (!files.empty() && io::is_pointer_log(files.front(), opt)) {
     io::PointerTraceReader reader(files, opt);
-    return score_loop(reader, files, settings, on_trial, opt, &score_pointer_trial, progress);
+    return score_loop(reader, files, settings, on_trial, opt, &detail::score_pointer_trial, progress);
   }
   io::TraceReader reader(files, opt);
   return score_loop(reader, files, settings, on_trial, opt, &score_trial, progress);
@@ -499,7 +479,7 @@ ScoreSummary score_to_file(const std::vector<std::string>& inputs, const ScoreSe
   io::AtomicOutput out(output_path);
   std::string buf;
   buf.reserve(1 << 16);
-  append_header(buf);
+  append_header(buf, !files.empty() && io::is_pointer_log(files.front(), reading_options(settings)));
   std::ostream& os = out.stream();
   TableCheck table;
   auto emit = [&](const std::string& b) {

@@ -7,7 +7,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
+#include <sstream>
 #include <string>
 #include <tuple>
 
@@ -110,5 +112,75 @@ TEST(PointerScores, SpeedNormalisationWithoutAPointerSpeedSaysHowToGiveIt) {
   } catch (const UsageError& e) {
     EXPECT_NE(std::string(e.what()).find("--pad-speed"), std::string::npos) << e.what();
   }
+  fs::remove_all(dir);
+}
+
+namespace {
+
+// The cells of the scores file's first data row, by header name.
+std::map<std::string, std::string> first_row(const std::string& csv) {
+  std::istringstream in(csv);
+  std::string header, row;
+  std::getline(in, header);
+  std::getline(in, row);
+  std::map<std::string, std::string> out;
+  std::istringstream h(header), r(row);
+  for (std::string name, cell; std::getline(h, name, ',');) {
+    cell.clear();
+    std::getline(r, cell, ',');
+    out[name] = cell;
+  }
+  return out;
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+// docs/pointer-measures.md "In the scores table": the worked example's trace (metres, seconds) on a
+// layout of scale 8 (targets (-4, 4), (4, 4), (0, 8)): distances are read in layout scales, so AUC
+// = 6 / 8^2, MAD = 2 sqrt2 / 8; flips, initiation and idle times as in the worked example.
+TEST(PointerScores, ScoresFileOfAPointerLogHasTheMousetrapColumnsInLayoutScales) {
+  const fs::path dir = fs::temp_directory_path() / ("feint-test-pointer-mt-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string f = (dir / "k.csv").string();
+  std::ofstream out(f, std::ios::binary);
+  out << "participant,iteration,target,t,belief_x,belief_y,start_x,start_y,target0_x,target0_y,target1_x,"
+         "target1_y,target2_x,target2_y\n";
+  const double t[] = {0, 0.010, 0.030, 0.045, 0.055, 0.060}, x[] = {0, 0, 2, 1, -1, -4}, y[] = {0, 0, 2, 1, 3, 4};
+  for (int i = 0; i < 6; ++i) out << fmt::format("P1,1,0,{},{},{},0,0,-4,4,4,4,0,8\n", t[i], x[i], y[i]);
+  out.close();
+  metrics::ScoreSettings s;
+  const std::string scores = (dir / "scores.csv").string();
+  metrics::score_to_file({f}, s, scores);
+  const auto row = first_row(read_text(scores));
+  ASSERT_EQ(row.count("auc"), 1U) << read_text(scores);
+  EXPECT_NEAR(std::stod(row.at("auc")), 6.0 / 64.0, 1e-12);
+  EXPECT_NEAR(std::stod(row.at("mad")), 2 * std::sqrt(2.0) / 8, 1e-12);
+  EXPECT_NEAR(std::stod(row.at("mad_time")), 0.030, 1e-12);
+  EXPECT_EQ(row.at("xpos_flips"), "1");
+  EXPECT_EQ(row.at("ypos_flips"), "2");
+  EXPECT_NEAR(std::stod(row.at("initiation_time")), 0.010, 1e-12);
+  EXPECT_NEAR(std::stod(row.at("idle_time")), 0.010, 1e-12);
+  EXPECT_EQ(row.at("final_pad"), "");  // a pad's measure: not defined for a point
+  fs::remove_all(dir);
+}
+
+// A pad log's scores file keeps its columns (the pointer measures are only for pointer logs).
+TEST(PointerScores, ScoresFileOfAPadLogHasNoPointerColumns) {
+  const fs::path dir = fs::temp_directory_path() / ("feint-test-pad-cols-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string f = (dir / "pad.csv").string();
+  std::ofstream(f, std::ios::binary) << "participant,iteration,target,t,pad\nP1,1,1,0,0.5\nP1,1,1,1,0.9\n";
+  const std::string scores = (dir / "scores.csv").string();
+  metrics::score_to_file({f}, metrics::ScoreSettings{}, scores);
+  const std::string text = read_text(scores);
+  std::string header = text.substr(0, text.find('\n'));
+  std::string expected;
+  for (const auto& c : metrics::score_columns()) expected += (expected.empty() ? "" : ",") + c;
+  EXPECT_EQ(header, expected);
   fs::remove_all(dir);
 }

@@ -62,6 +62,18 @@ struct MetricSettings {
   void validate() const;
 };
 
+/// A pointer trial's mousetrap measures (docs/pointer-measures.md "In the scores table"): distances
+/// in layout scales, times in seconds since the trial's first sample.
+struct PointerColumns {
+  double auc = 0;              // AUC: signed area between the pointer's path and its direct path
+  double mad = 0;              // MAD: signed maximum absolute deviation from the direct path
+  double mad_time = 0;         // MAD_time
+  int xpos_flips = 0;          // direction changes along x
+  int ypos_flips = 0;          // direction changes along y
+  double initiation_time = 0;  // last time before the pointer leaves its first position
+  double idle_time = 0;        // time without movement
+};
+
 struct TrialScore {
   std::size_t n_samples = 0;
   double duration = 0;       // tau, seconds
@@ -79,6 +91,8 @@ struct TrialScore {
   int flips = 0;                 // direction changes larger than the belief dead band
   double time_deceived = 0;      // share of the window on the false side beyond the dead band
   double final_belief_time = 0;  // seconds since t0
+  /// Logs of K targets and a pointer only (empty for pad trials).
+  std::optional<PointerColumns> pointer;
 };
 
 
