@@ -17,6 +17,12 @@ namespace feint::analysis::detail {
 
 namespace {
 
+// A sentence starts with a capital, as every finding's.
+std::string title_case(std::string s) {
+  if (!s.empty() && s[0] >= 'a' && s[0] <= 'z') s[0] = static_cast<char>(s[0] - 'a' + 'A');
+  return s;
+}
+
 // The t test of the same item, condition(s) as a rank row (the questionnaire's secondary test).
 const stats::TestResult* t_row_of(const tables::LikertAnalysis& a, const tables::TidyRow& rank) {
   for (const auto& row : a.rows)
@@ -141,58 +147,155 @@ void add_likert_conditions_findings(std::vector<Finding>& out, const std::option
   }
 }
 
-// The yes/no questions between the conditions: each finding rests on Fisher's exact test, with
-// the proportions of yes and the conditional maximum-likelihood odds ratio (docs/yes-no.md). No
-// Bayes factor exists here, so a large p is never evidence for no difference.
+// A yes/no comparison of two conditions (Fisher's exact test between participants, McNemar's exact
+// test within), with the proportions of yes and the conditional odds ratio (docs/yes-no.md). No
+// Bayes factor exists here, so a large p is never evidence for no difference. Across three or more
+// conditions `row` is one pair, its p Holm-adjusted over the question's pairs.
+Finding yes_no_pair_finding(const tables::TidyRow& row, const tables::YesNoAnalysis& a, std::string id,
+                            std::string question, const WordingRules& rules) {
+  const bool paired = row.result.test == "mcnemar_exact";
+  const stats::TestResult& r = row.result;
+  const std::string what = fmt::format("{} (yes/no): {} vs {}", row.metric, row.group1, row.group2);
+  std::string title = what;  // a sentence starts with a capital, as every finding's
+  if (!title.empty() && title[0] >= 'a' && title[0] <= 'z') title[0] = static_cast<char>(title[0] - 'a' + 'A');
+  Finding f = difference_finding(std::move(id), "H2", std::move(question), what, r, nullptr, "yes-no", rules);
+  f.measure = row.metric;
+  detail::name_conditions(f, row.group1, row.group2);
+  f.test = paired ? "McNemar's exact test" : "Fisher's exact test";
+  if (!r.computed || !r.mean1 || !r.mean2) return f;
+  f.direction = fmt::format("{} {} {}", row.group1, *r.mean1 > *r.mean2 ? ">" : *r.mean1 < *r.mean2 ? "<" : "=",
+                            row.group2);
+  // The difference of the proportions of yes with its interval (prop.test's, beside Fisher's);
+  // the odds ratio, whose null value is 1, is the effect size.
+  f.estimate.reset();
+  f.ci_low.reset();
+  f.ci_high.reset();
+  for (const auto& other : a.rows)
+    if (other.metric == row.metric && other.group1 == row.group1 && other.group2 == row.group2 &&
+        other.result.test == (paired ? "mcnemar" : "prop_test") && other.result.computed) {
+      f.estimate = other.result.estimate;
+      f.ci_low = other.result.conf_low;
+      f.ci_high = other.result.conf_high;
+    }
+  if (r.estimate) f.effect_size = EffectSize{"odds_ratio", *r.estimate, r.conf_low, r.conf_high};
+  const std::string odds =
+      r.estimate && r.conf_low && r.conf_high
+          ? fmt::format("; odds ratio {:.2f}, {:.0f}% CI [{:.2f}, {}]", *r.estimate, 100 * r.conf_level, *r.conf_low,
+                        std::isinf(*r.conf_high) ? std::string("inf") : fmt::format("{:.2f}", *r.conf_high))
+          : std::string();
+  f.statistics = f.test + ", " + tables::apa_p(*r.p_value) +
+                 (r.p_adjusted ? ", Holm-adjusted " + tables::apa_p(*r.p_adjusted) : std::string());
+  f.sentence = fmt::format(
+      "{}: {} (yes {:.0f}% of {} vs {:.0f}% of {}{}; {}{}).", title, f.evidence, 100 * *r.mean1, r.n1, 100 * *r.mean2,
+      r.n2, odds, f.statistics,
+      f.strength == Strength::evidence_for_difference
+          ? ""
+          : "; no Bayes factor is available for this test, so a non-significant result is not evidence for no difference");
+  return f;
+}
+
+// "yes 67% of 12 (adaptive), 58% of 12 (random), 75% of 12 (fixed-block): most often in
+// fixed-block, least in random": how often each condition answered yes, and which way they lean.
+std::string yes_no_which_way(const tables::YesNoAnalysis& a, const std::string& question) {
+  std::vector<std::string> parts, most, least;
+  double top = -1, bottom = 2;
+  for (const auto& s : a.summaries) {
+    if (s.question != question || s.proportion.n == 0 ||
+        std::find(a.compared.begin(), a.compared.end(), s.group) == a.compared.end())
+      continue;
+    const double p = s.proportion.estimate;
+    parts.push_back(fmt::format("{:.0f}% of {} ({})", 100 * p, s.proportion.n, s.group));
+    if (p > top) top = p, most.clear();
+    if (p == top) most.push_back(s.group);
+    if (p < bottom) bottom = p, least.clear();
+    if (p == bottom) least.push_back(s.group);
+  }
+  if (parts.empty()) return {};
+  const std::string lean = top == bottom ? "the same in every condition"
+                                         : fmt::format("most often in {}, least in {}", fmt::join(most, " and "),
+                                                       fmt::join(least, " and "));
+  return fmt::format("yes {}: {}", fmt::join(parts, ", "), lean);
+}
+
+// Three or more conditions, per question: the omnibus finding (Fisher's exact test of the C x 2
+// table, or the chi-square test where its tables were too many; within participants Cochran's Q)
+// stated as which way (the conditions by their proportion of yes), how much (Cramér's V with its
+// interval, between) and how sure; then one finding per pair, Holm-adjusted over the pairs and
+// protected by the omnibus finding.
+void add_yes_no_conditions_findings(std::vector<Finding>& out, const tables::YesNoAnalysis& a,
+                                    const WordingRules& rules) {
+  const bool paired = a.settings.paired;
+  const std::size_t pairs = a.compared.size() * (a.compared.size() - 1) / 2;
+  for (std::size_t k = 0; k < a.questions.size(); ++k) {
+    const std::string& q = a.questions[k];
+    const tables::TidyRow& fisher = paired ? a.omnibus[k] : a.omnibus[2 * k];
+    const tables::TidyRow* chisq = paired ? nullptr : &a.omnibus[2 * k + 1];
+    const tables::TidyRow& row = fisher.result.computed || !chisq ? fisher : *chisq;
+    const stats::TestResult& r = row.result;
+    const std::string what = fmt::format("{} (yes/no) across the {} conditions ({}){}", q, a.compared.size(),
+                                         fmt::join(a.compared, ", "), paired ? ", within participants" : "");
+    Finding f = difference_finding("H2-yesno-" + q, "H2",
+                                   fmt::format("Do the conditions differ in how often they answer yes to {}?", q), what,
+                                   r, nullptr, "yes-no", rules);
+    f.measure = q;
+    f.omnibus = true;
+    f.test = r.test == "cochran_q" ? "Cochran's Q test" : r.test == "chisq_test" ? "chi-square test" : "Fisher's exact test";
+    f.estimate.reset();  // the chi-square row's estimate is Cramér's V, not a difference
+    f.ci_low.reset();
+    f.ci_high.reset();
+    f.direction.clear();
+    f.contrast.clear();
+    if (r.computed && r.p_value) {
+      const auto& x = chisq ? chisq->result : r;
+      if (chisq && x.computed && x.estimate)
+        f.effect_size = EffectSize{"cramers_v", *x.estimate, x.conf_low, x.conf_high};
+      f.statistics = r.test == "fisher_exact_conditions" ? f.test + ", " + tables::apa_p(*r.p_value)
+                                                         : tables::apa_string(r);
+      std::string v;
+      if (f.effect_size) {
+        auto apa = [](double d) {  // APA: no leading zero for a value that cannot exceed 1
+          std::string t = fmt::format("{:.2f}", d);
+          return t.rfind("0.", 0) == 0 ? t.substr(1) : t;
+        };
+        v = fmt::format("; bias-corrected Cram\u00e9r's V = {}, {:.0f}% CI [{}, {}]", apa(f.effect_size->value),
+                        100 * x.conf_level, apa(*f.effect_size->ci_low), apa(*f.effect_size->ci_high));
+      }
+      const std::string beside =
+          chisq && &row != chisq && chisq->result.computed ? "; " + tables::apa_string(chisq->result) : std::string();
+      f.sentence = fmt::format(
+          "{}: {} ({}{}; {}{}{}).", title_case(what), f.evidence, yes_no_which_way(a, q), v, f.statistics, beside,
+          f.strength == Strength::evidence_for_difference
+              ? ""
+              : "; no Bayes factor is available for this test, so a non-significant result is not evidence for no "
+                "difference");
+    }
+    out.push_back(f);
+    for (std::size_t j = 0; j < pairs; ++j) {
+      const tables::TidyRow& pair = a.rows[(k * pairs + j) * 2];
+      Finding p = yes_no_pair_finding(pair, a, fmt::format("H2-yesno-pair-{}-{}-{}", q, pair.group1, pair.group2),
+                                      fmt::format("Which conditions differ in how often they answer yes to {}?", q),
+                                      rules);
+      detail::protect_by_omnibus(p, &f, q);
+      out.push_back(std::move(p));
+    }
+  }
+}
+
+// The yes/no questions: two conditions compared (one finding per question), or three or more
+// (the omnibus finding, then the pairs).
 void add_yes_no_findings(std::vector<Finding>& out, const std::optional<tables::YesNoAnalysis>& a,
                          const WordingRules& rules) {
   if (!a) return;
+  if (!a->omnibus.empty()) {
+    add_yes_no_conditions_findings(out, *a, rules);
+    return;
+  }
   for (const auto& row : a->rows) {
     // Fisher's exact test between participants, McNemar's exact test within (docs/yes-no.md).
-    const bool paired = row.result.test == "mcnemar_exact";
-    if (row.result.test != "fisher_exact" && !paired) continue;
-    const stats::TestResult& r = row.result;
-    const std::string what = fmt::format("{} (yes/no): {} vs {}", row.metric, row.group1, row.group2);
-    std::string title = what;  // a sentence starts with a capital, as every finding's
-    if (!title.empty() && title[0] >= 'a' && title[0] <= 'z') title[0] = static_cast<char>(title[0] - 'a' + 'A');
-    Finding f = difference_finding("H2-yesno-" + row.metric, "H2",
-                                   fmt::format("Do the conditions differ in how often they answer yes to {}?", row.metric),
-                                   what, r, nullptr, "yes-no", rules);
-    f.measure = row.metric;
-    detail::name_conditions(f, row.group1, row.group2);
-    f.test = paired ? "McNemar's exact test" : "Fisher's exact test";
-    if (!r.computed || !r.mean1 || !r.mean2) {
-      out.push_back(std::move(f));
-      continue;
-    }
-    f.direction = fmt::format("{} {} {}", row.group1, *r.mean1 > *r.mean2 ? ">" : *r.mean1 < *r.mean2 ? "<" : "=",
-                              row.group2);
-    // The difference of the proportions of yes with its interval (prop.test's, beside Fisher's);
-    // the odds ratio, whose null value is 1, is the effect size.
-    f.estimate.reset();
-    f.ci_low.reset();
-    f.ci_high.reset();
-    for (const auto& other : a->rows)
-      if (other.metric == row.metric && other.result.test == (paired ? "mcnemar" : "prop_test") &&
-          other.result.computed) {
-        f.estimate = other.result.estimate;
-        f.ci_low = other.result.conf_low;
-        f.ci_high = other.result.conf_high;
-      }
-    if (r.estimate) f.effect_size = EffectSize{"odds_ratio", *r.estimate, r.conf_low, r.conf_high};
-    const std::string odds =
-        r.estimate && r.conf_low && r.conf_high
-            ? fmt::format("; odds ratio {:.2f}, {:.0f}% CI [{:.2f}, {}]", *r.estimate, 100 * r.conf_level, *r.conf_low,
-                          std::isinf(*r.conf_high) ? std::string("inf") : fmt::format("{:.2f}", *r.conf_high))
-            : std::string();
-    f.statistics = f.test + ", " + tables::apa_p(*r.p_value);
-    f.sentence = fmt::format(
-        "{}: {} (yes {:.0f}% of {} vs {:.0f}% of {}{}; {}{}).", title, f.evidence, 100 * *r.mean1, r.n1,
-        100 * *r.mean2, r.n2, odds, f.statistics,
-        f.strength == Strength::evidence_for_difference
-            ? ""
-            : "; no Bayes factor is available for this test, so a non-significant result is not evidence for no difference");
-    out.push_back(std::move(f));
+    if (row.result.test != "fisher_exact" && row.result.test != "mcnemar_exact") continue;
+    out.push_back(yes_no_pair_finding(
+        row, *a, "H2-yesno-" + row.metric,
+        fmt::format("Do the conditions differ in how often they answer yes to {}?", row.metric), rules));
   }
 }
 

@@ -10,6 +10,7 @@
 #include "feint/error.hpp"
 #include "feint/stats/paired_proportions.hpp"
 #include "respondents.hpp"
+#include "yes_no_detail.hpp"
 
 namespace feint::tables {
 
@@ -54,53 +55,23 @@ void check_comparison(const io::Questionnaire& q, const std::vector<std::string>
                                   q.source, *shared, compare.first, compare.second));
 }
 
-TidyRow comparison_row(const std::string& question, const std::string& a, const std::string& b,
-                       stats::TestResult result, double alpha) {
-  TidyRow row;
-  row.metric = question;
-  row.group1 = a;
-  row.group2 = b;
-  // Two proportions: no Bayes factor and no equivalence test, so "≈" is never earned.
-  if (!result.computed) row.label = std::string(kNotComputable);
-  else if (*result.p_value >= alpha) row.label = std::string(kNotSignificant);
-  else row.label = *result.mean1 > *result.mean2 ? "A>B" : "A<B";
-  row.result = std::move(result);
-  return row;
-}
-
-/// Each participant's row in condition c; InvalidData when they answered twice in it.
-std::map<std::string, std::size_t> rows_by_participant(const io::Questionnaire& q, const std::string& c) {
-  std::map<std::string, std::size_t> rows;
-  for (const auto r : respondents_in(q, c))
-    if (!rows.emplace(q.participants[r], r).second)
-      throw InvalidData(fmt::format("{}: participant {} answered twice in condition {}; a paired comparison needs "
-                                    "one answer per participant and condition",
-                                    q.source, q.participants[r], c));
-  return rows;
-}
-
 /// Within participants: per question the table of pairs (the participants who answered it in both
 /// conditions), McNemar's exact test, then mcnemar.test. Returns who answered in only one condition.
 std::vector<std::string> add_paired_rows(YesNoAnalysis& a, const io::Questionnaire& q,
                                          const std::pair<std::string, std::string>& ab) {
-  const auto in_a = rows_by_participant(q, ab.first);
-  const auto in_b = rows_by_participant(q, ab.second);
+  const auto in_a = detail::rows_by_participant(q, ab.first);
+  const auto in_b = detail::rows_by_participant(q, ab.second);
   std::vector<std::string> unpaired;
   for (const auto& [p, _] : in_a)
     if (in_b.count(p) == 0) unpaired.push_back(p);
   for (const auto& [p, _] : in_b)
     if (in_a.count(p) == 0) unpaired.push_back(p);
   for (std::size_t i = 0; i < q.items.size(); ++i) {
-    stats::PairedYesNoTable t;
-    for (const auto& [p, ra] : in_a) {
-      const auto other = in_b.find(p);
-      if (other == in_b.end() || !q.responses[i][ra] || !q.responses[i][other->second]) continue;
-      const bool ya = *q.responses[i][ra] == 1, yb = *q.responses[i][other->second] == 1;
-      ++(ya ? (yb ? t.yes_yes : t.yes_no) : (yb ? t.no_yes : t.no_no));
-    }
-    a.rows.push_back(comparison_row(q.items[i], ab.first, ab.second, stats::mcnemar_exact(t, a.settings.test),
-                                    a.settings.alpha));
-    a.rows.push_back(comparison_row(q.items[i], ab.first, ab.second, stats::mcnemar_test(t), a.settings.alpha));
+    const stats::PairedYesNoTable t = detail::paired_table(q, i, in_a, in_b);
+    a.rows.push_back(detail::yes_no_comparison_row(q.items[i], ab.first, ab.second,
+                                                   stats::mcnemar_exact(t, a.settings.test), a.settings.alpha));
+    a.rows.push_back(
+        detail::yes_no_comparison_row(q.items[i], ab.first, ab.second, stats::mcnemar_test(t), a.settings.alpha));
   }
   return unpaired;
 }
@@ -126,6 +97,69 @@ void add_paired_notes(YesNoAnalysis& a, const std::vector<std::string>& unpaired
 
 }  // namespace
 
+namespace detail {
+
+TidyRow yes_no_comparison_row(const std::string& question, const std::string& a, const std::string& b,
+                              stats::TestResult result, double alpha) {
+  TidyRow row;
+  row.metric = question;
+  row.group1 = a;
+  row.group2 = b;
+  // Two proportions: no Bayes factor and no equivalence test, so "≈" is never earned.
+  if (!result.computed) row.label = std::string(kNotComputable);
+  else if (*result.p_value >= alpha) row.label = std::string(kNotSignificant);
+  else row.label = *result.mean1 > *result.mean2 ? "A>B" : "A<B";
+  row.result = std::move(result);
+  return row;
+}
+
+std::map<std::string, std::size_t> rows_by_participant(const io::Questionnaire& q, const std::string& c) {
+  std::map<std::string, std::size_t> rows;
+  for (const auto r : respondents_in(q, c))
+    if (!rows.emplace(q.participants[r], r).second)
+      throw InvalidData(fmt::format("{}: participant {} answered twice in condition {}; a paired comparison needs "
+                                    "one answer per participant and condition",
+                                    q.source, q.participants[r], c));
+  return rows;
+}
+
+stats::PairedYesNoTable paired_table(const io::Questionnaire& q, std::size_t item,
+                                     const std::map<std::string, std::size_t>& in_a,
+                                     const std::map<std::string, std::size_t>& in_b) {
+  stats::PairedYesNoTable t;
+  for (const auto& [p, ra] : in_a) {
+    const auto other = in_b.find(p);
+    if (other == in_b.end() || !q.responses[item][ra] || !q.responses[item][other->second]) continue;
+    const bool ya = *q.responses[item][ra] == 1, yb = *q.responses[item][other->second] == 1;
+    ++(ya ? (yb ? t.yes_yes : t.yes_no) : (yb ? t.no_yes : t.no_no));
+  }
+  return t;
+}
+
+ComparisonCells comparison_cells(const TidyRow& row) {
+  const auto& r = row.result;
+  const bool odds_ratio = r.test == "fisher_exact" || r.test == "mcnemar_exact";
+  ComparisonCells c;
+  if (r.computed && r.estimate) {
+    c.estimate = odds_ratio ? fmt::format("OR = {:.2f}", *r.estimate) : fmt::format("Δ = {:.2f}", *r.estimate);
+    if (r.conf_low && r.conf_high) c.ci = fmt::format("[{:.2f}, {:.2f}]", *r.conf_low, *r.conf_high);
+  }
+  if (r.computed && r.statistic)
+    c.statistic = r.df ? fmt::format("χ²({:g}) = {:.2f}", *r.df, *r.statistic) : fmt::format("b = {:g}", *r.statistic);
+  c.test = r.test == "fisher_exact"    ? "Fisher's exact"
+           : r.test == "mcnemar_exact" ? "McNemar exact"
+           : r.test == "mcnemar"       ? "McNemar χ²"
+                                       : "χ² (Yates)";
+  return c;
+}
+
+const YesNoSummary& summary_of(const YesNoAnalysis& a, const std::string& question, const std::string& group) {
+  return *std::find_if(a.summaries.begin(), a.summaries.end(),
+                       [&](const auto& s) { return s.question == question && s.group == group; });
+}
+
+}  // namespace detail
+
 io::QuestionnaireOptions yes_no_load_options() {
   io::QuestionnaireOptions o;
   o.layout = io::QuestionnaireLayout::wide_format;
@@ -147,20 +181,23 @@ YesNoAnalysis analyze_yes_no(const io::Questionnaire& q, const YesNoSettings& se
   a.notes.push_back(fmt::format(
       "Proportion of yes with its exact (Clopper–Pearson) and Wilson {:g}% intervals; empty answers "
       "are left out of n.", 100 * settings.test.conf_level));
-  if (!settings.compare) return a;
+  if (!settings.compare) {
+    if (settings.across_conditions && a.groups.size() > 2) detail::compare_across_conditions(a, q);
+    return a;
+  }
   if (settings.paired) {
     add_paired_notes(a, add_paired_rows(a, q, *settings.compare));
     return a;
   }
   const auto& [ga, gb] = *settings.compare;
   for (std::size_t i = 0; i < q.items.size(); ++i) {
-    const auto& sa = *std::find_if(a.summaries.begin(), a.summaries.end(),
-                                   [&](const auto& s) { return s.question == q.items[i] && s.group == ga; });
-    const auto& sb = *std::find_if(a.summaries.begin(), a.summaries.end(),
-                                   [&](const auto& s) { return s.question == q.items[i] && s.group == gb; });
+    const auto& sa = detail::summary_of(a, q.items[i], ga);
+    const auto& sb = detail::summary_of(a, q.items[i], gb);
     const stats::YesNoTable t{sa.proportion.x, sa.proportion.n, sb.proportion.x, sb.proportion.n};
-    a.rows.push_back(comparison_row(q.items[i], ga, gb, stats::fisher_exact(t, settings.test), settings.alpha));
-    a.rows.push_back(comparison_row(q.items[i], ga, gb, stats::prop_test(t, settings.test), settings.alpha));
+    a.rows.push_back(
+        detail::yes_no_comparison_row(q.items[i], ga, gb, stats::fisher_exact(t, settings.test), settings.alpha));
+    a.rows.push_back(
+        detail::yes_no_comparison_row(q.items[i], ga, gb, stats::prop_test(t, settings.test), settings.alpha));
   }
   a.notes.push_back(fmt::format(
       "{} against {}: Fisher's exact test (primary) with the conditional maximum-likelihood odds ratio of "
@@ -192,14 +229,16 @@ std::string render_records(const YesNoAnalysis& a, OutputFormat format) {
                        Cell::num(p.n ? std::optional(p.wilson_high) : std::nullopt)});
   }
   const auto test_columns = table_columns();
+  std::vector<TidyRow> tests = a.omnibus;  // across the conditions: the omnibus rows first
+  tests.insert(tests.end(), a.rows.begin(), a.rows.end());
   if (format == OutputFormat::csv) {
     std::string out = write_csv(columns, records);
-    if (!a.rows.empty()) out += "\n" + tidy_csv(a.rows, test_columns);
+    if (!tests.empty()) out += "\n" + tidy_csv(tests, test_columns);
     return out;
   }
   std::string out = "{\"proportions\": " + write_json(columns, records);
   if (!out.empty() && out.back() == '\n') out.pop_back();
-  out += ", \"tests\": " + tidy_json(a.rows, test_columns);
+  out += ", \"tests\": " + tidy_json(tests, test_columns);
   if (!out.empty() && out.back() == '\n') out.pop_back();
   return out + "}\n";
 }
@@ -211,22 +250,9 @@ TextTable comparison_table(const YesNoAnalysis& a) {
   t.header = {"Question", "Test", "Estimate", "CI", "Statistic", "p", "Inference"};
   t.right_align = {false, false, true, true, true, true, false};
   for (const auto& row : a.rows) {
-    const auto& r = row.result;
-    const bool odds_ratio = r.test == "fisher_exact" || r.test == "mcnemar_exact";
-    std::string estimate = "–", ci = "–", statistic = "–";
-    if (r.computed && r.estimate) {
-      estimate = odds_ratio ? fmt::format("OR = {:.2f}", *r.estimate) : fmt::format("Δ = {:.2f}", *r.estimate);
-      if (r.conf_low && r.conf_high) ci = fmt::format("[{:.2f}, {:.2f}]", *r.conf_low, *r.conf_high);
-    }
-    if (r.computed && r.statistic)
-      statistic = r.df ? fmt::format("χ²({:g}) = {:.2f}", *r.df, *r.statistic)
-                       : fmt::format("b = {:g}", *r.statistic);
-    const char* test = r.test == "fisher_exact"    ? "Fisher's exact"
-                       : r.test == "mcnemar_exact" ? "McNemar exact"
-                       : r.test == "mcnemar"       ? "McNemar χ²"
-                                                   : "χ² (Yates)";
-    t.rows.push_back({{row.metric, test, estimate, ci, statistic,
-                       r.computed ? format_p(r.p_value) : "–", row.label}});
+    const auto c = detail::comparison_cells(row);
+    t.rows.push_back({{row.metric, c.test, c.estimate, c.ci, c.statistic,
+                       row.result.computed ? format_p(row.result.p_value) : "–", row.label}});
   }
   return t;
 }
@@ -245,8 +271,10 @@ std::string render_yes_no(const YesNoAnalysis& a, OutputFormat format) {
                        percent(p.estimate), interval(p.exact_low, p.exact_high),
                        interval(p.wilson_low, p.wilson_high)}});
   }
-  t.notes = {a.notes.front()};
+  // Without a comparison table the notes stay here (e.g. why three conditions were not compared).
+  t.notes = a.settings.compare || !a.compared.empty() ? std::vector<std::string>{a.notes.front()} : a.notes;
   std::string out = render_table(t, format);
+  if (!a.compared.empty()) return out + detail::render_across_conditions(a, format);
   if (a.settings.compare) {
     TextTable c = comparison_table(a);
     c.notes = {a.notes.back()};

@@ -1,7 +1,9 @@
-// A questionnaire across three conditions (feint/tables/likert_conditions.hpp) against R: every
-// number of tests/golden/likert/likert_conditions_golden.csv (made by likert_conditions_golden.R
-// with kruskal.test, effectsize::rank_epsilon_squared, pairwise.wilcox.test(p.adjust.method =
-// "holm") and t.test with p.adjust "holm") on tests/data/likert/three_conditions.csv, then the
+// A questionnaire across three or more conditions (feint/tables/likert_conditions.hpp) against R:
+// every number of tests/golden/likert/likert_conditions_golden.csv (made by
+// likert_conditions_golden.R with kruskal.test, effectsize::rank_epsilon_squared,
+// pairwise.wilcox.test(p.adjust.method = "holm") and t.test with p.adjust "holm") on its six data
+// sets (tests/data/likert/three_conditions.csv and five generated ones: balanced, unbalanced with
+// missing answers, four conditions with ties, five small conditions, a large study), then the
 // protection of the pairs by the omnibus test and the rejections.
 #include <gtest/gtest.h>
 
@@ -23,22 +25,24 @@ namespace {
 
 using Key = std::tuple<std::string, std::string, std::string, std::string>;  // item, group1, group2, quantity
 
-std::map<Key, double> read_golden() {
+/// Per data set, its golden values.
+std::map<std::string, std::map<Key, double>> read_golden() {
   std::ifstream in(std::string(FEINT_SOURCE_DIR) + "/tests/golden/likert/likert_conditions_golden.csv");
-  std::map<Key, double> out;
+  std::map<std::string, std::map<Key, double>> out;
   std::string line;
   std::getline(in, line);  // header
   while (std::getline(in, line)) {
     const auto f = io::split_csv_line(line);
-    out[{f.at(0), f.at(1), f.at(2), f.at(3)}] = std::stod(f.at(4));
+    out[f.at(0)][{f.at(1), f.at(2), f.at(3), f.at(4)}] = std::stod(f.at(5));
   }
   return out;
 }
 
-tables::LikertConditions analysis() {
-  const io::Questionnaire q =
-      io::load_questionnaire(std::string(FEINT_TEST_DATA_DIR) + "/likert/three_conditions.csv", {});
-  return tables::analyze_likert_conditions(q, {});
+tables::LikertConditions analysis(const std::string& data = "three") {
+  const std::string path = data == "three" ? std::string(FEINT_TEST_DATA_DIR) + "/likert/three_conditions.csv"
+                                           : std::string(FEINT_SOURCE_DIR) +
+                                                 "/tests/golden/likert/data/conditions_" + data + ".csv";
+  return tables::analyze_likert_conditions(io::load_questionnaire(path, {}), {});
 }
 
 void expect_close(double feint_value, double r_value, const std::string& what) {
@@ -47,40 +51,44 @@ void expect_close(double feint_value, double r_value, const std::string& what) {
 
 }  // namespace
 
-TEST(LikertConditions, EveryNumberEqualsR) {
-  const auto golden = read_golden();
-  ASSERT_EQ(golden.size(), 88u);
-  const auto a = analysis();
-  ASSERT_EQ(a.conditions, (std::vector<std::string>{"adaptive", "random", "fixed-block"}));
-  std::size_t checked = 0;
-  auto check = [&](const Key& key, std::optional<double> value) {
-    const auto it = golden.find(key);
-    ASSERT_NE(it, golden.end()) << std::get<0>(key) << " " << std::get<3>(key);
-    ASSERT_TRUE(value.has_value()) << std::get<0>(key) << " " << std::get<3>(key);
-    expect_close(*value, it->second, std::get<0>(key) + " " + std::get<1>(key) + " " + std::get<2>(key) + " " +
-                                         std::get<3>(key));
-    ++checked;
-  };
-  for (const auto& row : a.omnibus) {
-    const auto& r = row.result;
-    check({row.metric, row.group1, "", "H"}, r.statistic);
-    check({row.metric, row.group1, "", "df"}, r.df);
-    check({row.metric, row.group1, "", "p"}, r.p_value);
-    check({row.metric, row.group1, "", "epsilon2"}, r.rank_epsilon_squared);
-  }
-  for (const auto& pair : a.pairs)
-    for (std::size_t i = 0; i + 1 < pair.rows.size(); i += 2) {
-      const auto& mw = pair.rows[i];
-      const auto& t = pair.rows[i + 1];
-      ASSERT_EQ(mw.result.test, "mann_whitney");
-      check({mw.metric, mw.group1, mw.group2, "W"}, mw.result.statistic);
-      check({mw.metric, mw.group1, mw.group2, "p_mw"}, mw.result.p_value);
-      check({mw.metric, mw.group1, mw.group2, "p_mw_holm"}, mw.result.p_adjusted);
-      check({t.metric, t.group1, t.group2, "t"}, t.result.statistic);
-      check({t.metric, t.group1, t.group2, "df_t"}, t.result.df);
-      check({t.metric, t.group1, t.group2, "p_t_holm"}, t.result.p_adjusted);
+TEST(LikertConditions, EveryNumberOfEveryDataSetEqualsR) {
+  const auto all = read_golden();
+  ASSERT_EQ(all.size(), 6u) << "golden file missing or truncated";
+  ASSERT_EQ(all.at("three").size(), 88u);
+  ASSERT_EQ(analysis().conditions, (std::vector<std::string>{"adaptive", "random", "fixed-block"}));
+  for (const auto& [data, golden] : all) {
+    const auto a = analysis(data);
+    std::size_t checked = 0;
+    auto check = [&](const Key& key, std::optional<double> value) {
+      const std::string what =
+          data + " " + std::get<0>(key) + " " + std::get<1>(key) + " " + std::get<2>(key) + " " + std::get<3>(key);
+      const auto it = golden.find(key);
+      ASSERT_NE(it, golden.end()) << what;
+      ASSERT_TRUE(value.has_value()) << what;
+      expect_close(*value, it->second, what);
+      ++checked;
+    };
+    for (const auto& row : a.omnibus) {
+      const auto& r = row.result;
+      check({row.metric, row.group1, "", "H"}, r.statistic);
+      check({row.metric, row.group1, "", "df"}, r.df);
+      check({row.metric, row.group1, "", "p"}, r.p_value);
+      check({row.metric, row.group1, "", "epsilon2"}, r.rank_epsilon_squared);
     }
-  EXPECT_EQ(checked, golden.size());
+    for (const auto& pair : a.pairs)
+      for (std::size_t i = 0; i + 1 < pair.rows.size(); i += 2) {
+        const auto& mw = pair.rows[i];
+        const auto& t = pair.rows[i + 1];
+        ASSERT_EQ(mw.result.test, "mann_whitney");
+        check({mw.metric, mw.group1, mw.group2, "W"}, mw.result.statistic);
+        check({mw.metric, mw.group1, mw.group2, "p_mw"}, mw.result.p_value);
+        check({mw.metric, mw.group1, mw.group2, "p_mw_holm"}, mw.result.p_adjusted);
+        check({t.metric, t.group1, t.group2, "t"}, t.result.statistic);
+        check({t.metric, t.group1, t.group2, "df_t"}, t.result.df);
+        check({t.metric, t.group1, t.group2, "p_t_holm"}, t.result.p_adjusted);
+      }
+    EXPECT_EQ(checked, golden.size()) << data;
+  }
 }
 
 TEST(LikertConditions, PairsDifferOnlyAfterTheOmnibusTestAndTheirHolmP) {

@@ -1,6 +1,8 @@
 // `feint likert` assembly against R: every per-item number of tests/golden/likert/golden.csv
 // (made by tests/golden/likert/make_golden.R with R 4.2 and psych) must come out of
-// analyze_likert_file on tests/data/likert/golden_input.csv. The rank and t tests themselves have
+// analyze_likert_file on each of its six data sets: tests/data/likert/golden_input.csv and the five
+// the script generates into tests/golden/likert/data/ (unbalanced, missing answers, ties, small,
+// large). The rank and t tests themselves have
 // their own golden tests (tests/stats); this checks that the right data reach the right test with
 // the right settings, and that descriptives, counts, p-adjustment and alpha are assembled right.
 #include <gtest/gtest.h>
@@ -8,6 +10,7 @@
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -23,7 +26,7 @@ using feint::tables::TidyRow;
 namespace {
 
 struct Golden {
-  std::string run, group, name, quantity;
+  std::string data, run, group, name, quantity;
   double value = 0.0;
 };
 
@@ -36,6 +39,7 @@ std::vector<Golden> read_golden() {
     std::stringstream ss(line);
     Golden g;
     std::string value;
+    std::getline(ss, g.data, ',');
     std::getline(ss, g.run, ',');
     std::getline(ss, g.group, ',');
     std::getline(ss, g.name, ',');
@@ -48,6 +52,11 @@ std::vector<Golden> read_golden() {
 }
 
 std::string input() { return std::string(FEINT_TEST_DATA_DIR) + "/likert/golden_input.csv"; }
+
+// The file of a data set of golden.csv.
+std::string input(const std::string& data) {
+  return data == "input" ? input() : std::string(FEINT_SOURCE_DIR) + "/tests/golden/likert/data/" + data + ".csv";
+}
 
 LikertSettings common() {
   LikertSettings s;
@@ -139,31 +148,28 @@ bool close(double got, double want) {
   return diff <= 1e-10 * std::fabs(want) || diff <= 1e-13;
 }
 
-}  // namespace
-
-TEST(LikertGolden, EveryNumberMatchesR) {
-  const auto golden = read_golden();
-  ASSERT_GT(golden.size(), 600u) << "golden file missing or truncated";
-
+// One data set: the three runs of make_golden.R, every golden number of `data` compared.
+std::size_t check_data_set(const std::vector<Golden>& golden, const std::string& data) {
   LikertSettings one = common();
   one.p_adjust = feint::stats::PAdjustMethod::holm;
-  const auto a_one = analyze_likert_file(input(), one);
+  const auto a_one = analyze_likert_file(input(data), one);
   EXPECT_DOUBLE_EQ(a_one.reference, 4.0);  // the midpoint of 1-7
 
   LikertSettings cmp = common();
   cmp.compare = std::make_pair(std::string("adaptive"), std::string("random"));
-  const auto a_cmp = analyze_likert_file(input(), cmp);
+  const auto a_cmp = analyze_likert_file(input(data), cmp);
 
   LikertSettings paper;
   paper.paper = true;
   paper.condition = "adaptive";
-  const auto a_paper = analyze_likert_file(input(), paper);
+  const auto a_paper = analyze_likert_file(input(data), paper);
   EXPECT_DOUBLE_EQ(a_paper.reference, 3.5);
   EXPECT_EQ(a_paper.names,
             (std::vector<std::string>{"entertainment", "deception", "intelligence", "trust"}));
 
   std::size_t checked = 0;
   for (const auto& g : golden) {
+    if (g.data != data) continue;
     std::optional<double> got;
     if (g.run == "one") {
       got = feint_value(a_one, g, g.group, "wilcoxon_signed_rank", "one_sample_t");
@@ -173,10 +179,30 @@ TEST(LikertGolden, EveryNumberMatchesR) {
     } else if (g.run == "paper") {
       got = feint_value(a_paper, g, g.group, "wilcoxon_signed_rank", "one_sample_t");
     }
-    ASSERT_TRUE(got.has_value()) << g.run << "/" << g.group << "/" << g.name << "/" << g.quantity;
-    EXPECT_TRUE(close(*got, g.value)) << g.run << "/" << g.group << "/" << g.name << "/"
-                                      << g.quantity << ": feint " << *got << ", R " << g.value;
+    const std::string what = g.data + "/" + g.run + "/" + g.group + "/" + g.name + "/" + g.quantity;
+    if (!got.has_value()) {
+      ADD_FAILURE() << what << ": feint has no value";
+      continue;
+    }
+    EXPECT_TRUE(close(*got, g.value)) << what << ": feint " << *got << ", R " << g.value;
     ++checked;
+  }
+  return checked;
+}
+
+}  // namespace
+
+TEST(LikertGolden, EveryNumberOfEveryDataSetMatchesR) {
+  const auto golden = read_golden();
+  std::set<std::string> sets;
+  for (const auto& g : golden) sets.insert(g.data);
+  ASSERT_EQ(sets, (std::set<std::string>{"input", "balanced", "unbalanced_missing", "ties", "large", "small"}))
+      << "golden file missing or truncated";
+  std::size_t checked = 0;
+  for (const auto& data : sets) {
+    const std::size_t n = check_data_set(golden, data);
+    EXPECT_GT(n, 400u) << data;
+    checked += n;
   }
   EXPECT_EQ(checked, golden.size());
 }

@@ -2,8 +2,10 @@
 // every number of tests/golden/likert/likert_within_golden.csv (made by likert_within_golden.R with
 // wilcox.test(x, y, paired = TRUE), effectsize::rank_biserial(paired = TRUE), t.test(paired = TRUE),
 // BayesFactor::ttestBF(paired = TRUE), friedman.test, effectsize::kendalls_w, p.adjust "holm",
-// binom.test and mcnemar.test) on tests/data/likert/within_{two,three,yesno}.csv, then who is left
-// out and the protection of the pairs.
+// binom.test and mcnemar.test) on tests/data/likert/within_{two,three,yesno}.csv and on the ten data
+// sets the script generates into tests/golden/likert/data/within_*.csv (two conditions: complete,
+// missing answers and absent participants, ties, small, large; three to five conditions), then who
+// is left out and the protection of the pairs.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -43,18 +45,26 @@ io::Questionnaire load(const std::string& name) {
   return io::load_questionnaire(std::string(FEINT_TEST_DATA_DIR) + "/likert/" + name, {});
 }
 
-tables::LikertAnalysis paired_two() {
+// A generated data set of likert_within_golden.R.
+io::Questionnaire load_generated(const std::string& data) {
+  return io::load_questionnaire(std::string(FEINT_SOURCE_DIR) + "/tests/golden/likert/data/within_" + data + ".csv",
+                                {});
+}
+
+tables::LikertAnalysis paired_two(const io::Questionnaire& q) {
   tables::LikertSettings s;
   s.compare = std::pair<std::string, std::string>{"adaptive", "random"};
   s.paired = true;
-  return tables::analyze_likert(load("within_two.csv"), s);
+  return tables::analyze_likert(q, s);
 }
+tables::LikertAnalysis paired_two() { return paired_two(load("within_two.csv")); }
 
-tables::LikertConditions within_three() {
+tables::LikertConditions within_three(const io::Questionnaire& q) {
   tables::LikertSettings s;
   s.paired = true;
-  return tables::analyze_likert_conditions(load("within_three.csv"), s);
+  return tables::analyze_likert_conditions(q, s);
 }
+tables::LikertConditions within_three() { return within_three(load("within_three.csv")); }
 
 struct Checker {
   std::map<Key, double> golden = read_golden();
@@ -116,25 +126,51 @@ TEST(LikertWithin, ParticipantsInOneConditionAreLeftOutAndNamed) {
   EXPECT_THROW(tables::analyze_likert(load("within_two.csv"), s), InvalidData);
 }
 
-TEST(LikertWithin, ThreeConditionsFriedmanKendallAndHolmPairsEqualR) {
-  Checker check;
-  const auto a = within_three();
+// Friedman's test with Kendall's W per item, then every pair (Holm): the checks of one data set.
+void check_across(Checker& check, const std::string& data, const tables::LikertConditions& a) {
   ASSERT_TRUE(a.paired);
   ASSERT_EQ(a.omnibus.size(), 4u);
   ASSERT_EQ(a.kendalls_w.size(), 4u);
   for (std::size_t k = 0; k < a.omnibus.size(); ++k) {
     const auto& row = a.omnibus[k];
     ASSERT_EQ(row.result.test, "friedman");
-    check({"three", row.metric, row.group1, "", "chi2"}, row.result.statistic);
-    check({"three", row.metric, row.group1, "", "df"}, row.result.df);
-    check({"three", row.metric, row.group1, "", "p"}, row.result.p_value);
-    check({"three", row.metric, row.group1, "", "n"}, static_cast<double>(row.result.n1));
-    check({"three", row.metric, row.group1, "", "W"}, a.kendalls_w[k]);
+    check({data, row.metric, row.group1, "", "chi2"}, row.result.statistic);
+    check({data, row.metric, row.group1, "", "df"}, row.result.df);
+    check({data, row.metric, row.group1, "", "p"}, row.result.p_value);
+    check({data, row.metric, row.group1, "", "n"}, static_cast<double>(row.result.n1));
+    check({data, row.metric, row.group1, "", "W"}, a.kendalls_w[k]);
   }
-  ASSERT_EQ(a.pairs.size(), 3u);
   for (const auto& pair : a.pairs)
-    for (std::size_t i = 0; i < pair.rows.size(); i += 2) check.pair("three", pair.rows[i], pair.rows[i + 1], true);
+    for (std::size_t i = 0; i < pair.rows.size(); i += 2) check.pair(data, pair.rows[i], pair.rows[i + 1], true);
+}
+
+TEST(LikertWithin, ThreeConditionsFriedmanKendallAndHolmPairsEqualR) {
+  Checker check;
+  const auto a = within_three();
+  ASSERT_EQ(a.pairs.size(), 3u);
+  check_across(check, "three", a);
   EXPECT_EQ(check.checked, 4u * 5u + 3u * 4u * 10u);
+}
+
+TEST(LikertWithin, GeneratedDataSetsEqualRInEveryNumber) {
+  Checker check;
+  std::map<std::string, std::size_t> expected;  // golden values per generated data set
+  for (const auto& [key, _] : check.golden)
+    if (const auto& d = std::get<0>(key); d != "two" && d != "three" && d != "yesno") ++expected[d];
+  ASSERT_EQ(expected.size(), 10u) << "golden file missing or truncated";
+  for (const auto& [data, n] : expected) {
+    const std::size_t before = check.checked;
+    const io::Questionnaire q = load_generated(data);
+    if (data.rfind("two_", 0) == 0) {
+      const auto a = paired_two(q);
+      for (std::size_t i = 0; i < a.rows.size(); i += 2) check.pair(data, a.rows[i], a.rows[i + 1], false);
+    } else {
+      const auto a = within_three(q);
+      EXPECT_GE(a.conditions.size(), 3u) << data;
+      check_across(check, data, a);
+    }
+    EXPECT_EQ(check.checked - before, n) << data;
+  }
 }
 
 TEST(LikertWithin, PairsAreProtectedByTheFriedmanTest) {

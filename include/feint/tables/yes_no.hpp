@@ -7,7 +7,11 @@
 // two proportions with the difference p_A - p_B and its interval (R's prop.test, Yates-corrected).
 // Within participants (`paired`): McNemar's exact test with the conditional odds ratio, and R's
 // mcnemar.test beside it (feint/stats/paired_proportions.hpp).
-// docs/yes-no.md has the formulas and a worked example.
+// Three or more conditions and no pair named (`across_conditions`): per question the omnibus test,
+// Fisher's exact test of the C x 2 table (primary) and Pearson's chi-square test with Cramér's V
+// beside it (feint/stats/contingency.hpp), within participants Cochran's Q; then every pair of
+// conditions compared as two are, Holm-adjusted over the pairs and protected by the omnibus test.
+// docs/yes-no.md has the formulas and worked examples.
 #pragma once
 
 #include <optional>
@@ -35,6 +39,10 @@ struct YesNoSettings {
   /// primary) with the conditional odds ratio b/c, and R's mcnemar.test beside it; participants
   /// without both answers are left out (named in a note).
   bool paired = false;
+  /// Without `compare`, three or more conditions are compared together: the omnibus test per
+  /// question, then every pair (Holm over the pairs, protected by the omnibus test); within
+  /// participants when `paired`. false: described per condition only.
+  bool across_conditions = true;
   stats::TestOptions test;  ///< alternative, conf_level
   double alpha = 0.05;
 };
@@ -53,22 +61,35 @@ struct YesNoAnalysis {
   std::vector<std::string> questions;
   std::vector<std::string> groups;        ///< conditions in file order ("" = none)
   std::vector<YesNoSummary> summaries;    ///< per question, per group
-  /// Two conditions compared: per question Fisher's exact test, then the chi-square test.
+  /// Two conditions compared: per question Fisher's exact test, then the chi-square test (paired:
+  /// McNemar's exact test, then mcnemar.test). Across three or more conditions: per question, per
+  /// pair (i < j in file order) the same two rows, with p_adjusted Holm over the question's pairs
+  /// (per test) and labels protected by the question's omnibus test.
   std::vector<TidyRow> rows;
+  /// Across three or more conditions: the conditions compared (file order); empty otherwise.
+  std::vector<std::string> compared;
+  /// Across three or more conditions, per question: Fisher's exact test of the C x 2 table
+  /// (test "fisher_exact_conditions", primary), then Pearson's chi-square test ("chisq_test") whose
+  /// estimate, conf_low and conf_high are the bias-corrected Cramér's V and its one-sided interval;
+  /// within participants Cochran's Q ("cochran_q") alone. group1 = the conditions joined by ", ".
+  std::vector<TidyRow> omnibus;
   std::vector<std::string> notes;
 };
 
 /// Throws UsageError when `settings.compare` names a condition the answers do not have, or
 /// InvalidData when the two compared conditions share a participant (not paired) or, paired, a
-/// participant answered twice in one condition.
+/// participant answered twice in one condition. Across three or more conditions the same problems
+/// are said in a note instead and the conditions are described only (so that a study's analysis
+/// goes on).
 YesNoAnalysis analyze_yes_no(const io::Questionnaire& answers, const YesNoSettings& settings);
 
 /// Loads `path` with settings.load and analyses it.
 YesNoAnalysis analyze_yes_no_file(const std::string& path, const YesNoSettings& settings);
 
 /// text / markdown / latex: one row per question and condition (yes, n, %, both intervals), the
-/// comparison rows and the note; csv / json: per question and condition the proportion and its
-/// intervals, then the tidy test rows (kTableColumns).
+/// comparison rows (across three or more conditions: the omnibus table, then the pairs) and the
+/// notes; csv / json: per question and condition the proportion and its intervals, then the tidy
+/// test rows (kTableColumns; the omnibus rows first).
 std::string render_yes_no(const YesNoAnalysis& analysis, OutputFormat format);
 
 }  // namespace feint::tables

@@ -6,6 +6,10 @@
 #   tests/data/likert/within_three.csv  14 participants, 3 conditions (P14 not in fixed-block; two
 #                                       answers missing)
 #   tests/data/likert/within_yesno.csv  22 participants, 2 conditions (P22 in one only; one missing)
+# and ten data sets generated here with a fixed seed into tests/golden/likert/data/within_*.csv:
+# two conditions ("two_*": complete, missing answers and absent participants, ties and zero
+# differences, small, large) and three to five ("three_complete", "three_missing", "four_ties",
+# "three_small", "five_unbalanced").
 # R 4.2 with effectsize and BayesFactor. Run from the repository root:
 #   Rscript tests/golden/likert/likert_within_golden.R
 # Writes tests/golden/likert/likert_within_golden.csv: data, item, group1, group2, quantity, value.
@@ -42,8 +46,8 @@ paired <- function(name, d, item, a, b) {
 d2 <- read.csv("tests/data/likert/within_two.csv", na.strings = "", stringsAsFactors = FALSE)
 for (item in items) paired("two", d2, item, "adaptive", "random")
 
-d3 <- read.csv("tests/data/likert/within_three.csv", na.strings = "", stringsAsFactors = FALSE)
-conditions <- c("adaptive", "random", "fixed-block")  # the questionnaire's order
+across <- function(name, d3) {
+conditions <- unique(d3$condition)  # the questionnaire's order
 all <- paste(conditions, collapse = ", ")
 for (item in items) {
   wide <- reshape(d3[, c("participant", "condition", item)], idvar = "participant", timevar = "condition",
@@ -51,26 +55,29 @@ for (item in items) {
   m <- as.matrix(wide[, paste0(item, ".", conditions)])
   m <- m[complete.cases(m), , drop = FALSE]
   f <- friedman.test(m)
-  put("three", item, all, "", "chi2", f$statistic)
-  put("three", item, all, "", "df", f$parameter)
-  put("three", item, all, "", "p", f$p.value)
-  put("three", item, all, "", "n", nrow(m))
-  put("three", item, all, "", "W", kendalls_w(m, ci = NULL, verbose = FALSE)$Kendalls_W)
+  put(name, item, all, "", "chi2", f$statistic)
+  put(name, item, all, "", "df", f$parameter)
+  put(name, item, all, "", "p", f$p.value)
+  put(name, item, all, "", "n", nrow(m))
+  put(name, item, all, "", "W", kendalls_w(m, ci = NULL, verbose = FALSE)$Kendalls_W)
   # The same test through the formula interface on the complete blocks.
-  long <- data.frame(y = c(m), condition = factor(rep(conditions, each = nrow(m))), participant = factor(rep(seq_len(nrow(m)), 3)))
+  long <- data.frame(y = c(m), condition = factor(rep(conditions, each = nrow(m))),
+                     participant = factor(rep(seq_len(nrow(m)), length(conditions))))
   stopifnot(abs(friedman.test(y ~ condition | participant, data = long)$statistic - f$statistic) < 1e-12)
   pr <- combn(conditions, 2)
   pw <- c(); pt <- c()
   for (j in seq_len(ncol(pr))) {
-    ps <- paired("three", d3, item, pr[1, j], pr[2, j])
+    ps <- paired(name, d3, item, pr[1, j], pr[2, j])
     pw <- c(pw, ps[1]); pt <- c(pt, ps[2])
   }
   hw <- p.adjust(pw, "holm"); ht <- p.adjust(pt, "holm")
   for (j in seq_len(ncol(pr))) {
-    put("three", item, pr[1, j], pr[2, j], "p_w_holm", hw[j])
-    put("three", item, pr[1, j], pr[2, j], "p_t_holm", ht[j])
+    put(name, item, pr[1, j], pr[2, j], "p_w_holm", hw[j])
+    put(name, item, pr[1, j], pr[2, j], "p_t_holm", ht[j])
   }
 }
+}
+across("three", read.csv("tests/data/likert/within_three.csv", na.strings = "", stringsAsFactors = FALSE))
 
 # The yes/no question within participants: the table of pairs, McNemar exact (binom.test on the
 # discordant pairs) and mcnemar.test (continuity-corrected).
@@ -93,4 +100,47 @@ for (q in c("intentional", "noticed")) {
   put("yesno", q, "adaptive", "random", "p_a", mean(x))
   put("yesno", q, "adaptive", "random", "p_b", mean(y))
 }
+# Generated: each participant answers after each condition (rows in the conditions' order; the
+# first participant has them all, so the file's order is the conditions' order); an answer is a
+# rounded normal draw clipped to 1-7 around the participant's own level plus the condition's shift
+# (sd `spread`: small spreads give ties and zero differences); `miss`: an empty answer; `absent`:
+# a participant's row missing for that condition.
+generate <- function(name, conditions, n, shift, spread, miss, absent) {
+  level <- rnorm(n, 4, 1)
+  d <- data.frame(participant = character(), condition = character(), stringsAsFactors = FALSE)
+  for (i in seq_len(n)) for (j in seq_along(conditions)) {
+    if (i > 1 && runif(1) < absent) next
+    r <- nrow(d) + 1
+    d[r, "participant"] <- sprintf("P%02d", i)
+    d[r, "condition"] <- conditions[j]
+    for (k in seq_along(items)) {
+      y <- min(7, max(1, round(rnorm(1, level[i] + shift[j] + (k - 2.5) * 0.3, spread))))
+      d[r, items[k]] <- if (runif(1) < miss) NA else y
+    }
+  }
+  out <- d
+  for (it in items) out[[it]] <- ifelse(is.na(d[[it]]), "", d[[it]])
+  dir.create("tests/golden/likert/data", showWarnings = FALSE)
+  write.csv(out, file.path("tests/golden/likert/data", paste0("within_", name, ".csv")), row.names = FALSE,
+            quote = FALSE)
+  d
+}
+set.seed(20260404)
+c2 <- c("adaptive", "random")
+c5 <- c("adaptive", "random", "fixed-block", "mirror", "none")
+for (spec in list(list("two_complete", 18, c(0.8, 0), 1.2, 0, 0),
+                  list("two_missing", 24, c(0.3, -0.2), 1.4, 0.08, 0.08),
+                  list("two_ties", 20, c(0.2, 0), 0.45, 0.03, 0),
+                  list("two_small", 7, c(1, 0), 1.3, 0, 0),
+                  list("two_large", 45, c(0.4, 0), 1.3, 0.03, 0.03))) {
+  d <- generate(spec[[1]], c2, spec[[2]], spec[[3]], spec[[4]], spec[[5]], spec[[6]])
+  for (item in items) paired(spec[[1]], d, item, "adaptive", "random")
+}
+across("three_complete", generate("three_complete", c5[1:3], 15, c(1, 0, -0.5), 1.2, 0, 0))
+across("three_missing", generate("three_missing", c5[1:3], 22, c(0.5, 0, 0.2), 1.4, 0.07, 0.08))
+across("four_ties", generate("four_ties", c5[1:4], 16, c(0.3, 0, 0, -0.2), 0.5, 0.03, 0.04))
+across("three_small", generate("three_small", c5[1:3], 6, c(1.5, 0, -1), 1.2, 0, 0))
+across("five_unbalanced", generate("five_unbalanced", c5, 14, c(0.6, 0, -0.4, 0.2, 1), 1.3, 0.04, 0.1))
+
 write.csv(out, "tests/golden/likert/likert_within_golden.csv", row.names = FALSE, quote = TRUE)
+cat(sprintf("wrote %d golden values on %d data sets\n", nrow(out), length(unique(out$data))))
