@@ -385,12 +385,7 @@ void collect_figure_data(const Study& study, const Scored& sc, const tables::Tab
           metrics::exposure_trend(r.scores, r.figures.labels, m, t.test.conf_level));
     }
     // Its table (slopes per condition and their difference): two conditions, in the model's order.
-    if (within(r)) {
-      note_left_out(r.diagnostics, "exposure",
-                    "no condition x exposure table: the conditions are within participants, and the exposure "
-                    "slopes by condition compare participants between the conditions (a within version is not "
-                    "implemented yet)");
-    } else if (const std::size_t k = r.scores.conditions().size(); k > 2 && !study.compare) {
+    if (const std::size_t k = r.scores.conditions().size(); k > 2 && !study.compare) {
       // Two of three or more conditions would be an arbitrary pair: the lab names the pair.
       note_left_out(r.diagnostics, "exposure",
                     fmt::format("no condition x exposure table: it compares two conditions and the study has {}; "
@@ -401,7 +396,7 @@ void collect_figure_data(const Study& study, const Scored& sc, const tables::Tab
       try {
         for (const auto& m : metrics)
           r.exposure.push_back(
-              exposure_table(r.scores, r.figures.labels, m, order, t.test.conf_level, t.bf_prior_r));
+              exposure_table(r.scores, r.figures.labels, m, order, t.test.conf_level, t.bf_prior_r, within(r)));
       } catch (const std::exception& e) {
         r.exposure.clear();  // the findings say why, from their own fit
         note_left_out(r.diagnostics, "exposure",

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <tuple>
 
 #include <Eigen/Dense>
 #include <fmt/format.h>
@@ -284,7 +285,8 @@ std::vector<Finding> metric_exposure_findings(const StudyResults& r, const table
                          : models::exposure_slopes_by_condition(in.participant, in.condition, in.strategy,
                                                                 in.exposure, in.y, conditions_order,
                                                                 r.table1.options.test.conf_level,
-                                                                r.table1.options.bf_prior_r);
+                                                                r.table1.options.bf_prior_r,
+                                                                r.design.design == models::ConditionDesign::within);
     fs = exposure_findings(e, rules, table ? "exposure" : source, m.column);
   } catch (const std::exception& e) {
     fs.push_back(exposure_not_computable(m.column, source, e.what()));
@@ -557,10 +559,10 @@ std::vector<Finding> study_findings(const StudyResults& r, const std::vector<tab
 
 tables::ExposureTable exposure_table(const io::ScoresTable& scores, const std::vector<TrialLabel>& labels,
                                      const std::string& metric, const std::vector<std::string>& conditions,
-                                     double conf_level, double bf_prior_r) {
+                                     double conf_level, double bf_prior_r, bool paired) {
   const ExposureInput in = exposure_input(scores, labels, metric);
   return {metric, models::exposure_slopes_by_condition(in.participant, in.condition, in.strategy, in.exposure,
-                                                       in.y, conditions, conf_level, bf_prior_r)};
+                                                       in.y, conditions, conf_level, bf_prior_r, paired)};
 }
 
 std::vector<Finding> mixed_model_findings(const tables::ModelAnalysis* model, const tables::ModelAnalysis* trend,
@@ -620,21 +622,23 @@ ExposureInput exposure_input(const io::ScoresTable& scores, const std::vector<Tr
   ExposureInput in;
   const int k = scores.metric_index(metric);
   if (k < 0) return in;
-  // Exposure over every labelled trial of a participant (seeing a strategy is the exposure).
+  // Exposure over every labelled trial of a participant in a condition (seeing a strategy is the
+  // exposure). Between participants that is the participant's trials; within participants each
+  // condition's block counts on its own (docs/analysis.md "Exposure within participants").
   std::vector<std::string> lp, ls;
   std::vector<double> li;
   for (const auto& l : labels) {
-    lp.push_back(l.participant);
+    lp.push_back(l.participant + '\x1f' + l.condition);
     li.push_back(static_cast<double>(l.iteration));
     ls.push_back(l.strategy);
   }
   const std::vector<double> counts = models::exposure_counts(lp, li, ls);
-  std::map<std::pair<std::string, long long>, std::size_t> at;
-  for (std::size_t i = 0; i < labels.size(); ++i) at[{labels[i].participant, labels[i].iteration}] = i;
+  std::map<std::tuple<std::string, std::string, long long>, std::size_t> at;
+  for (std::size_t i = 0; i < labels.size(); ++i) at[{labels[i].participant, labels[i].condition, labels[i].iteration}] = i;
   for (const auto& rec : scores.records) {
     const auto& v = rec.values[static_cast<std::size_t>(k)];
     if (!v || std::isnan(*v)) continue;
-    const auto it = at.find({rec.participant, rec.iteration});
+    const auto it = at.find({rec.participant, rec.condition, rec.iteration});
     if (it == at.end() || labels[it->second].strategy.empty()) {
       ++in.unlabelled;
       continue;

@@ -92,11 +92,15 @@ constexpr const char* kSlopeMethod =
 constexpr const char* kDifferenceMethod =
     "difference of exposure slopes between conditions: Welch two-sample t test on the participants' "
     "OLS slopes (two-stage)";
+constexpr const char* kPairedDifferenceMethod =
+    "difference of exposure slopes between conditions within participants: paired t test on each "
+    "participant's two OLS slopes (two-stage)";
 
 /// Each participant's OLS exposure slope per (condition, strategy), row-major with the strategy
 /// fastest, and how many participants of each had no slope.
 struct ParticipantSlopes {
   std::vector<std::vector<double>> slopes;
+  std::vector<std::vector<std::string>> who;  // the participant of each slope
   std::vector<std::size_t> left_out;
 };
 
@@ -120,6 +124,7 @@ ParticipantSlopes participant_slopes(std::span<const std::string> participant,
   }
   ParticipantSlopes out;
   out.slopes.resize(conditions.size() * strategies.size());
+  out.who.resize(out.slopes.size());
   out.left_out.assign(out.slopes.size(), 0);
   for (std::size_t c = 0; c < conditions.size(); ++c)
     for (std::size_t s = 0; s < strategies.size(); ++s) {
@@ -127,9 +132,10 @@ ParticipantSlopes participant_slopes(std::span<const std::string> participant,
       for (; it != cells.end() && std::get<0>(it->first) == conditions[c] && std::get<1>(it->first) == strategies[s];
            ++it) {
         const double b = ols_slope(it->second.x, it->second.y);
-        if (std::isfinite(b))
+        if (std::isfinite(b)) {
           out.slopes[c * strategies.size() + s].push_back(b);
-        else
+          out.who[c * strategies.size() + s].push_back(std::get<2>(it->first));
+        } else
           ++out.left_out[c * strategies.size() + s];
       }
     }
@@ -200,6 +206,53 @@ ExposureSlope slope_difference(std::size_t s, const std::vector<std::string>& st
   return dif;
 }
 
+// Within participants: strategy s's slopes of the participants with a slope in both of the first
+// two conditions, paired (slopes[k] are sorted by participant), then a paired t test with d_z and
+// the one-sample form of the Bayes factor.
+ExposureSlope paired_slope_difference(std::size_t s, const std::vector<std::string>& strategies,
+                                      const std::vector<std::string>& conditions, const ParticipantSlopes& ps,
+                                      const stats::TestOptions& options, double bf_prior_r) {
+  const std::size_t ka = s, kb = strategies.size() + s;
+  std::vector<double> a, b;
+  for (std::size_t i = 0, j = 0; i < ps.who[ka].size() && j < ps.who[kb].size();) {
+    if (ps.who[ka][i] < ps.who[kb][j]) {
+      ++i;
+    } else if (ps.who[kb][j] < ps.who[ka][i]) {
+      ++j;
+    } else {
+      a.push_back(ps.slopes[ka][i++]);
+      b.push_back(ps.slopes[kb][j++]);
+    }
+  }
+  ExposureSlope dif;
+  dif.strategy = strategies[s];
+  dif.condition = conditions[0] + "-" + conditions[1];
+  dif.participants = a.size();
+  // Participants with a slope in one condition only cannot be paired: they are left out too.
+  dif.left_out = ps.slopes[ka].size() + ps.slopes[kb].size() - 2 * a.size() + ps.left_out[ka] + ps.left_out[kb];
+  if (a.size() < 2) {
+    dif.test = stats::TestResult::not_computable(
+        "paired_t", kPairedDifferenceMethod,
+        fmt::format("fewer than 2 participants with an exposure slope of strategy '{}' in both conditions (n = {})",
+                    strategies[s], a.size()));
+    return dif;
+  }
+  dif.test = stats::t_test_paired(a, b, options);
+  stats::add_effect_size_intervals(dif.test);
+  stats::add_bayes_factor(dif.test, bf_prior_r);
+  dif.test.method = kPairedDifferenceMethod;
+  // SE of the mean difference, sd(a - b) / sqrt(n) (the test's sd1 and sd2 describe a and b).
+  double m = 0, ss = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) m += (a[i] - b[i]) / static_cast<double>(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) ss += (a[i] - b[i] - m) * (a[i] - b[i] - m);
+  if (dif.test.computed) dif.std_error = std::sqrt(ss / static_cast<double>(a.size() - 1) / static_cast<double>(a.size()));
+  const std::string lo = dif.left_out == 0 ? std::string()
+                                           : fmt::format("{} participant{} without a slope in both conditions left out",
+                                                         dif.left_out, dif.left_out == 1 ? "" : "s");
+  if (!lo.empty()) dif.test.note = dif.test.note.empty() ? lo : dif.test.note + "; " + lo;
+  return dif;
+}
+
 }  // namespace
 
 ExposureByCondition exposure_slopes_by_condition(std::span<const std::string> participant,
@@ -208,7 +261,7 @@ ExposureByCondition exposure_slopes_by_condition(std::span<const std::string> pa
                                                  std::span<const double> exposure,
                                                  std::span<const double> y,
                                                  std::vector<std::string> conditions,
-                                                 double conf_level, double bf_prior_r) {
+                                                 double conf_level, double bf_prior_r, bool paired) {
   const std::size_t n = participant.size();
   if (condition.size() != n || strategy.size() != n || exposure.size() != n || y.size() != n)
     throw std::invalid_argument("exposure_slopes_by_condition: columns of different lengths");
@@ -232,7 +285,8 @@ ExposureByCondition exposure_slopes_by_condition(std::span<const std::string> pa
     }
   if (conditions.size() < 2) return out;
   for (std::size_t s = 0; s < strategies.size(); ++s)
-    out.differences.push_back(slope_difference(s, strategies, conditions, ps, options, bf_prior_r));
+    out.differences.push_back(paired ? paired_slope_difference(s, strategies, conditions, ps, options, bf_prior_r)
+                                     : slope_difference(s, strategies, conditions, ps, options, bf_prior_r));
   return out;
 }
 

@@ -102,13 +102,19 @@ std::string render_exposure(const std::vector<ExposureTable>& tables, OutputForm
       out.latex_cells.push_back(std::move(latex));
     }
   }
-  out.notes.push_back(
+  bool paired = false;
+  for (const auto& t : tables)
+    for (const auto& d : t.result.differences) paired = paired || d.test.test == "paired_t";
+  out.notes.push_back(fmt::format(
       "Two-stage (slopes as outcomes): each participant's OLS slope of the metric on exposure (the "
-      "number of the participant's earlier trials of the strategy) over their trials of the strategy, "
+      "number of the participant's earlier trials of the strategy{}) over their trials of the strategy, "
       "from participants with at least 2 trials at 2 distinct exposures; a condition's slope is the mean "
-      "of its participants' slopes (one-sample t, df = n - 1), the difference between conditions a "
-      "Welch t test on the participants' slopes (with Cohen's d and the JZS Bayes factor in the "
-      "findings). "
+      "of its participants' slopes (one-sample t, df = n - 1), the difference between conditions {}. ",
+      paired ? " in that condition" : "",
+      paired ? "a paired t test on the slopes of the participants with one in both conditions (with d_z and "
+               "the JZS Bayes factor in the findings)"
+             : "a Welch t test on the participants' slopes (with Cohen's d and the JZS Bayes factor in the "
+               "findings)") +
       "p Holm: Holm-adjusted over the strategies of the metric, as the findings use it "
       "(docs/findings.md).");
   out.latex_label = "tab:feint-exposure";

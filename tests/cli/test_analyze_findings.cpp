@@ -70,8 +70,9 @@ TEST(AnalyzeFindings, PrintedWrittenAndFirstInTheReport) {
 
 // data/example is a within-participants design (each participant in both conditions, no feint.toml):
 // the design is read off the data, the per-iteration contrasts are paired and adjusted by maxT over
-// the 2^3 sign flips of the pairs, and the exposure findings say why they cannot be computed.
-TEST(AnalyzeFindings, AWithinParticipantsStudyIsAnalysedAndTheFindingsSayWhatItCannotAnswer) {
+// the 2^3 sign flips of the pairs, and the exposure slopes (counted within each condition) are
+// compared paired: a paired t on the 3 participants' slopes, t(2).
+TEST(AnalyzeFindings, AWithinParticipantsStudyIsAnalysedPairedIncludingTheExposureSlopes) {
   TempDir dir;
   fs::create_directories(dir.path() / "study" / "logs");
   for (const char* f : {"p01.csv", "p02.csv", "p03.csv"})
@@ -87,9 +88,12 @@ TEST(AnalyzeFindings, AWithinParticipantsStudyIsAnalysedAndTheFindingsSayWhatItC
   EXPECT_NE(read_text(dir.path() / "out" / "report.md").find("conditions within participants (read off the data: "
                                                              "each of the 3 participants saw both conditions)"),
             std::string::npos);
-  EXPECT_NE(r.out.find("Exposure slopes of error by condition: not computable (participant P01 has two trials at "
-                       "iteration 1 (a participant in more than one condition?)"),
-            std::string::npos)
-      << r.out;
-  EXPECT_NE(read_text(dir.path() / "out" / "findings.json").find("\"id\": \"H1-exposure-error\""), std::string::npos);
+  EXPECT_EQ(r.out.find("Exposure slopes of error by condition: not computable"), std::string::npos) << r.out;
+  const std::string findings = read_text(dir.path() / "out" / "findings.json");
+  const auto at = findings.find("\"id\": \"H1-exposure-error-exaggerating\"");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_NE(findings.find("\"effect_size\": {\"name\": \"d_z\"", at), std::string::npos);
+  EXPECT_NE(findings.find("\"test\": \"paired t test\"", at), std::string::npos);
+  EXPECT_NE(read_text(dir.path() / "out" / "exposure_by_condition.txt").find("a paired t test on the slopes"),
+            std::string::npos);
 }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "feint/models/exposure.hpp"
@@ -167,4 +168,55 @@ TEST(ExposureByCondition, ShiftingYChangesNothingAndScalingYScalesTheEstimates) 
   // the Bayes factor depends on |t| only
   for (std::size_t i = 0; i < base.differences.size(); ++i)
     EXPECT_NEAR(*sc.differences[i].test.log_bf10, *base.differences[i].test.log_bf10, 1e-8);
+}
+
+// Within participants: exposure counted within each condition's block, slopes per participant x
+// condition x strategy, the difference a paired t test over the participants with a slope in both
+// (tests/golden/models/exposure_within_golden.R: lm(), t.test(paired = TRUE), the exact JZS BF).
+TEST(ExposureByCondition, WithinParticipantsPairedDifferenceMatchesTTestPaired) {
+  const auto data = read_csv(FEINT_SOURCE_DIR "/tests/golden/models/exposure_within.csv");
+  Data d;
+  std::vector<std::string> block;  // participant x condition: the exposure's own count
+  std::vector<double> iteration;
+  for (std::size_t i = 1; i < data.size(); ++i) {  // participant,condition,iteration,strategy,error
+    d.participant.push_back(data[i][0]);
+    d.condition.push_back(data[i][1]);
+    block.push_back(data[i][0] + "|" + data[i][1]);
+    iteration.push_back(std::stod(data[i][2]));
+    d.strategy.push_back(data[i][3]);
+    // a missing error is an empty last field (which the line splitter drops)
+    d.y.push_back(data[i].size() < 5 || data[i][4].empty() ? std::nan("") : std::stod(data[i][4]));
+  }
+  d.exposure = feint::models::exposure_counts(block, iteration, d.strategy);
+  const auto res = feint::models::exposure_slopes_by_condition(d.participant, d.condition, d.strategy, d.exposure,
+                                                               d.y, {"adaptive", "random"}, 0.95,
+                                                               feint::stats::kJzsMediumScale, true);
+  const auto golden = read_csv(FEINT_SOURCE_DIR "/tests/golden/models/exposure_within_golden.csv");
+  ASSERT_EQ(golden.size(), 10u);
+  ASSERT_EQ(res.slopes.size(), 6u);
+  ASSERT_EQ(res.differences.size(), 3u);
+  for (std::size_t i = 1; i < golden.size(); ++i) {
+    const auto& g = golden[i];
+    const bool slope = g[0] == "slope";
+    const auto& r = slope ? res.slopes[i - 1] : res.differences[i - 7];
+    SCOPED_TRACE(g[1] + " " + g[2]);
+    ASSERT_EQ(r.strategy, g[1]);
+    ASSERT_EQ(r.condition, g[2]);
+    ASSERT_TRUE(r.test.computed) << r.test.note;
+    EXPECT_EQ(r.test.test, slope ? "one_sample_t" : "paired_t");
+    EXPECT_EQ(r.participants, std::stoul(g[3]));
+    EXPECT_EQ(r.left_out, std::stoul(g[4]));
+    for (const auto& [got, col] : {std::pair{*r.test.estimate, 5}, {r.std_error, 6}, {*r.test.df, 7},
+                                   {*r.test.statistic, 8}, {*r.test.p_value, 9}, {*r.test.conf_low, 10},
+                                   {*r.test.conf_high, 11}}) {
+      feint::test::record("exposure slopes within (lm, t.test paired)", got, std::stod(g[col]));
+      EXPECT_PRED3(near_rel, got, std::stod(g[col]), 1e-10) << "column " << golden[0][col];
+    }
+    if (!slope) {
+      ASSERT_TRUE(r.test.log_bf10.has_value());
+      EXPECT_NEAR(*r.test.log_bf10, std::stod(g[12]), 1e-12);
+      EXPECT_TRUE(r.test.cohen_d.has_value() && r.test.cohen_d_low.has_value());  // d_z with its CI
+      EXPECT_NE(r.test.note.find("without a slope in both conditions"), std::string::npos) << r.test.note;
+    }
+  }
 }

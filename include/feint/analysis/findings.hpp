@@ -120,8 +120,9 @@ Finding family_finding(std::string id, std::string hypothesis, std::string quest
                        const WordingRules& rules = {}, std::string correction = {});
 
 /// H1, condition x exposure per strategy: one finding per strategy on the difference of the two
-/// conditions' exposure slopes (a Welch t test on the participants' slopes, Holm-corrected over the
-/// strategies, then classify(): the rule of every Welch test with a Bayes factor), both slopes with
+/// conditions' exposure slopes (a Welch t test on the participants' slopes, or the paired t test
+/// within participants, Holm-corrected over the strategies, then classify(): the rule of every t test
+/// with a Bayes factor), both slopes with
 /// their CIs and participant counts in the sentence.
 /// With one condition only: one "not computable" finding that says so. `metric` (when given) is
 /// named in the ids ("H1-exposure-error-<strategy>") and the sentences.

@@ -55,8 +55,9 @@ std::vector<Finding> mixed_model_findings(const tables::ModelAnalysis* model,
                                           double bf_prior_r = 0.7071067811865476);
 
 /// The input of models::exposure_slopes_by_condition for one metric: each scored trial with a value
-/// of the metric, joined by (participant, iteration) to its label (strategy), with its exposure
-/// count taken over all the participant's labelled trials (models::exposure_counts). Trials
+/// of the metric, joined by (participant, condition, iteration) to its label (strategy), with its
+/// exposure count taken over the participant's labelled trials in that condition
+/// (models::exposure_counts; between participants, all of the participant's trials). Trials
 /// without a label are left out (`unlabelled` counts them).
 struct ExposureInput {
   std::vector<std::string> participant, condition, strategy;
@@ -68,9 +69,11 @@ ExposureInput exposure_input(const io::ScoresTable& scores, const std::vector<Tr
 
 /// The report's condition x exposure table of `metric` (models::exposure_slopes_by_condition on
 /// exposure_input, the conditions in `conditions` order, JZS prior scale `bf_prior_r` for the
-/// difference tests' Bayes factors); throws what the fit throws.
+/// difference tests' Bayes factors; `paired`: conditions within participants, paired differences);
+/// throws what the fit throws.
 tables::ExposureTable exposure_table(const io::ScoresTable& scores, const std::vector<TrialLabel>& labels,
                                      const std::string& metric, const std::vector<std::string>& conditions,
-                                     double conf_level, double bf_prior_r = 0.7071067811865476);
+                                     double conf_level, double bf_prior_r = 0.7071067811865476,
+                                     bool paired = false);
 
 }  // namespace feint::analysis

@@ -48,6 +48,10 @@ struct ExposureSlope {
 ///    t test against 0 with its t CI (df = n - 1); the difference (first condition minus second) =
 ///    Welch two-sample t test on the participants' slopes (stats::t_test_welch: CI, Cohen's d with
 ///    its CI) with the JZS Bayes factor (stats::add_bayes_factor, prior scale `bf_prior_r`).
+/// `paired` (conditions within participants): the difference is the paired t test on the slopes of
+/// the participants with a slope in both conditions (stats::t_test_paired: CI, d_z with its CI, the
+/// one-sample JZS Bayes factor); the others are counted in `left_out`. Each participant's exposure
+/// is then counted within each condition's block (docs/analysis.md, "Exposure within participants").
 /// Fewer than 2 participants with a slope give results that are not computable, with the reason in
 /// the note (never a throw). Golden: tests/golden/models/exposure_by_condition_golden.R (lm() per
 /// participant x strategy, t.test()). `conditions` gives the two conditions in order (empty: sorted).
@@ -62,6 +66,7 @@ ExposureByCondition exposure_slopes_by_condition(std::span<const std::string> pa
                                                  std::span<const double> y,
                                                  std::vector<std::string> conditions = {},
                                                  double conf_level = 0.95,
-                                                 double bf_prior_r = stats::kJzsMediumScale);
+                                                 double bf_prior_r = stats::kJzsMediumScale,
+                                                 bool paired = false);
 
 }  // namespace feint::models
