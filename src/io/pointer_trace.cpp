@@ -52,6 +52,7 @@ struct Building {
   std::string error;
   std::uint64_t error_line = 0;
   bool open = false;
+  std::string key;  // participant, condition and the iteration as written (before --iteration-base)
 };
 
 }  // namespace
@@ -91,6 +92,24 @@ struct PointerTraceReader::Impl {
       fail_header(fmt::format("no column '{}' (a log of K targets needs {}; give --map {}=COLUMN)", col, field,
                               field));
     return i;
+  }
+
+  // Without a condition column every trial is in one condition: refused when the study has several
+  // or a column looks like the condition (as TraceReader does), unless --single-condition.
+  void check_pooling() {
+    if (options.single_condition) return;
+    if (options.expected_conditions.size() >= 2)
+      fail_header(fmt::format("no condition column '{}', but the study has {} conditions ({}): name the column with "
+                              "--map condition=COLUMN; trials would otherwise be pooled into one condition",
+                              column_name(options, "condition"), options.expected_conditions.size(),
+                              fmt::join(options.expected_conditions, ", ")));
+    const auto& header = csv->header();
+    for (std::size_t i = 0; i < header.size(); ++i)
+      if (detail::looks_like_condition(header[i]))
+        fail_header(fmt::format("column '{}' (column {}) looks like the condition, but the condition is read from a "
+                                "column named '{}': name it with --map condition={}, or give --single-condition to "
+                                "pool every trial into one condition",
+                                header[i], i + 1, column_name(options, "condition"), trim(header[i])));
   }
 
   void read_layout_columns() {
@@ -134,6 +153,7 @@ struct PointerTraceReader::Impl {
     cols = Columns{};
     cols.participant = find("participant", true);
     cols.condition = find("condition", false);
+    if (cols.condition < 0) check_pooling();
     cols.iteration = find("iteration", true);
     cols.strategy = find("strategy", false);
     cols.variant = find("variant", false);
@@ -196,6 +216,7 @@ struct PointerTraceReader::Impl {
   void start_trial(std::string_view p, std::string_view c, std::string_view it) {
     b = Building{};
     b.open = true;
+    b.key = key(p, c, it);
     Trial& t = b.trial;
     t.participant = std::string(p);
     t.condition = std::string(c);
@@ -203,8 +224,13 @@ struct PointerTraceReader::Impl {
     t.line = csv->line();
     t.pad_speed = options.pad_speed;
     const auto i = parse_integer(it);
-    if (i && *i >= 0 && *i <= kMaxIteration) {
-      t.iteration = *i;
+    // --iteration-base as for pad logs: 0-based iterations are shifted to 1-based; with 1, 0 is invalid.
+    if (i && *i == 0 && options.iteration_base == 1) {
+      t.iteration = 0;
+      invalid(csv->line(), fmt::format("column '{}': iteration 0, but the iterations are 1-based (--iteration-base 1)",
+                                       csv->header()[static_cast<std::size_t>(cols.iteration)]));
+    } else if (i && *i >= 0 && *i <= kMaxIteration - (options.iteration_base == 0 ? 1 : 0)) {
+      t.iteration = options.iteration_base == 0 ? *i + 1 : *i;
     } else {
       t.iteration = 0;
       invalid(csv->line(), fmt::format("column '{}': '{}' is not an iteration (a whole number from 0 to 1e9)",
@@ -301,7 +327,7 @@ struct PointerTraceReader::Impl {
     b.open = false;
     check_trial();
     Trial& t = b.trial;
-    seen.insert(fmt::format("{}\x1f{}\x1f{}", t.participant, t.condition, t.iteration));
+    seen.insert(b.key);
     if (b.error.empty()) {
       rows_ok += t.rows;
       ready = std::move(t);
@@ -333,8 +359,7 @@ struct PointerTraceReader::Impl {
       }
       ++rows;
       const auto p = cell(cols.participant), c = cell(cols.condition), it = cell(cols.iteration);
-      if (!b.open || b.trial.participant != p || b.trial.condition != c ||
-          key(p, c, it) != key(b.trial.participant, b.trial.condition, std::to_string(b.trial.iteration))) {
+      if (!b.open || b.trial.participant != p || b.trial.condition != c || key(p, c, it) != b.key) {
         finish(name());
         start_trial(p, c, it);
       }
@@ -366,9 +391,11 @@ bool is_pointer_log(const std::string& file, const TraceOptions& options) {
 
 PointerTraceReader::PointerTraceReader(std::vector<std::string> files, TraceOptions options)
     : impl_(std::make_unique<Impl>()) {
-  if (options.unsorted || options.no_header || !options.samples_column.empty() || options.decimal == ',')
-    throw UsageError("logs of K targets are read as written: unsorted rows, headerless files, JSON samples and "
-                     "decimal commas are not supported for them");
+  if (options.unsorted || options.no_header || !options.samples_column.empty() || options.decimal == ',' ||
+      !options.participant_from_path.empty())
+    throw UsageError("logs of K targets are read as written: unsorted rows, headerless files, JSON samples, "
+                     "decimal commas and participants named by the path are not supported for them (name the "
+                     "columns with --map; --time-unit, --iteration-base, --delimiter and --single-condition apply)");
   if (options.require_pad_speed && !options.pad_speed)
     throw UsageError("the confusion normalisation 'speed' needs the pointer's speed, which logs of K targets do "
                      "not hold: give --pad-speed V (layout scales per second) or --confusion-norm raw");

@@ -110,13 +110,6 @@ bool is_missing(std::string_view v) noexcept {
   return l == "nan" || l == "na";
 }
 
-// A name that suggests the study's condition (then pooling it silently would be wrong).
-bool looks_like_condition(std::string_view header_cell) {
-  const std::string k = to_lower(trim(header_cell));
-  return k.starts_with("cond") || k == "group" || k == "arm" || k == "treatment" ||
-         k == "between";
-}
-
 // The columns a file lacks, gathered so that one message names them all.
 struct MissingColumns {
   std::vector<std::string> columns;  // as the message names them
@@ -132,6 +125,15 @@ bool has_data_extension(const fs::path& p) {
 }
 
 }  // namespace
+
+namespace detail {
+bool looks_like_condition(std::string_view header_cell) {
+  const std::string k = to_lower(trim(header_cell));
+  return k.starts_with("cond") || k == "group" || k == "arm" || k == "treatment" || k == "between";
+}
+}  // namespace detail
+
+using detail::looks_like_condition;
 
 const std::vector<std::string>& trace_field_names() {
   static const std::vector<std::string> names(kFieldNames.begin(), kFieldNames.end());

@@ -170,3 +170,57 @@ TEST(PointerTrace, SpeedNormalisationWithoutASpeedIsAUsageError) {
   o.require_pad_speed = true;
   EXPECT_THROW(PointerTraceReader({write("ok2.csv", kHeader)}, o), feint::UsageError);
 }
+
+// The loader options of pad logs that apply to pointer logs: --iteration-base (0-based iterations
+// become 1-based; rows of a trial stay one trial), a time unit, and the condition column's checks.
+TEST(PointerTrace, ZeroBasedIterationsAreShiftedAsForPadLogs) {
+  const auto f = write("base0.csv", kHeader + row("0", "2", "0", "0") + row("0", "2", "40", "0.1") +
+                                        row("1", "0", "0", "0") + row("1", "0", "40", "0.2"));
+  TraceOptions opt;
+  opt.iteration_base = 0;
+  opt.time_divisor = 1000;  // milliseconds
+  const auto trials = read_all(f, opt);
+  ASSERT_EQ(trials.size(), 2U);
+  EXPECT_EQ(trials[0].iteration, 1);
+  EXPECT_EQ(trials[1].iteration, 2);
+  EXPECT_EQ(trials[0].times.size(), 2U);
+  EXPECT_DOUBLE_EQ(trials[0].times[1], 0.04);
+  // 1-based: an iteration 0 is invalid, named.
+  opt.iteration_base = 1;
+  try {
+    read_all(f, opt);
+    ADD_FAILURE() << "no error";
+  } catch (const feint::InvalidData& e) {
+    EXPECT_NE(std::string(e.what()).find("iteration 0, but the iterations are 1-based"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PointerTrace, AFileWithoutAConditionColumnIsNotPooledSilently) {
+  const std::string header =
+      "participant,group,iteration,target,t,belief_x,belief_y,start_x,start_y,target0_x,target0_y,target1_x,target1_y\n";
+  const auto f = write("group.csv", header + "P1,a,1,0,0,0,1,0,0,-2,4,2,4\nP1,a,1,0,1,-1,2,0,0,-2,4,2,4\n");
+  const std::string e = strict_error(f);
+  EXPECT_NE(e.find("column 'group' (column 2) looks like the condition"), std::string::npos) << e;
+  EXPECT_NE(e.find("--map condition=group"), std::string::npos) << e;
+  TraceOptions pool;
+  pool.single_condition = true;
+  EXPECT_EQ(read_all(f, pool).size(), 1U);
+  TraceOptions two;
+  two.expected_conditions = {"adaptive", "random"};
+  const auto g = write("nocond.csv", "participant,iteration,target,t,belief_x,belief_y,start_x,start_y,target0_x,"
+                                     "target0_y,target1_x,target1_y\nP1,1,0,0,0,1,0,0,-2,4,2,4\n");
+  try {
+    read_all(g, two);
+    ADD_FAILURE() << "no error";
+  } catch (const feint::InvalidData& e2) {
+    EXPECT_NE(std::string(e2.what()).find("the study has 2 conditions (adaptive, random)"), std::string::npos)
+        << e2.what();
+  }
+}
+
+TEST(PointerTrace, ParticipantsNamedByThePathAreRefusedNotIgnored) {
+  const auto f = write("p.csv", kHeader + row("1", "2", "0", "0") + row("1", "2", "0.04", "0.1"));
+  TraceOptions opt;
+  opt.participant_from_path = "filename";
+  EXPECT_THROW(read_all(f, opt), feint::UsageError);
+}

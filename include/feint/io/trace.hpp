@@ -138,6 +138,9 @@ struct TraceOptions {
 };
 
 namespace detail {
+/// A header name that suggests the study's condition (`cond...`, `group`, `arm`, `treatment`,
+/// `between`): pooling such a file into one condition silently would be wrong.
+bool looks_like_condition(std::string_view header_cell);
 /// Reads a JSON samples cell (TraceOptions::samples_column); false with `error` set when malformed.
 /// JSON null is NaN (padding).
 bool parse_json_samples(std::string_view cell, std::string_view t_key, std::string_view pad_key,
