@@ -10,6 +10,7 @@
 
 #include "feint/error.hpp"
 #include "finite_score.hpp"
+#include "time_scale.hpp"
 
 namespace feint::metrics {
 
@@ -101,24 +102,18 @@ std::optional<double> checked_pointer_speed(std::optional<double> pointer_speed,
   return v;
 }
 
-// The trace as the 1-D scorer sees its pad: times as w = t - t0 in units of 2^-k s (2^k <= tau <
-// 2^(k+1), exact scaling, so extreme durations neither underflow nor overflow in w^2 / 2), and
-// points relative to the true target in layout scales (G* at the origin, r_i = |p_i|).
+// The trace as the 1-D scorer sees its pad: times scaled as there (w = t - t0 in units of 2^-k s,
+// time_scale.hpp), and points relative to the true target in layout scales (G* at the origin,
+// r_i = |p_i|).
 struct Trace {
-  std::span<const double> times;
+  detail::ScaledTime w;  // w(i): sample i's scaled time; w.times, w.t0 and w.k
   std::vector<MapPoint> p;
-  double t0;
-  int k;
-  double s1, s2;  // 2^-k = s1 s2
-  double w(std::size_t i) const noexcept { return (times[i] - t0) * s1 * s2; }
 };
 
 Trace relative_trace(std::span<const double> times, std::span<const MapPoint> points,
                      MapPoint goal, double scale) {
   const double duration = times[times.size() - 1] - times[0];
-  const int k = std::ilogb(duration);
-  const int k1 = std::clamp(-k, -1000, 1000);
-  Trace tr{times, {}, times[0], k, std::ldexp(1.0, k1), std::ldexp(1.0, -k - k1)};
+  Trace tr{detail::scaled_time(times, duration), {}};
   tr.p.reserve(points.size());
   for (const MapPoint b : points) tr.p.push_back({(b.x - goal.x) / scale, (b.y - goal.y) / scale});
   return tr;
@@ -151,7 +146,7 @@ Directions scan_directions(const Trace& tr, double eps, std::optional<double> v)
     }
     if (v) {
       const double moved = std::hypot(tr.p[i + 1].x - tr.p[i].x, tr.p[i + 1].y - tr.p[i].y);
-      if (moved / (tr.times[i + 1] - tr.times[i]) > *v * (1 + kOverspeedTolerance)) {
+      if (moved / (tr.w.times[i + 1] - tr.w.times[i]) > *v * (1 + kOverspeedTolerance)) {
         ++out.overspeed_segments;
       }
     }
@@ -189,7 +184,7 @@ WindowIntegrals integrate_window(const Trace& tr, double a, double b, std::size_
     const double cs = std::max(x0, c), ce = std::min(x1, b);
     if (rev_segment < n && ce > cs) {
       const double moved = std::hypot(tr.p[i + 1].x - tr.p[i].x, tr.p[i + 1].y - tr.p[i].y);
-      const double speed = moved / (tr.times[i + 1] - tr.times[i]);  // may be +inf: see below
+      const double speed = moved / (tr.w.times[i + 1] - tr.w.times[i]);  // may be +inf: see below
       const double rate = norm == ConfusionNorm::speed ? std::min(1.0, speed / *v) : speed;
       r.moving += rate * (0.5 * (ce * ce - cs * cs));
     }
@@ -222,7 +217,7 @@ BeliefPointScore score_belief_points(std::span<const double> times,
   const Directions dirs = scan_directions(tr, settings.deadband, v);
   s.reversals = dirs.reversals;
   s.overspeed_segments = dirs.overspeed_segments;
-  s.reversal_time = dirs.rev_segment < n ? times[dirs.rev_segment] - tr.t0
+  s.reversal_time = dirs.rev_segment < n ? times[dirs.rev_segment] - tr.w.t0
                                          : std::numeric_limits<double>::quiet_NaN();
   const WindowIntegrals in = integrate_window(tr, a, b, dirs.rev_segment, settings.norm, v);
   s.error = in.error / (b - a);
@@ -230,7 +225,7 @@ BeliefPointScore score_belief_points(std::span<const double> times,
     // Rounding can push a mean of values in [0, 1] an ulp outside; the true value cannot be.
     s.confusion = std::clamp(in.moving / (0.5 * (b * b - a * a)), 0.0, 1.0);
   } else {
-    s.confusion = std::ldexp(in.moving / tau, tr.k);  // 2^-k twice in w^2, once in tau
+    s.confusion = std::ldexp(in.moving / tau, tr.w.k);  // 2^-k twice in w^2, once in tau
   }
   detail::reject_non_finite(s);
   return s;

@@ -9,6 +9,7 @@
 
 #include "feint/error.hpp"
 #include "finite_score.hpp"
+#include "time_scale.hpp"
 #include "feint/io/number.hpp"
 
 namespace feint::metrics {
@@ -214,26 +215,6 @@ double checked_duration(std::span<const double> times) {
   return duration;
 }
 
-// Sample i's time as w = t - t0 (the time weight of metrics.md), so that the result does not
-// depend on where the clock started, in units of 2^-k s with 2^k <= tau < 2^(k+1): multiplying by a
-// power of two is exact, so ordinary durations give bit for bit the seconds' result, while 1e-300 s
-// or 1e263 s no longer underflow or overflow in the squared time weights (w^2 / 2).
-struct ScaledTime {
-  std::span<const double> times;
-  double t0;
-  int k;
-  double s1, s2;  // 2^-k = s1 s2
-  double operator()(std::size_t i) const noexcept { return (times[i] - t0) * s1 * s2; }
-};
-
-ScaledTime scaled_time(std::span<const double> times, double duration) {
-  const int k = std::ilogb(duration);
-  // 2^-k as one or two factors (2^1074 for the smallest subnormal duration is not a double); a
-  // multiplication, not std::ldexp, which is a library call in the hot loop.
-  const int k1 = std::clamp(-k, -1000, 1000);
-  return {times, times[0], k, std::ldexp(1.0, k1), std::ldexp(1.0, -k - k1)};
-}
-
 struct Directions {
   std::size_t rev_segment;  // the first segment against the first direction; n when none
   int reversals = 0;
@@ -277,8 +258,8 @@ struct WindowIntegrals {
 
 // Second pass, over the segments inside the window [a, b] (scaled time): the exact error integral,
 // the time-weighted movement after the first reversal, and the belief accumulator's window part.
-WindowIntegrals integrate_window(const ScaledTime& w, std::span<const double> pads, double target,
-                                 double a, double b, std::size_t rev_segment,
+WindowIntegrals integrate_window(const detail::ScaledTime& w, std::span<const double> pads,
+                                 double target, double a, double b, std::size_t rev_segment,
                                  ConfusionNorm norm, std::optional<double> v,
                                  detail::BeliefAccumulator& belief) {
   const std::span<const double> times = w.times;
@@ -323,7 +304,7 @@ TrialScore score_trace(std::span<const double> times, std::span<const double> pa
   const std::optional<double> v = checked_pad_speed(pad_speed, settings);
   const std::size_t n = times.size();
   const double duration = checked_duration(times);
-  const ScaledTime w = scaled_time(times, duration);
+  const detail::ScaledTime w = detail::scaled_time(times, duration);
   const double tau = w(n - 1);
   const double a = settings.trim_start * tau;
   const double b = (1 - settings.trim_end) * tau;

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -79,18 +80,11 @@ Evaluation CrossedProblem::evaluate(const Eigen::VectorXd& theta) const {
   const Eigen::MatrixXd MW = chol.solve(W);
   ev.XtHX = XtX - W.transpose() * MW;
   const Eigen::VectorXd XtHy = Xty - MW.transpose() * w;
-  ev.xthx_chol.compute(ev.XtHX);
-  if (ev.xthx_chol.info() != Eigen::Success) {
-    ev.ok = false;
-    return ev;
-  }
-  const Eigen::MatrixXd Lx = ev.xthx_chol.matrixL();
-  ev.logdet_x = 2.0 * Lx.diagonal().array().log().sum();
-  ev.beta = ev.xthx_chol.solve(XtHy);
+  const std::optional<Eigen::VectorXd> e = fixed_effect_step(ev, XtHy, X, y);
+  if (!e) return ev;
   // e' H^-1 e from the residuals themselves (no cancellation against y'y).
-  const Eigen::VectorXd e = y - X * ev.beta;
   const Eigen::VectorXd u = lam.asDiagonal() * (Zty - ZtX * ev.beta);
-  ev.r2 = e.squaredNorm() - u.dot(chol.solve(u));
+  ev.r2 = e->squaredNorm() - u.dot(chol.solve(u));
   return ev;
 }
 

@@ -11,6 +11,7 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 
 #include "mixed_model_detail.hpp"
@@ -114,6 +115,20 @@ Eigen::MatrixXd Problem::lambda(const Eigen::VectorXd& theta) const {
   return L;
 }
 
+std::optional<Eigen::VectorXd> fixed_effect_step(Evaluation& ev, const Eigen::VectorXd& XtHy,
+                                                 const Eigen::MatrixXd& X,
+                                                 const Eigen::VectorXd& y) {
+  ev.xthx_chol.compute(ev.XtHX);
+  if (ev.xthx_chol.info() != Eigen::Success) {
+    ev.ok = false;
+    return std::nullopt;
+  }
+  const Eigen::MatrixXd Lx = ev.xthx_chol.matrixL();
+  ev.logdet_x = 2.0 * Lx.diagonal().array().log().sum();
+  ev.beta = ev.xthx_chol.solve(XtHy);
+  return Eigen::VectorXd(y - X * ev.beta);
+}
+
 Evaluation Problem::evaluate(const Eigen::VectorXd& theta) const {
   const Eigen::MatrixXd L = lambda(theta);
   const Eigen::Index q = Z.cols();
@@ -132,17 +147,10 @@ Evaluation Problem::evaluate(const Eigen::VectorXd& theta) const {
     ev.XtHX.noalias() -= W.transpose() * chol[i].solve(W);
     XtHy.noalias() -= W.transpose() * chol[i].solve(w);
   }
-  ev.xthx_chol.compute(ev.XtHX);
-  if (ev.xthx_chol.info() != Eigen::Success) {
-    ev.ok = false;
-    return ev;
-  }
-  const Eigen::MatrixXd Lx = ev.xthx_chol.matrixL();
-  ev.logdet_x = 2.0 * Lx.diagonal().array().log().sum();
-  ev.beta = ev.xthx_chol.solve(XtHy);
+  const std::optional<Eigen::VectorXd> e = fixed_effect_step(ev, XtHy, X, y);
+  if (!e) return ev;
   // Penalised residual sum of squares e' H^-1 e from the residuals themselves (no cancellation).
-  const Eigen::VectorXd e = y - X * ev.beta;
-  double r2 = e.squaredNorm();
+  double r2 = e->squaredNorm();
   for (std::size_t i = 0; i < ZtZ.size(); ++i) {
     const Eigen::VectorXd u = L.transpose() * (Zty[i] - ZtX[i] * ev.beta);
     r2 -= u.dot(chol[i].solve(u));

@@ -3,6 +3,7 @@
 
 #include <Eigen/Dense>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace feint::models::detail {
@@ -17,6 +18,14 @@ struct Evaluation {
   Eigen::LLT<Eigen::MatrixXd> xthx_chol;
   Eigen::VectorXd beta;
 };
+
+/// The fixed-effect step of an evaluation, shared by Problem and CrossedProblem: with ev.XtHX =
+/// X'H^-1X formed, factors it (ev.xthx_chol), sets ev.logdet_x = log|X'H^-1X| and the GLS
+/// ev.beta = (X'H^-1X)^-1 X'H^-1y, and returns the residuals y - X beta (the caller takes
+/// e'H^-1e from them). Where the factorisation fails: ev.ok = false and no residuals.
+std::optional<Eigen::VectorXd> fixed_effect_step(Evaluation& ev, const Eigen::VectorXd& XtHy,
+                                                 const Eigen::MatrixXd& X,
+                                                 const Eigen::VectorXd& y);
 
 /// Exact derivatives at one theta (mixed_model_derivatives.cpp), with P = H^-1 - H^-1 X C X' H^-1.
 struct ThetaDerivatives {
