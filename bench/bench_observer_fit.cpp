@@ -6,10 +6,15 @@
 //   BM_Coverage             parameter recovery over many simulated participants: the share of 95%
 //                           profile CIs that cover the true beta and tau (counters), for the AR(1)
 //                           model and for independent errors on every / on thinned samples.
+//   BM_PointerCoverage      the same for the K-goal observer fitted to pointer traces drawn from
+//                           its model (K = 3, random layouts and the row; pointer_observer_fit.hpp).
+//   BM_PointerParticipant   one pointer participant's fit (8 trials, K = 3) with profile CIs.
 #include <benchmark/benchmark.h>
 
 #include "../tests/models/observer_test_paths.hpp"
+#include "../tests/sim/pointer_observer_sim.hpp"
 #include "feint/models/observer_fit.hpp"
+#include "feint/models/pointer_observer_fit.hpp"
 
 using namespace feint::models;
 namespace tp = feint::testpaths;
@@ -87,6 +92,29 @@ void BM_Coverage(benchmark::State& state) {
 }
 // range(1): 0 = AR(1) on every sample, 1 = independent on every sample, 2 = independent, thinned.
 BENCHMARK(BM_Coverage)->Args({1000, 0})->Args({200, 1})->Args({200, 2})->Iterations(1)->Unit(benchmark::kSecond);
+
+void BM_PointerCoverage(benchmark::State& state) {
+  const int studies = static_cast<int>(state.range(0));
+  feint::testpointer::Coverage c;
+  for (auto _ : state) c = feint::testpointer::pointer_coverage(studies, 8, 4242);
+  state.counters["beta_coverage"] = static_cast<double>(c.beta) / studies;
+  state.counters["tau_coverage"] = static_cast<double>(c.tau) / studies;
+  state.counters["joint_coverage"] = static_cast<double>(c.both) / studies;
+}
+BENCHMARK(BM_PointerCoverage)->Arg(1000)->Iterations(1)->Unit(benchmark::kSecond);
+
+void BM_PointerParticipant(benchmark::State& state) {
+  feint::Rng rng(99);
+  const auto trials = feint::testpointer::simulate_pointer_participant({}, 8, 3, true, rng);
+  std::size_t evals = 0;
+  for (auto _ : state) {
+    auto f = fit_pointer_observer(trials, ObserverFitSettings{}, "P0");
+    evals = f.evaluations;
+    benchmark::DoNotOptimize(f);
+  }
+  state.counters["likelihood_evaluations"] = static_cast<double>(evals);
+}
+BENCHMARK(BM_PointerParticipant)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -13,6 +13,7 @@
 #include "feint/tables/observer_render.hpp"
 #include "feint/tables/study_power_render.hpp"
 #include "feint/sim/pilot_fit.hpp"
+#include "observer_pointer.hpp"
 
 namespace feint::commands {
 
@@ -28,6 +29,9 @@ io::TraceOptions loader_trace_options(const analysis::ScoreOptions& loader) {
 std::string observer_fit_report(const ObserverFitCommand& c) {
   const io::TraceOptions reading = loader_trace_options(c.loader);
   const models::ObserverFitSettings s = sim::observer_fit_settings(c.o);
+  // Logs of K targets and a pointer are told apart by their header, as `feint score` does.
+  const auto files = io::expand_inputs(c.o.inputs);
+  if (detail::pointer_logs(files, reading)) return detail::pointer_observer_fit_report(c, files, reading);
   const sim::ObserverLogFit fit = sim::fit_observer_to_logs(c.o.inputs, s, reading);
   return c.o.format == "json" ? tables::render_observer_fit_json(fit, s)
                               : tables::render_observer_fit_text(fit, s);

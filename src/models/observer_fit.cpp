@@ -23,15 +23,8 @@ namespace {
 // The parameter vector, its box and the optimisers (observer_optimise.hpp).
 using namespace detail::observer;
 
-constexpr std::array<const char*, kParams> kNames = {"beta", "tau", "prior_right", "gamma"};
-constexpr double kGammaMax = 1.0;   // |gamma| per earlier trial of the strategy
-constexpr double kLogitMax = 8.0;   // prior in [3.4e-4, 0.99966]
-
-double logistic(double z) noexcept {
-  if (z >= 0) return 1.0 / (1.0 + std::exp(-z));
-  const double e = std::exp(z);
-  return e / (1.0 + e);
-}
+constexpr FitWording kPadWording{"the pad follows whichever side the path leans to at once",
+                                 "the pad does not follow the robot's path (belief = prior)"};
 
 /// A trial ready for the likelihood: where its pad samples (kept after thinning) sit in the
 /// problem's flat arrays, and the start's distances.
@@ -213,38 +206,9 @@ Likelihood evaluate(const Problem& p, const Theta& th) {
 std::pair<Theta, double> global_max(const Problem& p, const Box& box, Theta base,
                                     const std::optional<Theta>& start) {
   auto f = [&](const Theta& th) { return evaluate(p, th).loglik; };
-  ScanPlan plan;
-  plan.restarts = {0.1, 0.3, 1.0, 3.0, 10.0};
-  plan.anchors = {0.0, 0.25, 0.6, 1.2};
-  plan.h = {0.01 * box.scale[kBeta], 0.01 * box.scale[kTau], 0.05 * box.scale[kPrior], 0.05 * box.scale[kGamma]};
   std::vector<Theta> starts;
   if (start) starts.push_back(clamp(*start, box));
-  return scan_maximum(f, box, base, plan, starts);
-}
-
-Box make_box(const ObserverFitSettings& s, bool gamma) {
-  Box b;
-  b.lo = {0.0, 0.0, -kLogitMax, -kGammaMax};
-  b.hi = {s.beta_max, s.tau_max, kLogitMax, kGammaMax};
-  b.scale = {1.0, 0.25, 0.5, 0.05};
-  b.free = {true, true, s.fit_prior, gamma};
-  return b;
-}
-
-ParameterEstimate estimate_of(std::size_t j, const Theta& th, const Interval& ci) {
-  ParameterEstimate e;
-  e.name = kNames[j];
-  e.estimate = th[j];
-  e.conf_low = ci.low;
-  e.conf_high = ci.high;
-  e.low_at_bound = ci.low_at_bound;
-  e.high_at_bound = ci.high_at_bound;
-  if (j == kPrior) {
-    e.estimate = logistic(th[j]);
-    e.conf_low = logistic(ci.low);
-    e.conf_high = logistic(ci.high);
-  }
-  return e;
+  return scan_maximum(f, box, base, observer_scan_plan(box), starts);
 }
 
 double prior_logit(double p) { return std::log(p) - std::log1p(-p); }
@@ -323,79 +287,12 @@ std::pair<Theta, double> learning_max(const Objective& f, const Box& box, const 
   return r;
 }
 
-/// The CIs at the maximum (th, lmax) of every free parameter, or only of `ci_only` (the others get
-/// NaN ends); or the first point higher than lmax that a profile met.
-struct Intervals {
-  std::array<Interval, kParams> ci;
-  std::optional<std::pair<Theta, double>> higher;
-};
-
-Intervals intervals_at(const Objective& f, const Box& box, const Theta& th, double lmax, double level,
-                       std::size_t ci_only) {
-  Intervals out;
-  const auto ses = standard_errors(f, box, th, lmax);
-  for (std::size_t j = 0; j < kParams; ++j) {
-    out.ci[j] = Interval{std::nan(""), std::nan(""), false, false, false, std::nullopt};
-    if (!box.free[j] || (ci_only != kParams && ci_only != j)) continue;
-    out.ci[j] = profile_interval(f, box, th, lmax, j, level, ses);
-    if (out.ci[j].higher) {
-      out.higher = out.ci[j].higher;
-      return out;
-    }
-  }
-  return out;
-}
-
-/// Refits that a fit may need before its profiles meet no higher point (each raises the maximum by
-/// more than kHigherTolerance; in practice one or two are ever needed).
-constexpr int kMaxRefits = 20;
-
-/// The maximum and the CIs there: when a profile meets a point higher than the maximum, the fit
-/// climbs from that point (Nelder-Mead, a small simplex) and the CIs are searched again.
-std::pair<std::pair<Theta, double>, Intervals> settle(const Objective& f, const Box& box,
-                                                      std::pair<Theta, double> top, double level,
-                                                      std::size_t ci_only) {
-  Intervals cis = intervals_at(f, box, top.first, top.second, level, ci_only);
-  for (int round = 0; cis.higher && round < kMaxRefits; ++round) {
-    top = nelder_mead(f, cis.higher->first, box, box.free, 0.05, 3000);
-    cis = intervals_at(f, box, top.first, top.second, level, ci_only);
-  }
-  if (cis.higher) {  // not settled: the best point known, its CIs void (NaN)
-    top = *cis.higher;
-    for (auto& ci : cis.ci) ci = Interval{std::nan(""), std::nan(""), false, false, false, std::nullopt};
-  }
-  return {top, cis};
-}
-
-/// The notes on estimates at a bound of their range.
-void bound_notes(ObserverFit& fit, const Theta& th, const ObserverFitSettings& settings) {
-  const double btol = 1e-3;
-  if (th[kBeta] >= settings.beta_max - btol) {
-    fit.notes.push_back(fmt::format(
-        "{}: beta is at the upper bound {} (the pad follows whichever side the path leans to at once); "
-        "beta is not identified above it, and its CI is closed at the bound",
-        fit.unit, settings.beta_max));
-  } else if (th[kBeta] <= btol) {
-    fit.notes.push_back(fmt::format("{}: beta is at 0: the pad does not follow the robot's path (belief = "
-                                    "prior); tau is then not identified",
-                                    fit.unit));
-  }
-  if (th[kTau] >= settings.tau_max - btol) {
-    fit.notes.push_back(fmt::format("{}: tau is at the upper bound {} s; its CI is closed at the bound",
-                                    fit.unit, settings.tau_max));
-  } else if (th[kTau] == 0) {
-    fit.notes.push_back(fmt::format("{}: tau is at its lower bound 0 s (the likelihood falls as the delay "
-                                    "grows); its CI is closed at the bound",
-                                    fit.unit));
-  }
-}
-
 /// The fit of the free parameters; CIs for all of them, or only for `ci_only` (the learning test
 /// needs gamma's alone; the others get NaN ends).
 ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, std::string unit, bool gamma,
                         Theta base, std::size_t ntrials, std::size_t ci_only = kParams,
                         const std::optional<Theta>& start = std::nullopt) {
-  const Box box = make_box(settings, gamma);
+  const Box box = observer_box(settings, gamma);
   const Objective f = [&p](const Theta& x) { return evaluate(p, x).loglik; };
   const auto found = gamma ? learning_max(f, box, base) : global_max(p, box, base, start);
   const auto [top, cis] = settle(f, box, found, settings.level, ci_only);
@@ -409,17 +306,7 @@ ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, s
   fit.sigma = at.sigma;
   fit.phi = at.phi;
   fit.prior_right = box.free[kPrior] ? logistic(th[kPrior]) : settings.prior_right;
-  for (std::size_t j = 0; j < kParams; ++j) {
-    if (!box.free[j]) continue;  // a fixed prior is not a fitted parameter
-    if (cis.ci[j].hull) {
-      fit.notes.push_back(fmt::format(
-          "{}: the profile likelihood of {} is not unimodal; its CI is the hull of the region within the "
-          "cut-off",
-          fit.unit, kNames[j]));
-    }
-    fit.parameters.push_back(estimate_of(j, th, cis.ci[j]));
-  }
-  bound_notes(fit, th, settings);
+  describe_estimates(fit, box, th, cis, settings.beta_max, settings.tau_max, kPadWording);
   fit.evaluations = p.evaluations;
   return fit;
 }

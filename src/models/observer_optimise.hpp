@@ -1,7 +1,9 @@
 // src/models/observer_optimise.hpp - the optimisers of the observer fit (observer_optimise.cpp):
 // Nelder-Mead, the 1-D parabola search, the observed information and the profile-likelihood CI
-// search. They see the log-likelihood only as a function of the parameter vector; the likelihood
-// and the fit are in observer_fit.cpp (docs/observer.md, "Estimation and CIs").
+// search (observer_optimise.cpp); the fits' box, scan plan, settled maximum with its CIs and
+// estimates with their notes (observer_settle.cpp). They see the log-likelihood only as a function
+// of the parameter vector; the likelihoods are in observer_fit.cpp (pad traces) and
+// pointer_observer_fit.cpp (pointer traces over K targets) (docs/observer.md, "Estimation and CIs").
 #pragma once
 
 #include <array>
@@ -10,6 +12,8 @@
 #include <optional>
 #include <utility>
 #include <vector>
+
+#include "feint/models/observer_fit.hpp"
 
 namespace feint::models::detail::observer {
 
@@ -97,5 +101,44 @@ struct ScanPlan {
 /// mean) are profile points added to the grid.
 std::pair<Theta, double> scan_maximum(const Objective& f, const Box& box, const Theta& base, const ScanPlan& plan,
                                       const std::vector<Theta>& starts);
+
+/// The observer fits' box: beta in [0, beta_max] (scale 1), tau in [0, tau_max] (scale 0.25 s),
+/// the prior's logit in [-8, 8] (scale 0.5; free when fit_prior), gamma in [-1, 1] (scale 0.05;
+/// free when `gamma`).
+Box observer_box(const ObserverFitSettings& s, bool gamma);
+
+/// The observer fits' scan (docs/observer.md, "Estimation and CIs"): tau on a coarse grid of
+/// 0.05 s, finer (0.01 s) near its best; beta restarted from 0.1-10 at tau 0, 0.25, 0.6 and 1.2 s;
+/// parabola steps a hundredth (beta, tau) or a twentieth (prior, gamma) of the box's scales.
+ScanPlan observer_scan_plan(const Box& box);
+
+/// The CIs at a maximum of every free parameter, or only of `ci_only` (the others get NaN ends);
+/// or the first point higher than the maximum that a profile met.
+struct Intervals {
+  std::array<Interval, kParams> ci;
+  std::optional<std::pair<Theta, double>> higher;
+};
+
+/// The maximum and the CIs there: when a profile meets a point higher than the maximum, the fit
+/// climbs from that point (Nelder-Mead, a small simplex) and the CIs are searched again (at most
+/// 20 times; if it still has not settled, the best point known with void (NaN) CIs).
+std::pair<std::pair<Theta, double>, Intervals> settle(const Objective& f, const Box& box,
+                                                      std::pair<Theta, double> top, double level,
+                                                      std::size_t ci_only);
+
+/// 1 / (1 + e^-z) without overflow (the prior's logit back to a probability).
+double logistic(double z) noexcept;
+
+/// How a fit's notes name what follows the robot's path (the pad, the pointer).
+struct FitWording {
+  const char* at_once;  // beta at its upper bound: what the data do
+  const char* ignores;  // beta at 0
+};
+
+/// The fit's estimates of the box's free parameters at th with their CIs (the prior's on the
+/// probability scale), a note for each profile that was not unimodal, and the notes on beta and
+/// tau at a bound of [0, beta_max] x [0, tau_max]. `fit.unit` names the fit in the notes.
+void describe_estimates(ObserverFit& fit, const Box& box, const Theta& th, const Intervals& cis,
+                        double beta_max, double tau_max, const FitWording& wording);
 
 }  // namespace feint::models::detail::observer

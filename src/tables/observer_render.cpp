@@ -23,13 +23,13 @@ std::string ci_text(const models::ParameterEstimate& p) {
 }
 
 /// The two conditions compared on the participants' fits: which way, how much, how sure.
-std::string comparisons_text(const models::StudyObserverFit& r) {
-  if (r.comparisons.empty()) return "";
-  const auto& first = r.comparisons.front();
+std::string comparisons_text(const std::vector<models::ObserverComparison>& comparisons) {
+  if (comparisons.empty()) return "";
+  const auto& first = comparisons.front();
   std::string out = fmt::format("\nConditions compared on the participants' fits ({} against {}; Welch t test with d "
                                 "and the JZS Bayes factor, Mann-Whitney test with r_rb):\n",
                                 first.condition_a, first.condition_b);
-  for (const auto& c : r.comparisons) {
+  for (const auto& c : comparisons) {
     const auto& w = c.welch;
     if (!w.computed) {
       out += fmt::format("  {}: {}\n", c.parameter, w.note);
@@ -49,6 +49,29 @@ std::string comparisons_text(const models::StudyObserverFit& r) {
   return out;
 }
 
+/// A table of fits (per participant or pooled), with the prior's column when it was fitted.
+std::string fits_text(const std::vector<models::ObserverFit>& fs, const char* title, bool fit_prior) {
+  std::string out = fmt::format("\n{}\n", title);
+  out += fmt::format("{:<12} {:<10} {:>6} {:>7}  {:<30} {:<30}{} {:>7} {:>6} {:>12}\n", "unit", "condition",
+                     "trials", "samples", "beta (1/m) [CI]", "tau (s) [CI]",
+                     fit_prior ? fmt::format(" {:<30}", "P(right) [CI]") : "", "sigma", "phi", "logLik");
+  for (const auto& f : fs) {
+    std::string prior;
+    if (fit_prior) prior = fmt::format(" {:<30}", ci_text(f.parameter("prior_right")));
+    out += fmt::format("{:<12} {:<10} {:>6} {:>7}  {:<30} {:<30}{} {:>7} {:>6} {:>12}\n", f.unit, f.condition,
+                       f.trials, f.samples, ci_text(f.parameter("beta")), ci_text(f.parameter("tau")), prior,
+                       num(f.sigma, 4), num(f.phi, 3), num(f.log_likelihood, 2));
+  }
+  return out;
+}
+
+std::string issues_text(const std::vector<models::TrialIssue>& issues) {
+  if (issues.empty()) return "";
+  std::string out = "\nLeft out or flagged:\n";
+  for (const auto& i : issues) out += fmt::format("  {}: {}\n", i.label, i.reason);
+  return out;
+}
+
 std::string render_text(const models::StudyObserverFit& r, const models::ObserverFitSettings& a,
                         std::size_t rejected_rows, const std::string& path_source) {
   std::string out = fmt::format(
@@ -60,23 +83,8 @@ std::string render_text(const models::StudyObserverFit& r, const models::Observe
       a.thin > 0 ? fmt::format(", one sample per {} s", a.thin) : "", num(100 * a.level, 0));
   if (rejected_rows > 0)
     out += fmt::format("{} trial(s) left out while reading the logs (see below).\n", rejected_rows);
-  auto fits = [&](const std::vector<models::ObserverFit>& fs, const char* title) {
-    out += fmt::format("\n{}\n", title);
-    out += fmt::format("{:<12} {:<10} {:>6} {:>7}  {:<30} {:<30}{} {:>7} {:>6} {:>12}\n", "unit",
-                       "condition", "trials", "samples", "beta (1/m) [CI]", "tau (s) [CI]",
-                       a.fit_prior ? fmt::format(" {:<30}", "P(right) [CI]") : "", "sigma", "phi",
-                       "logLik");
-    for (const auto& f : fs) {
-      std::string prior;
-      if (a.fit_prior) prior = fmt::format(" {:<30}", ci_text(f.parameter("prior_right")));
-      out += fmt::format("{:<12} {:<10} {:>6} {:>7}  {:<30} {:<30}{} {:>7} {:>6} {:>12}\n", f.unit,
-                         f.condition, f.trials, f.samples, ci_text(f.parameter("beta")),
-                         ci_text(f.parameter("tau")), prior, num(f.sigma, 4), num(f.phi, 3),
-                         num(f.log_likelihood, 2));
-    }
-  };
-  fits(r.participants, "Per participant");
-  fits(r.conditions, "Pooled per condition");
+  out += fits_text(r.participants, "Per participant", a.fit_prior);
+  out += fits_text(r.conditions, "Pooled per condition", a.fit_prior);
   if (!r.learning.empty()) {
     out +=
         "\nLearning: beta_k = beta0 exp(gamma exposure_k), exposure = earlier trials of the same "
@@ -104,11 +112,8 @@ std::string render_text(const models::StudyObserverFit& r, const models::Observe
         num(g.human_confusion), num(g.model_confusion), num(g.confusion_r, 2),
         num(g.confusion_rmse), num(g.trace_r, 2), num(g.trace_rmse));
   }
-  out += comparisons_text(r);
-  if (!r.issues.empty()) {
-    out += "\nLeft out or flagged:\n";
-    for (const auto& i : r.issues) out += fmt::format("  {}: {}\n", i.label, i.reason);
-  }
+  out += comparisons_text(r.comparisons);
+  out += issues_text(r.issues);
   return out;
 }
 
@@ -120,29 +125,57 @@ std::string json_estimate(const models::ParameterEstimate& p) {
       p.low_at_bound, p.high_at_bound);
 }
 
+std::string json_fits(const std::vector<models::ObserverFit>& fs) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < fs.size(); ++i) {
+    const auto& f = fs[i];
+    s += fmt::format(
+        "{}\n    {{\"unit\": {}, \"condition\": {}, \"trials\": {}, \"samples\": {}, "
+        "\"logLik\": {}, \"sigma\": {}, \"phi\": {}",
+        i ? "," : "", io::json_quote(f.unit), io::json_quote(f.condition), f.trials, f.samples,
+        io::json_number(f.log_likelihood), io::json_number(f.sigma), io::json_number(f.phi));
+    for (const auto& p : f.parameters) s += fmt::format(", {}: {}", io::json_quote(p.name), json_estimate(p));
+    s += "}";
+  }
+  return s + "]";
+}
+
+std::string json_comparisons(const std::vector<models::ObserverComparison>& comparisons) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < comparisons.size(); ++i) {
+    const auto& c = comparisons[i];
+    const std::vector<std::string_view> columns{"test", "group1", "group2", "n1", "n2", "mean1", "mean2",
+                                                "estimate", "conf_low", "conf_high", "statistic", "df",
+                                                "p_value", "cohen_d", "cohen_d_low", "cohen_d_high",
+                                                "bf10", "rank_biserial", "rank_biserial_low",
+                                                "rank_biserial_high", "note"};
+    TidyRow w{c.parameter, std::nullopt, c.condition_a, c.condition_b, c.welch, "", std::nullopt, ""};
+    TidyRow k{c.parameter, std::nullopt, c.condition_a, c.condition_b, c.rank, "", std::nullopt, ""};
+    std::string tests = write_json(columns, tidy_records(std::vector<TidyRow>{w, k}, columns));
+    while (!tests.empty() && tests.back() == '\n') tests.pop_back();
+    out += fmt::format("{}\n    {{\"parameter\": {}, \"at_bound\": {}, \"tests\": {}}}", i ? "," : "",
+                       io::json_quote(c.parameter), c.at_bound, tests);
+  }
+  return out + "]";
+}
+
+std::string json_issues(const std::vector<models::TrialIssue>& issues) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < issues.size(); ++i) {
+    out += fmt::format("{}\n    {{\"trial\": {}, \"reason\": {}}}", i ? "," : "", io::json_quote(issues[i].label),
+                       io::json_quote(issues[i].reason));
+  }
+  return out + "]";
+}
+
 std::string render_json(const models::StudyObserverFit& r, const models::ObserverFitSettings& a,
                         const std::string& path_source) {
-  auto fits = [&](const std::vector<models::ObserverFit>& fs) {
-    std::string s = "[";
-    for (std::size_t i = 0; i < fs.size(); ++i) {
-      const auto& f = fs[i];
-      s += fmt::format(
-          "{}\n    {{\"unit\": {}, \"condition\": {}, \"trials\": {}, \"samples\": {}, "
-          "\"logLik\": {}, \"sigma\": {}, \"phi\": {}",
-          i ? "," : "", io::json_quote(f.unit), io::json_quote(f.condition), f.trials, f.samples,
-          io::json_number(f.log_likelihood), io::json_number(f.sigma), io::json_number(f.phi));
-      for (const auto& p : f.parameters)
-        s += fmt::format(", {}: {}", io::json_quote(p.name), json_estimate(p));
-      s += "}";
-    }
-    return s + "]";
-  };
   std::string out = fmt::format(
-      "{{\n  \"method\": \"Maximum likelihood, goal-inference observer; pad noise {}\", \"path\": "
+      "{{\n  \"model\": \"pad\", \"method\": \"Maximum likelihood, goal-inference observer; pad noise {}\", \"path\": "
       "{}, "
       "\"conf.level\": {},\n  \"participants\": {},\n  \"conditions\": {},\n  \"learning\": [",
       a.noise == models::PadNoise::ar1 ? "ar1" : "independent", io::json_quote(path_source),
-      io::json_number(a.level), fits(r.participants), fits(r.conditions));
+      io::json_number(a.level), json_fits(r.participants), json_fits(r.conditions));
   for (std::size_t i = 0; i < r.learning.size(); ++i) {
     const auto& l = r.learning[i];
     out += fmt::format(
@@ -168,30 +201,53 @@ std::string render_json(const models::StudyObserverFit& r, const models::Observe
         io::json_number(g.confusion_rmse), io::json_number(g.trace_r),
         io::json_number(g.trace_rmse));
   }
-  out += "],\n  \"comparisons\": [";
-  for (std::size_t i = 0; i < r.comparisons.size(); ++i) {
-    const auto& c = r.comparisons[i];
-    const std::vector<std::string_view> columns{"test", "group1", "group2", "n1", "n2", "mean1", "mean2",
-                                                "estimate", "conf_low", "conf_high", "statistic", "df",
-                                                "p_value", "cohen_d", "cohen_d_low", "cohen_d_high",
-                                                "bf10", "rank_biserial", "rank_biserial_low",
-                                                "rank_biserial_high", "note"};
-    TidyRow w{c.parameter, std::nullopt, c.condition_a, c.condition_b, c.welch, "", std::nullopt, ""};
-    TidyRow k{c.parameter, std::nullopt, c.condition_a, c.condition_b, c.rank, "", std::nullopt, ""};
-    std::string tests = write_json(columns, tidy_records(std::vector<TidyRow>{w, k}, columns));
-    while (!tests.empty() && tests.back() == '\n') tests.pop_back();
-    out += fmt::format("{}\n    {{\"parameter\": {}, \"at_bound\": {}, \"tests\": {}}}", i ? "," : "",
-                       io::json_quote(c.parameter), c.at_bound, tests);
-  }
-  out += "],\n  \"issues\": [";
-  for (std::size_t i = 0; i < r.issues.size(); ++i) {
-    out += fmt::format("{}\n    {{\"trial\": {}, \"reason\": {}}}", i ? "," : "",
-                       io::json_quote(r.issues[i].label), io::json_quote(r.issues[i].reason));
-  }
-  return out + "]\n}\n";
+  out += "],\n  \"comparisons\": " + json_comparisons(r.comparisons);
+  out += ",\n  \"issues\": " + json_issues(r.issues);
+  return out + "\n}\n";
+}
+
+/// The pointer fit's model in words: targets, layouts, noise, thinning (text and JSON).
+std::string pointer_model_text(const models::PointerStudyObserverFit& r, const models::ObserverFitSettings& a) {
+  const std::string k = r.min_targets == r.max_targets ? fmt::format("{}", r.max_targets)
+                                                       : fmt::format("{} to {}", r.min_targets, r.max_targets);
+  return fmt::format(
+      "K-goal observer over {} targets ({}); pointer = posterior mean of the targets, sum_k P(G_k | path seen "
+      "up to t - tau) G_k, uniform prior, plus {} on each axis, sigma in layout scales{}",
+      k, r.layouts == 1 ? std::string("one fixed layout") : fmt::format("targets placed per round, {} layouts", r.layouts),
+      a.noise == models::PadNoise::ar1 ? "Gaussian AR(1) error" : "independent Gaussian error",
+      a.thin > 0 ? fmt::format(", one sample per {} s", a.thin) : "");
 }
 
 }  // namespace
+
+std::string render_pointer_observer_fit_text(const models::PointerStudyObserverFit& r,
+                                             const models::ObserverFitSettings& a, std::size_t rejected_rows,
+                                             const std::string& path_source) {
+  std::string out = fmt::format("Goal-inference observer fitted to {} pointer trial(s) ({}); {}; {}% profile-likelihood CIs.\n",
+                                r.trials_used, path_source, pointer_model_text(r, a), num(100 * a.level, 0));
+  if (rejected_rows > 0)
+    out += fmt::format("{} trial(s) left out while reading the logs (see below).\n", rejected_rows);
+  out += fits_text(r.participants, "Per participant", false);
+  out += fits_text(r.conditions, "Pooled per condition", false);
+  out += "\nNo model-human agreement table and no learning test: they are defined on the pad's line only.\n";
+  out += comparisons_text(r.comparisons);
+  out += issues_text(r.issues);
+  return out;
+}
+
+std::string render_pointer_observer_fit_json(const models::PointerStudyObserverFit& r,
+                                             const models::ObserverFitSettings& a, const std::string& path_source) {
+  std::string out = fmt::format(
+      "{{\n  \"model\": \"pointer\", \"method\": {}, \"noise\": \"{}\", \"targets\": {{\"min\": {}, \"max\": {}}}, "
+      "\"layouts\": {}, \"sigma.unit\": \"layout scales\", \"path\": {}, \"conf.level\": {},\n  \"participants\": "
+      "{},\n  \"conditions\": {}",
+      io::json_quote("Maximum likelihood, " + pointer_model_text(r, a)),
+      a.noise == models::PadNoise::ar1 ? "ar1" : "independent", r.min_targets, r.max_targets, r.layouts,
+      io::json_quote(path_source), io::json_number(a.level), json_fits(r.participants), json_fits(r.conditions));
+  out += ",\n  \"comparisons\": " + json_comparisons(r.comparisons);
+  out += ",\n  \"issues\": " + json_issues(r.issues);
+  return out + "\n}\n";
+}
 
 std::string render_observer_fit_text(const sim::ObserverLogFit& fit,
                                      const models::ObserverFitSettings& settings) {

@@ -31,8 +31,12 @@ struct ObserverFitCommand {
   analysis::ScoreOptions loader;
 };
 
-/// Checks the options, reads the logs with the loader options, fits (sim::fit_observer_to_logs)
-/// and renders as text or JSON. Throws UsageError, InvalidData (no trial left to fit), IoError.
+/// Checks the options, reads the logs with the loader options, fits and renders as text or JSON:
+/// pad-trace logs with sim::fit_observer_to_logs; logs of K targets and a pointer (every file's
+/// header has belief_x and no pad, io::is_pointer_log) with models::fit_pointer_study, where
+/// --fit-prior, --prior and --pad-speed away from their defaults are UsageErrors (docs/observer.md,
+/// "Fitting the observer to pointer traces"). Throws UsageError, InvalidData (no trial left to fit;
+/// pad and pointer logs mixed, naming a file of each kind), IoError.
 std::string observer_fit_report(const ObserverFitCommand& command);
 
 struct ObserverPowerOptions {
