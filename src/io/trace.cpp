@@ -160,17 +160,23 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs) {
     std::error_code ec;
     const auto status = fs::status(input, ec);
     if (fs::is_directory(status)) {
+      // A study folder (its feint.toml beside a logs/ folder, as feint collect and feint simulate
+      // study write it) means its logs: the questionnaires next to them are not logs.
+      const fs::path logs = fs::path(input) / "logs";
+      const std::string dir = fs::is_regular_file(fs::path(input) / "feint.toml", ec) && fs::is_directory(logs, ec)
+                                  ? logs.string()
+                                  : input;
       std::vector<std::string> found;
-      for (auto it = fs::recursive_directory_iterator(input, ec); !ec && it != fs::end(it);
+      for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::end(it);
            it.increment(ec)) {
         if (it->is_regular_file() && has_data_extension(it->path())) {
           found.push_back(it->path().string());
         }
       }
-      if (ec) throw IoError(fmt::format("cannot read directory '{}': {}", input, ec.message()));
+      if (ec) throw IoError(fmt::format("cannot read directory '{}': {}", dir, ec.message()));
       if (found.empty()) {
         throw IoError(fmt::format("directory '{}' holds no data files (*.csv, *.tsv, *.txt, "
-                                  "optionally .gz)", input));
+                                  "optionally .gz)", dir));
       }
       std::sort(found.begin(), found.end());
       for (const auto& f : found) add(f);

@@ -347,6 +347,22 @@ TEST(ExpandInputs, DirectoriesGlobsAndMissingFiles) {
   EXPECT_THROW(feint::io::expand_inputs({(dir() / "empty").string()}), feint::IoError);
 }
 
+// A study folder as feint collect and feint simulate study write it (feint.toml, logs/, the
+// questionnaires beside them) means its logs; a folder without feint.toml is read whole.
+TEST(ExpandInputs, AStudyFolderMeansItsLogs) {
+  write("study/feint.toml", "design = \"between\"\n");
+  write("study/questionnaire.csv", "participant,trust\n");
+  write("study/logs/P01.csv", "x\n");
+  write("study/logs/P02.csv.gz", "x\n");
+  const auto files = feint::io::expand_inputs({(dir() / "study").string()});
+  ASSERT_EQ(files.size(), 2U);
+  EXPECT_NE(files[0].find("logs/P01.csv"), std::string::npos);
+  EXPECT_NE(files[1].find("logs/P02.csv.gz"), std::string::npos);
+  write("plain/questionnaire.csv", "participant,trust\n");
+  write("plain/logs/P01.csv", "x\n");
+  EXPECT_EQ(feint::io::expand_inputs({(dir() / "plain").string()}).size(), 2U);  // no feint.toml: every file
+}
+
 TEST(TraceReader, NumbersAreReadExactlyAsParseDouble) {
   // The loader's fast decimal path must give the same double as the strict parser, bit for bit.
   std::mt19937_64 rng(11);

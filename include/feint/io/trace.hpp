@@ -148,7 +148,8 @@ bool parse_json_samples(std::string_view cell, std::string_view t_key, std::stri
 }  // namespace detail
 
 /// Expands command-line inputs into a list of files, in command-line order: a file as given, a
-/// directory as every *.csv, *.tsv, *.txt (optionally .gz) below it (sorted by path), a pattern
+/// directory as every *.csv, *.tsv, *.txt (optionally .gz) below it (sorted by path) — a study
+/// folder (a feint.toml beside a logs/ folder) as the files below its logs/ — a pattern
 /// with * ? [ via glob(3) (sorted); `-` is standard input. A file named twice is read once. Throws IoError for a missing path, a pattern without match or a
 /// directory without data files.
 std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs);
