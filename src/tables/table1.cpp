@@ -140,6 +140,7 @@ void check_options(const Table1Options& o) {
     throw UsageError("--paired and --var-equal need --compare A,B");
   }
   if (o.paired && o.var_equal) throw UsageError("--paired and --var-equal exclude each other");
+  if (o.omnibus_permutations == 0) throw UsageError("omnibus_permutations: the maxF family needs at least one");
 }
 
 // Position of each metric of the table among the loaded metric columns.
@@ -417,6 +418,8 @@ Table1 build_table1(const io::ScoresTable& scores, const Table1Options& options)
     for (auto& blk : t.blocks) tabulate_metric(t, blk, o, m, mi, records);
   }
   label_rows(t, o);
+  if (!two_sample(o) && o.condition.empty() && scores.has_condition && scores.conditions().size() >= 3)
+    t.conditions = build_table1_conditions(scores, o);
   return t;
 }
 

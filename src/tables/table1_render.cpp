@@ -360,8 +360,11 @@ void shorten_notation_note(std::vector<std::string>& notes) {
 std::string render_table1(const Table1& t, OutputFormat format,
                           const TablePresentation& presentation) {
   const Table1Options& o = t.options;
+  const bool omnibus = t.conditions && !t.conditions->rows.empty();
   if (format == OutputFormat::csv || format == OutputFormat::json) {
     const auto cols = table_columns(o.apa);
+    // Three or more conditions: the omnibus rows follow, with their own columns after Table 1's.
+    if (omnibus) return render_table1_with_conditions(t.rows, *t.conditions, cols, format);
     return format == OutputFormat::csv ? tidy_csv(t.rows, cols) : tidy_json(t.rows, cols);
   }
   TextTable tt;
@@ -371,8 +374,13 @@ std::string render_table1(const Table1& t, OutputFormat format,
   add_table1_rows(tt, t);
   tt.notes = table1_note(t);
   if (o.apa) add_apa_notes(tt.notes, t);
+  if (t.conditions && !t.conditions->not_computed.empty())
+    tt.notes.push_back("The conditions are not compared per iteration: " + t.conditions->not_computed);
   if (format == OutputFormat::latex) shorten_notation_note(tt.notes);
-  return render_table(tt, format);
+  if (!omnibus) return render_table(tt, format);
+  // The omnibus comparison is a second table, labelled after the first.
+  return render_table(tt, format) + "\n" +
+         render_table1_conditions(*t.conditions, o, format, tt.latex_label + "-conditions", tt.latex_wide);
 }
 
 }  // namespace feint::tables

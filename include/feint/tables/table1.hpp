@@ -6,12 +6,15 @@
 // the p-value (and the adjusted one) and the inference label. Every test is also a tidy row.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "feint/io/scores.hpp"
+#include "feint/models/condition_design.hpp"
+#include "feint/tables/table1_conditions.hpp"
 #include "feint/tables/tidy.hpp"
 #include "feint/tables/writers.hpp"
 #include "feint/stats/htest.hpp"
@@ -59,6 +62,12 @@ struct Table1Options {
   bool apa = false;                   ///< fill TidyRow::apa
   /// Scale r of the JZS Bayes factor's Cauchy prior (sqrt(2)/2 = BayesFactor's "medium").
   double bf_prior_r = 0.7071067811865476;
+  /// Three or more conditions, one-sample mode with every condition: the omnibus comparison of the
+  /// conditions per iteration (Table1::conditions; feint/tables/table1_conditions.hpp). How the
+  /// conditions relate to the participants: declared, or nullopt = read off the data.
+  std::optional<models::ConditionDesign> design;
+  std::uint64_t omnibus_permutations = 9999;  ///< maxF relabellings drawn when not all enumerated
+  std::uint64_t omnibus_seed = 20261126;      ///< their seed: the same p-values on every machine
 };
 
 /// One cell of the paper-shaped table: a metric at an iteration (in one condition, or A vs B).
@@ -83,11 +92,15 @@ struct Table1 {
   std::vector<TidyRow> rows;  ///< every test, tidy (difference tests and TOST rows)
   std::vector<Table1Block> blocks;
   std::vector<std::string> warnings;  ///< missing values, unpaired participants, ...
+  /// Three or more conditions (one-sample mode, every condition): the omnibus comparison.
+  std::optional<Table1Conditions> conditions;
 };
 
 /// Builds the table from a loaded scores table. Throws InvalidData for a metric not loaded, an
 /// unknown condition in `condition`/`compare`, or a comparison of a condition with itself;
-/// UsageError for impossible options (alpha, conf_level, delta out of range).
+/// UsageError for impossible options (alpha, conf_level, delta out of range, no relabelling).
+/// With three or more conditions in one-sample mode (no `condition`), also the omnibus comparison
+/// of the conditions (Table1::conditions).
 Table1 build_table1(const io::ScoresTable& scores, const Table1Options& options);
 
 /// The note under the table: test, alternative, alpha, adjustment (family), reference means,
