@@ -226,7 +226,9 @@ bool within(const StudyResults& r) { return r.design.design == models::Condition
 // conditions are within participants).
 void build_tables(const Study& study, const Comparison& compare, const tables::Table1Options& t,
                   StudyResults& r) {
-  r.table1 = tables::build_table1(r.scores, t);
+  tables::Table1Options one = t;
+  one.design = r.design.design;  // the design the study checked (declared or read off the data)
+  r.table1 = tables::build_table1(r.scores, one);
   if (compare) {
     tables::Table1Options c = t;
     c.compare = compare;

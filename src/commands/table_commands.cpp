@@ -37,6 +37,7 @@ std::string table1_report(const TableCommandOptions& a, const analysis::Resolved
     if (!a.condition.empty()) throw UsageError("--condition and --compare exclude each other");
   }
   const auto declared = models::parse_condition_design(a.design);
+  o.design = declared;  // the omnibus table of three or more conditions reads it (else off the data)
   o.var_equal = a.var_equal;
   o.paired = a.paired;
   if (a.equivalence_given) o.equivalence = a.equivalence;

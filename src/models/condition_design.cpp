@@ -74,6 +74,7 @@ struct Tally {
   std::size_t several = 0, every = 0;                // in more than one / in every condition
   const std::string* first_several = nullptr;
   const std::string* first_single = nullptr;
+  const std::string* first_incomplete = nullptr;  // saw fewer than every condition
 };
 
 Tally tally(std::span<const Observation> observations) {
@@ -92,7 +93,10 @@ Tally tally(std::span<const Observation> observations) {
     } else if (!t.first_single) {
       t.first_single = &id;
     }
-    if (k == t.per_condition.size()) ++t.every;
+    if (k == t.per_condition.size())
+      ++t.every;
+    else if (!t.first_incomplete)
+      t.first_incomplete = &id;
   }
   return t;
 }
@@ -124,15 +128,20 @@ void decide(Tally& t, std::optional<ConditionDesign> declared, const std::string
     const Seen& s = t.seen[*t.first_several];
     const auto later = std::max_element(s.first_line.begin(), s.first_line.end(),
                                         [](const auto& a, const auto& b) { return a.second < b.second; });
+    // The participant to name beside: one who saw a single condition, else (three or more
+    // conditions, everyone in two or more) one who saw fewer than all of them.
+    const std::string& fewer = t.first_single ? *t.first_single : *t.first_incomplete;
+    const std::size_t k = t.seen[fewer].first_line.size();
     throw InvalidData(fmt::format(
-        "{}: participant '{}' has trials in {} conditions but participant '{}'{} in one only ({} "
+        "{}: participant '{}' has trials in {} conditions but participant '{}'{} in {} ({} "
         "of {} participants saw more than one): declare the design in feint.toml (or with "
         "--design): design = \"within\" when every participant was meant to see every condition "
         "(those who did not are then named and left out of the paired tests), design = "
         "\"between\" when each was meant to see one (the ids in two conditions must then be "
         "corrected)",
-        where(source, later->second), *t.first_several, s.first_line.size(), *t.first_single,
-        at_line(t.seen[*t.first_single].first_line.begin()->second), t.several, n));
+        where(source, later->second), *t.first_several, s.first_line.size(), fewer,
+        at_line(t.seen[fewer].first_line.begin()->second),
+        k == 1 ? std::string("one only") : fmt::format("{} of the {} only", k, conditions), t.several, n));
   }
 }
 

@@ -65,6 +65,17 @@ TEST(ConditionDesign, AMixtureIsRefusedUntilDeclared) {
   EXPECT_NE(d.note.find("1 of 3 participants saw every condition"), std::string::npos);
 }
 
+// Three conditions, everyone in two or more but not everyone in all three: refused with the
+// participant who saw fewer (this crashed when nobody saw a single condition).
+TEST(ConditionDesign, AMixtureOfThreeConditionsWithNobodyInOneNamesWhoSawFewer) {
+  const auto obs = rows({{"P1", "a"}, {"P1", "b"}, {"P1", "c"}, {"P2", "a"}, {"P2", "b"}});
+  const std::string m = message_of(obs, std::nullopt);
+  EXPECT_NE(m.find("participant 'P1' has trials in 3 conditions but participant 'P2' (line 8) in 2 of the 3 only"),
+            std::string::npos)
+      << m;
+  EXPECT_NE(m.find("design = \"within\""), std::string::npos);
+}
+
 TEST(ConditionDesign, DeclaredBetweenRefusesAParticipantInTwoConditions) {
   const auto obs = rows({{"P1", "a"}, {"P2", "b"}, {"P2", "a"}});
   const std::string m = message_of(obs, ConditionDesign::between);
