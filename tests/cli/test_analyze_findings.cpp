@@ -94,6 +94,6 @@ TEST(AnalyzeFindings, AWithinParticipantsStudyIsAnalysedPairedIncludingTheExposu
   ASSERT_NE(at, std::string::npos);
   EXPECT_NE(findings.find("\"effect_size\": {\"name\": \"d_z\"", at), std::string::npos);
   EXPECT_NE(findings.find("\"test\": \"paired t test\"", at), std::string::npos);
-  EXPECT_NE(read_text(dir.path() / "out" / "exposure_by_condition.txt").find("a paired t test on the slopes"),
+  EXPECT_NE(read_text(dir.path() / "out" / "exposure_by_condition.md").find("a paired t test on the slopes"),
             std::string::npos);
 }
