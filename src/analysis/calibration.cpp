@@ -65,12 +65,16 @@ CalibrationOutcome calibration_study(const sim::StudyOptions& options, const Ana
     out.strengths.push_back(s);
   };
   const auto metrics = parse_metric_specs(settings.metrics);
+  const bool pairs = study.conditions.size() > 2;
+  // Three or more conditions and no pair named: the iteration family is the omnibus F per
+  // iteration, maxF-adjusted (docs/findings.md); a named pair keeps its maxT contrasts.
+  const bool omnibus = pairs && settings.compare.empty();
   for (const auto& m : metrics) {
     const Finding* f = find(r.findings, "H1-iterations-" + m.column);
-    add("H1 per-iteration contrasts (maxT over iterations): " + m.column,
-        f ? f->strength : Strength::not_computable);
+    const char* label = omnibus ? "H1 per-iteration omnibus F (maxF over iterations): "
+                                : "H1 per-iteration contrasts (maxT over iterations): ";
+    add(label + m.column, f ? f->strength : Strength::not_computable);
   }
-  const bool pairs = study.conditions.size() > 2;
   for (const auto& m : metrics) {
     // The model's tests: interaction, condition, and one slope difference per condition but the
     // first (H1-model-trend-METRIC with two conditions, H1-model-trend-METRIC-LEVEL with more).

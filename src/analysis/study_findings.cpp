@@ -12,6 +12,7 @@
 
 #include "condition_effect.hpp"
 #include "finding_words.hpp"
+#include "omnibus_findings.hpp"
 #include "questionnaire_findings.hpp"
 #include "feint/error.hpp"
 #include "feint/models/exposure.hpp"
@@ -178,8 +179,8 @@ std::string maxt_over_iterations(const StudyResults& r, const tables::Table1& co
 }
 
 // H1, per metric: the per-iteration contrasts between the two conditions as one family (maxT over
-// the iterations where the design allows it, else Holm); with one condition only, a finding that
-// says so.
+// the iterations where the design allows it, else Holm); three or more conditions and no pair: the
+// omnibus tests per iteration (maxF); with one condition only, a finding that says so.
 void add_iteration_findings(std::vector<Finding>& out, const StudyResults& r, const tables::MetricSpec& m,
                             const std::vector<std::string>& conditions, const WordingRules& rules) {
   const std::string question =
@@ -211,6 +212,8 @@ void add_iteration_findings(std::vector<Finding>& out, const StudyResults& r, co
                                          "maxT-adjusted: {}.", m.column, why_not));
       out.push_back(std::move(f));
     }
+  } else if (conditions.size() > 2) {  // no pair named: the omnibus tests per iteration (maxF)
+    if (auto f = detail::omnibus_iteration_finding(r, m.column, rules)) out.push_back(std::move(*f));
   } else if (conditions.size() < 2) {
     out.push_back(one_condition_only("H1-iterations-" + m.column, "H1", question,
                                      conditions.empty() ? std::string() : conditions.front(), "table1"));

@@ -247,7 +247,8 @@ std::string effect_size(const Style& st, const Finding& f) {
   if (!f.effect_size || !std::isfinite(f.effect_size->value)) return {};
   const auto& e = *f.effect_size;
   const bool r_like =
-      e.name == "r_rb" || e.name.rfind("eta2", 0) == 0 || e.name == "epsilon2_rank" || e.name == "cramers_v";
+      e.name == "r_rb" || e.name.rfind("eta2", 0) == 0 || e.name == "epsilon2_rank" || e.name == "cramers_v" ||
+      e.name == "omega2";
   auto value = [&](double v) { return r_like ? proportion(st, v) : st.number(v, 2); };
   std::string lead;
   Sym sym = italic(e.name);
@@ -258,6 +259,7 @@ std::string effect_size(const Style& st, const Finding& f) {
   if (e.name == "eta2_G") lead = "generalized ";
   if (e.name.rfind("eta2", 0) == 0) sym = {"*\u03b7*\u00b2", "<i>\u03b7</i>\u00b2", "\\eta^2"};
   if (e.name == "epsilon2_rank") lead = "rank ", sym = {"*\u03b5*\u00b2", "<i>\u03b5</i>\u00b2", "\\varepsilon^2"};
+  if (e.name == "omega2") sym = {"*\u03c9*\u00b2", "<i>\u03c9</i>\u00b2", "\\omega^2"};
   // A yes/no question across three or more conditions (docs/yes-no.md): effectsize's default V.
   if (e.name == "cramers_v") lead = "bias-corrected Cram\u00e9r's ", sym = italic("V");
   std::string o = lead + st.eq(sym, "", "=", value(e.value));
