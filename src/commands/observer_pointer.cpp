@@ -9,6 +9,7 @@
 
 #include "feint/error.hpp"
 #include "feint/io/pointer_trace.hpp"
+#include "feint/metrics/trial_layout.hpp"
 #include "feint/models/pointer_observer_fit.hpp"
 #include "feint/sim/observer_logs.hpp"
 #include "feint/tables/observer_render.hpp"
@@ -48,8 +49,7 @@ models::PointerObservedTrial observed(const io::Trial& t) {
   o.iteration = t.iteration;
   o.strategy = t.strategy;
   o.variant = t.variant;
-  o.layout.start = {t.start_x, t.start_y};
-  for (std::size_t k = 0; k < t.targets_x.size(); ++k) o.layout.targets.push_back({t.targets_x[k], t.targets_y[k]});
+  o.layout = metrics::trial_layout(t);
   o.target = t.target_index;
   o.times = t.times;
   o.x = t.belief_x;

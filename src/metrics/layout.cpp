@@ -1,4 +1,5 @@
 #include "feint/metrics/layout.hpp"
+#include "feint/metrics/trial_layout.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -211,6 +212,17 @@ Layout draw_layout(Rng& rng, const LayoutRegion& region, std::size_t k, MapPoint
       "within {} draws: the region is too small for {} targets at that spacing; enlarge it, lower "
       "min_spacing or min_start_distance, or use fewer targets",
       k, region.min_spacing, region.min_start_distance, region_text(region), max_tries, k));
+}
+
+}  // namespace feint::metrics
+
+namespace feint::metrics {
+
+Layout trial_layout(const io::Trial& t) {
+  Layout layout;
+  layout.start = {t.start_x, t.start_y};
+  for (std::size_t k = 0; k < t.targets_x.size(); ++k) layout.targets.push_back({t.targets_x[k], t.targets_y[k]});
+  return layout;
 }
 
 }  // namespace feint::metrics

@@ -9,6 +9,7 @@
 #include "feint/error.hpp"
 #include "feint/metrics/belief_point.hpp"
 #include "feint/metrics/pointer_measures.hpp"
+#include "feint/metrics/trial_layout.hpp"
 #include "score_detail.hpp"
 
 namespace feint::metrics::detail {
@@ -40,9 +41,7 @@ const std::vector<std::string>& pointer_score_columns() {
 // final_pad and the pad's belief-trace measures are not defined for a point (written empty; flips
 // 0); `target` is the true target's index.
 TrialScore score_pointer_trial(const io::Trial& t, const MetricSettings& m) {
-  Layout layout;
-  layout.start = {t.start_x, t.start_y};
-  for (std::size_t k = 0; k < t.targets_x.size(); ++k) layout.targets.push_back({t.targets_x[k], t.targets_y[k]});
+  const Layout layout = trial_layout(t);
   std::vector<MapPoint> points(t.belief_x.size());
   for (std::size_t i = 0; i < points.size(); ++i) points[i] = {t.belief_x[i], t.belief_y[i]};
   BeliefPointScore b;

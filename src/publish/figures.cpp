@@ -10,6 +10,7 @@
 #include "feint/error.hpp"
 #include "feint/io/output.hpp"
 #include "feint/io/pointer_trace.hpp"
+#include "feint/metrics/trial_layout.hpp"
 #include "feint/plot/canvas.hpp"
 #include "feint/plot/figures.hpp"
 #include "feint/plot/map_figure.hpp"
@@ -245,10 +246,7 @@ plot::MapTrial map_trial(io::Trial& t) {
   plot::MapTrial m;
   m.strategy = std::move(t.strategy);
   m.variant = std::move(t.variant);
-  m.layout.start = {t.start_x, t.start_y};
-  for (std::size_t k = 0; k < t.targets_x.size(); ++k) {
-    m.layout.targets.push_back({t.targets_x[k], t.targets_y[k]});
-  }
+  m.layout = metrics::trial_layout(t);
   m.true_target = t.target_index;
   m.times = std::move(t.times);
   m.pointer_x = std::move(t.belief_x);
