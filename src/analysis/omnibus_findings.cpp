@@ -10,8 +10,6 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "feint/error.hpp"
-#include "feint/stats/effect_size.hpp"
 #include "feint/stats/p_adjust.hpp"
 #include "feint/tables/table1_conditions.hpp"
 #include "feint/tables/writers.hpp"
@@ -77,7 +75,7 @@ std::string correction_words(const Table1Conditions& c, const tables::OmnibusFam
 
 /// The effect size of iteration i's omnibus test: ω² of the one-way ANOVA beside Welch's F
 /// (between), the generalized η² of the repeated-measures F with effectsize's interval (within).
-std::optional<EffectSize> member_effect(const Table1Conditions& c, std::size_t i, std::size_t m, double conf_level) {
+std::optional<EffectSize> member_effect(const Table1Conditions& c, std::size_t i, std::size_t m) {
   const tables::OmnibusRow& p = c.primary(i, m);
   if (!c.within) {
     const tables::OmnibusRow& anova = (&p)[1];
@@ -85,17 +83,8 @@ std::optional<EffectSize> member_effect(const Table1Conditions& c, std::size_t i
     return EffectSize{"omega2", *anova.omega_squared, anova.omega_squared_low, anova.omega_squared_high};
   }
   if (!p.ges || p.row.result.n1 < 2) return std::nullopt;
-  EffectSize e{"eta2_G", *p.ges, std::nullopt, std::nullopt};
-  // effectsize takes the df uncorrected for sphericity (stats::generalized_eta2).
-  const double df1 = static_cast<double>(c.conditions.size() - 1);
-  const double df2 = df1 * static_cast<double>(p.row.result.n1 - 1);
-  try {
-    const auto ci = stats::generalized_eta2(*p.ges, df1, df2, conf_level);
-    e.ci_low = ci.low;
-    e.ci_high = ci.high;
-  } catch (const InvalidData&) {  // ges of 1 (no error variance): the value without an interval
-  }
-  return e;
+  // The table's interval (effectsize's, with the df uncorrected for sphericity).
+  return EffectSize{"eta2_G", *p.ges, p.ges_low, p.ges_high};
 }
 
 std::string effect_text(const EffectSize& e, double conf_level) {
@@ -170,7 +159,7 @@ void describe_member(Finding& f, const StudyResults& r, const Table1Conditions& 
     computed.push_back(j);
     if (classify(tests[j], nullptr, rules) == Strength::evidence_for_difference) evidence.push_back(j);
   }
-  f.effect_size = member_effect(c, member, m, conf);
+  f.effect_size = member_effect(c, member, m);
   std::vector<std::size_t> order;  // the member's conditions, highest mean first
   for (std::size_t q = 0; q < c.conditions.size(); ++q)
     if (means[member][q]) order.push_back(q);

@@ -102,9 +102,18 @@ void between_tests(Table1Conditions& c, const Table1Options& opt, const std::str
   c.rows.push_back(omnibus_row(metric, it, c, stats::kruskal_wallis(groups)));
 }
 
+// ges's interval as effectsize gives it on an afex model: the df uncorrected for sphericity
+// (stats::generalized_eta2). ges = 1 (no error variance) has none.
+void add_ges_interval(OmnibusRow& o, const models::AnovaEffect& e, double conf_level) {
+  if (!(e.ges < 1) || e.num_df <= 0 || e.den_df <= 0) return;
+  const auto ci = stats::generalized_eta2(e.ges, e.num_df, e.den_df, conf_level);
+  o.ges_low = ci.low;
+  o.ges_high = ci.high;
+}
+
 // The repeated-measures F of one iteration as a test result (afex's table under GG).
 stats::TestResult repeated_measures(const std::vector<models::Observation>& observations, const std::string& metric,
-                                    const std::string& source, OmnibusRow& o) {
+                                    const std::string& source, double conf_level, OmnibusRow& o) {
   const std::string method = "One-way repeated-measures ANOVA (Greenhouse-Geisser corrected)";
   try {
     const models::WithinDesign d = models::make_within_design(observations, metric, source);
@@ -125,6 +134,7 @@ stats::TestResult repeated_measures(const std::vector<models::Observation>& obse
                             d.excluded.size());
     o.ges = e.ges;
     o.sphericity_epsilon = e.report_eps;
+    add_ges_interval(o, e, conf_level);
     return r;
   } catch (const InvalidData& e) {
     return stats::TestResult::not_computable("rm_anova", method, e.what());
@@ -132,15 +142,15 @@ stats::TestResult repeated_measures(const std::vector<models::Observation>& obse
 }
 
 // Within: the repeated-measures F (primary) and Friedman's test with Kendall's W.
-void within_tests(Table1Conditions& c, const std::vector<models::Observation>& all, const std::string& source,
-                  const std::string& metric, const MetricValues& v, std::size_t j) {
+void within_tests(Table1Conditions& c, const Table1Options& opt, const std::vector<models::Observation>& all,
+                  const std::string& source, const std::string& metric, const MetricValues& v, std::size_t j) {
   const std::size_t J = c.iterations.size(), K = c.conditions.size();
   const long long it = c.iterations[j];
   std::vector<models::Observation> here;
   std::copy_if(all.begin(), all.end(), std::back_inserter(here),
                [&](const models::Observation& o) { return o.iteration == it; });
   OmnibusRow rm = omnibus_row(metric, it, c, {});
-  rm.row.result = repeated_measures(here, metric, source, rm);
+  rm.row.result = repeated_measures(here, metric, source, opt.test.conf_level, rm);
   rm.primary = true;
   c.rows.push_back(std::move(rm));
   std::vector<std::vector<double>> blocks;  // participants with a value here; friedman_test drops incomplete ones
@@ -274,7 +284,7 @@ Table1Conditions build_table1_conditions(const io::ScoresTable& scores, const Ta
     const MetricValues v = metric_values(scores, c, static_cast<std::size_t>(mi));
     const auto all = c.within ? observations(scores, o.metrics[m].column) : std::vector<models::Observation>{};
     for (std::size_t j = 0; j < c.iterations.size(); ++j) {
-      if (c.within) within_tests(c, all, scores.path, c.metrics[m], v, j);
+      if (c.within) within_tests(c, o, all, scores.path, c.metrics[m], v, j);
       else between_tests(c, o, c.metrics[m], v, j);
     }
     add_family(c, o, m, v);

@@ -236,7 +236,8 @@ std::string render_table1_conditions(const Table1Conditions& c, const Table1Opti
 
 std::vector<std::string_view> table1_conditions_columns() {
   return {"df2", "p_maxf", "eta_squared", "eta_squared_low", "eta_squared_high", "omega_squared", "omega_squared_low",
-          "omega_squared_high", "ges", "sphericity_epsilon", "rank_epsilon_squared", "kendalls_w"};
+          "omega_squared_high", "ges", "ges_low", "ges_high", "sphericity_epsilon", "rank_epsilon_squared",
+          "kendalls_w"};
 }
 
 std::string render_table1_with_conditions(std::span<const TidyRow> rows, const Table1Conditions& c,
@@ -250,7 +251,7 @@ std::string render_table1_with_conditions(std::span<const TidyRow> rows, const T
     Record r = tidy_records(std::span<const TidyRow>(&o.row, 1), columns).front();
     const auto& t = o.row.result;
     for (const auto v : {t.df2, o.p_maxf, t.r_squared, t.eta_squared_low, t.eta_squared_high, o.omega_squared,
-                         o.omega_squared_low, o.omega_squared_high, o.ges, o.sphericity_epsilon,
+                         o.omega_squared_low, o.omega_squared_high, o.ges, o.ges_low, o.ges_high, o.sphericity_epsilon,
                          t.rank_epsilon_squared, o.kendalls_w})
       r.push_back(Cell::num(v));
     records.push_back(std::move(r));

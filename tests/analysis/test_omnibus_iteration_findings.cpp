@@ -182,6 +182,10 @@ TEST(OmnibusIterationFindings, AWithinStudyOfThreeConditionsPermutesTheCondition
     ASSERT_TRUE(f->effect_size);
     EXPECT_EQ(f->effect_size->name, "eta2_G");
     EXPECT_EQ(f->effect_size->value, *c.primary(i, m).ges);
+    // The interval is the table's (effectsize's, checked against R in test_table1_conditions).
+    ASSERT_TRUE(f->effect_size->ci_low && c.primary(i, m).ges_low);
+    EXPECT_EQ(*f->effect_size->ci_low, *c.primary(i, m).ges_low);
+    EXPECT_EQ(f->effect_size->ci_high, c.primary(i, m).ges_high);
     EXPECT_TRUE(contains(f->sentence, "generalized \u03b7\u00b2 = ")) << f->sentence;
   }
 }

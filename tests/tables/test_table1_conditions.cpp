@@ -57,7 +57,7 @@ tables::Table1Options holm() {
 
 const std::vector<std::string> kBetween = {"b3_balanced.csv", "b4_unbalanced.csv", "b3_missing.csv", "b4_ties.csv",
                                            "tiny_between.csv"};
-const std::vector<std::string> kWithin = {"w3_within.csv", "w4_within.csv", "tiny_within.csv"};
+const std::vector<std::string> kWithin = {"w3_within.csv", "w4_within.csv", "tiny_within.csv", "w3_strong.csv"};
 
 /// Checks the golden quantities of one dataset; returns how many were compared.
 class Checker {
@@ -169,6 +169,11 @@ TEST(Table1Conditions, WithinParticipantsEveryNumberEqualsR) {
         check(metric, it, "rm_p", r.p_value);
         check(metric, it, "rm_p_holm", r.p_adjusted);
         check(metric, it, "rm_ges", row[0].ges);
+        // ges's interval as effectsize's eta_squared(generalized = TRUE) on the afex model: the
+        // exact root of its definition, and effectsize's own optim() search to its precision.
+        check(metric, it, "rm_ges_low", row[0].ges_low, 2e-9);
+        check(metric, it, "rm_ges_low_effectsize", row[0].ges_low, 1e-6);
+        check(metric, it, "rm_ges_high_effectsize", row[0].ges_high);
         check(metric, it, "rm_gg_eps", row[0].sphericity_epsilon);
         check(metric, it, "rm_n", static_cast<double>(r.n1));
         const auto& f = row[1].row.result;
@@ -180,7 +185,7 @@ TEST(Table1Conditions, WithinParticipantsEveryNumberEqualsR) {
       }
     total += check.checked;
   }
-  EXPECT_EQ(total, (5u + 4 + 2) * 2 * 12);
+  EXPECT_EQ(total, (5u + 4 + 2 + 3) * 2 * 15);
   // w3: P07 lacks fixed-block at iteration 4 (both metrics), P04 random's error at iteration 2.
   const auto c = *table("w3_within.csv").conditions;
   ASSERT_EQ(c.warnings.size(), 2u);

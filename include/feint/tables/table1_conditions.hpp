@@ -47,6 +47,9 @@ struct OmnibusRow {
   /// One-way ANOVA: omega squared (effectsize's, 0 when F < 1) and its one-sided interval.
   std::optional<double> omega_squared, omega_squared_low, omega_squared_high;
   std::optional<double> ges;                 ///< rm_anova: generalized eta squared (afex)
+  /// rm_anova: ges's one-sided interval as effectsize's eta_squared(generalized = TRUE) gives it
+  /// (stats::generalized_eta2 with the df uncorrected for sphericity); empty when ges = 1.
+  std::optional<double> ges_low, ges_high;
   std::optional<double> sphericity_epsilon;  ///< rm_anova: the Greenhouse–Geisser epsilon applied
   std::optional<double> kendalls_w;          ///< friedman: Kendall's W
 };

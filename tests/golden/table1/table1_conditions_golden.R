@@ -11,6 +11,7 @@
 #      w4_within.csv      within, 4 conditions, 9 participants, complete
 #      tiny_between.csv   between, 3 conditions of 2, 2, 3 (210 labellings), one empty cell
 #      tiny_within.csv    within, 3 conditions, 4 participants ((3!)^4 = 1296 labellings)
+#      w3_strong.csv      within, 3 conditions far apart, 12 participants, 3 iterations, complete
 #  - table1_conditions_golden.csv: dataset, metric, iteration, quantity, value (%.17g; NA = none).
 # Between, per metric and iteration: oneway.test(y ~ g) (Welch, var.equal = FALSE) and its Holm
 # adjustment over the iterations; oneway.test(var.equal = TRUE) = summary(aov(y ~ g)) with
@@ -19,7 +20,8 @@
 # pseudo-F of the estimate, as effectsize's .F_to_pve converts it); kruskal.test and
 # effectsize::rank_epsilon_squared. Within: afex::aov_ez(within = "condition") on the participants
 # with every condition at that iteration, Greenhouse-Geisser corrected (anova(correction = "GG")),
-# its ges and the GG epsilon; friedman.test(y ~ condition | participant) with Kendall's W.
+# its ges with effectsize's eta_squared(generalized = TRUE) interval (and the exact bound of that
+# definition, as above) and the GG epsilon; friedman.test(y ~ condition | participant) with Kendall's W.
 # Tiny sets: the step-down maxF p (Westfall & Young) by complete enumeration of the relabellings,
 # each statistic from oneway.test (between) or from the one-way repeated-measures F (within).
 options(warn = 1)
@@ -89,6 +91,9 @@ d <- between_data(c(2, 2, 3), three, 3, c(0, 0.1, -0.1), c(0.05, 0.1, 0.08))
 d$confusion[4] <- NA
 write_scores(d, "tiny_between.csv")
 write_scores(within_data(4, three, 2, c(0, 0.06, -0.04), c(0.04, 0.06, 0.05)), "tiny_within.csv")
+# Drawn last so that the sets above keep their draws: conditions far apart, so that ges's lower
+# bounds are above 0.
+write_scores(within_data(12, three, 3, c(0, 0.08, -0.06), c(0.04, 0.05, 0.04)), "w3_strong.csv")
 
 # ---- the statistics ------------------------------------------------------------------------------
 
@@ -184,6 +189,12 @@ within_golden <- function(name) {
       put(name, metric, it, "rm_df2", gg$`den Df`[1])
       put(name, metric, it, "rm_p", gg$`Pr(>F)`[1])
       put(name, metric, it, "rm_ges", gg$ges[1])
+      # ges's interval as effectsize gives it on the afex model (df uncorrected for sphericity),
+      # and the exact root of that definition.
+      es <- eta_squared(a, generalized = TRUE, ci = 0.95, verbose = FALSE)
+      put(name, metric, it, "rm_ges_low_effectsize", es$CI_low[1])
+      put(name, metric, it, "rm_ges_high_effectsize", es$CI_high[1])
+      put(name, metric, it, "rm_ges_low", exact_low(gg$ges[1], ncol(m) - 1, (ncol(m) - 1) * (nrow(m) - 1)))
       put(name, metric, it, "rm_gg_eps", summary(a)$pval.adjustments[1, "GG eps"])
       put(name, metric, it, "rm_n", nrow(m))
       rm_p <- c(rm_p, gg$`Pr(>F)`[1])
@@ -291,7 +302,7 @@ tiny_within_golden <- function(name) {
 
 for (name in c("b3_balanced.csv", "b4_unbalanced.csv", "b3_missing.csv", "b4_ties.csv", "tiny_between.csv"))
   between_golden(name)
-for (name in c("w3_within.csv", "w4_within.csv", "tiny_within.csv")) within_golden(name)
+for (name in c("w3_within.csv", "w4_within.csv", "tiny_within.csv", "w3_strong.csv")) within_golden(name)
 tiny_between_golden("tiny_between.csv")
 tiny_within_golden("tiny_within.csv")
 write.csv(out, file.path(dir, "table1_conditions_golden.csv"), row.names = FALSE, quote = FALSE)
