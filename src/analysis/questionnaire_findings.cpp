@@ -257,7 +257,7 @@ void add_yes_no_conditions_findings(std::vector<Finding>& out, const tables::Yes
           std::string t = fmt::format("{:.2f}", d);
           return t.rfind("0.", 0) == 0 ? t.substr(1) : t;
         };
-        v = fmt::format("; bias-corrected Cram\u00e9r's V = {}, {:.0f}% CI [{}, {}]", apa(f.effect_size->value),
+        v = fmt::format("; bias-corrected Cram\u00e9r's V = {}, one-sided {:.0f}% CI [{}, {}]", apa(f.effect_size->value),
                         100 * x.conf_level, apa(*f.effect_size->ci_low), apa(*f.effect_size->ci_high));
       }
       const std::string beside =

@@ -263,9 +263,13 @@ std::string effect_size(const Style& st, const Finding& f) {
   // A yes/no question across three or more conditions (docs/yes-no.md): effectsize's default V.
   if (e.name == "cramers_v") lead = "bias-corrected Cram\u00e9r's ", sym = italic("V");
   std::string o = lead + st.eq(sym, "", "=", value(e.value));
+  // Proportions of variance and V carry effectsize's one-sided interval (upper bound 1): say so,
+  // or "[.02, 1.00]" reads as a two-sided interval that reaches 1.
+  const bool one_sided = (e.name.rfind("eta2", 0) == 0 || e.name == "omega2" || e.name == "cramers_v") &&
+                         e.ci_high && *e.ci_high == 1.0;
   if (bound(e.ci_low) && bound(e.ci_high) && (finite(e.ci_low) || finite(e.ci_high)))
-    o += ", " + st.ci(f.conf_level, finite(e.ci_low) ? value(*e.ci_low) : "",
-                      finite(e.ci_high) ? value(*e.ci_high) : "");
+    o += std::string(", ") + (one_sided ? "one-sided " : "") +
+         st.ci(f.conf_level, finite(e.ci_low) ? value(*e.ci_low) : "", finite(e.ci_high) ? value(*e.ci_high) : "");
   return o;
 }
 

@@ -95,6 +95,9 @@ TEST(YesNoConditionsFindings, TheQuestionRestsOnFishersTestOfTheWholeTable) {
             std::string::npos)
       << f->sentence;
   EXPECT_NE(f->sentence.find("Cram\u00e9r's V = ."), std::string::npos) << f->sentence;
+  // effectsize's interval of V is one-sided (upper bound 1), and the sentence says so.
+  EXPECT_EQ(f->effect_size->ci_high, 1.0);
+  EXPECT_NE(f->sentence.find(", one-sided 95% CI [."), std::string::npos) << f->sentence;
   EXPECT_NE(f->sentence.find("\u03c7\u00b2(2) = 13.60"), std::string::npos) << f->sentence;
   EXPECT_TRUE(f->direction.empty());
   EXPECT_FALSE(f->estimate.has_value());

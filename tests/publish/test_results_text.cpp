@@ -247,6 +247,29 @@ TEST(ResultsText, AnFTestWithoutADirectionIsUndecided) {
   EXPECT_EQ(feint::publish::answer(two_sided, f), Answer::supported);
 }
 
+// effectsize's intervals of proportions of variance are one-sided (upper bound 1): the text says
+// so, as the findings' sentences do, and keeps a two-sided one as it is.
+TEST(ResultsText, AOneSidedIntervalOfAProportionOfVarianceSaysOneSided) {
+  Finding f;
+  f.hypothesis = "H1";
+  f.measure = "error";
+  f.strength = Strength::no_evidence_either_way;
+  f.evidence = "no evidence either way";
+  f.test = "F test (mixed model)";
+  f.p = 0.09;
+  f.statistics = "F(2, 660) = 2.42, p = .090";
+  f.effect_size = EffectSize{"eta2_p", 0.0073, 0.0, 1.0};
+  const std::string p = md_paragraph(h1(), {f, inconclusive_confusion()});
+  EXPECT_NE(p.find("Error: partial *\u03b7*\u00b2 = .01, one-sided 95% CI [.00, 1.00]; F test"), std::string::npos)
+      << p;
+  f.effect_size = EffectSize{"omega2", 0.15, 0.02, 1.0};
+  EXPECT_NE(md_paragraph(h1(), {f, inconclusive_confusion()}).find("= .15, one-sided 95% CI [.02, 1.00]"),
+            std::string::npos);
+  f.effect_size = EffectSize{"d", 0.3, -0.2, 1.0};  // a d whose upper bound happens to be 1: two-sided
+  EXPECT_NE(md_paragraph(h1(), {f, inconclusive_confusion()}).find("*d* = 0.30, 95% CI [\u22120.20, 1.00]"),
+            std::string::npos);
+}
+
 // H2 is two-sided and answered per questionnaire item (the findings' measures, not "questionnaire").
 TEST(ResultsText, ATwoSidedHypothesisPerItemAndTheWordCap) {
   const Hypothesis h2{"H2", "The questionnaire answers differ between adaptive and random.", {"questionnaire"},
