@@ -19,11 +19,13 @@ std::vector<Hypothesis> default_hypotheses(const std::string& a, const std::stri
                    a, b),
        {"error", "confusion"},
        "greater",
-       false},
+       false,
+       {a, b}},
       {"H2", fmt::format("The questionnaire answers differ between {} and {}.", a, b),
        {"questionnaire"},
        "two-sided",
-       false},
+       false,
+       {a, b}},
   };
 }
 
@@ -73,11 +75,13 @@ std::vector<Hypothesis> default_hypotheses(const std::vector<std::string>& condi
       {"H1", fmt::format("Error and confusion differ among the conditions {}.", names),
        {"error", "confusion"},
        "two-sided",
-       false},
+       false,
+       {}},
       {"H2", fmt::format("The questionnaire answers differ among the conditions {}.", names),
        {"questionnaire"},
        "two-sided",
-       false},
+       false,
+       {}},
   };
 }
 
@@ -99,7 +103,7 @@ std::vector<Hypothesis> parse_hypotheses(const std::vector<std::string>& setting
     const std::string value(io::trim(std::string_view(text).substr(eq + 1)));
     auto it = std::find_if(hs.begin(), hs.end(), [&](const Hypothesis& h) { return h.id == id; });
     if (it == hs.end()) {
-      hs.push_back({id, "", {}, "two-sided", false});
+      hs.push_back({id, "", {}, "two-sided", false, {}});
       it = hs.end() - 1;
     }
     set_key(*it, key, value, text);

@@ -343,9 +343,23 @@ struct MeasureResult {
   const Finding* headline = nullptr;
 };
 
+// True when a hypothesis about a pair (h.pair) is not answered by f: a test across all the
+// conditions, or a contrast of another pair ("adaptive - fixed-block"; an exposure contrast names
+// its sides "A slope - B slope").
+bool answers_another_question(const Finding& f, const Hypothesis& h) {
+  if (h.pair.size() != 2) return false;
+  if (f.omnibus) return true;
+  auto [lhs, rhs] = sides(f.contrast, "-");
+  if (lhs.empty() || lhs == "mean") return false;
+  for (std::string* side : {&lhs, &rhs})
+    if (side->size() > 6 && side->ends_with(" slope")) side->resize(side->size() - 6);
+  return !((lhs == h.pair[0] && rhs == h.pair[1]) || (lhs == h.pair[1] && rhs == h.pair[0]));
+}
+
 // Which finding of a measure speaks for it (results_paragraphs): lower is better.
-int headline_rank(const Finding& f) {
+int headline_rank(const Finding& f, const Hypothesis& h) {
   if (f.strength == Strength::not_computable) return 4;
+  if (answers_another_question(f, h)) return 3;
   if (f.omnibus) return -1;  // the test across the conditions, before any of their pairs
   const bool comparison = !one_sample(f) && (!f.contrast.empty() || !f.direction.empty());
   if (comparison && f.member.empty() && f.means && finite(f.estimate)) return 0;
@@ -353,7 +367,7 @@ int headline_rank(const Finding& f) {
   return comparison ? 2 : 3;
 }
 
-const Finding* headline_of(const std::vector<const Finding*>& fs) {
+const Finding* headline_of(const std::vector<const Finding*>& fs, const Hypothesis& h) {
   const bool confirmatory = std::any_of(fs.begin(), fs.end(), [](const Finding* f) { return f->confirmatory; });
   // A confirmatory hypothesis with a direction speaks through its one-sided tests.
   const bool one_sided = std::any_of(fs.begin(), fs.end(), [](const Finding* f) {
@@ -364,7 +378,7 @@ const Finding* headline_of(const std::vector<const Finding*>& fs) {
   for (const Finding* f : fs) {
     if (confirmatory && !f->confirmatory) continue;
     if (one_sided && f->alternative == stats::Alternative::two_sided) continue;
-    const int r = headline_rank(*f);
+    const int r = headline_rank(*f, h);
     if (r < best_rank) best = f, best_rank = r;
   }
   return best;
@@ -392,7 +406,7 @@ std::vector<MeasureResult> measures_of(const Hypothesis& h, std::span<const Find
   }
   for (const auto& r : found)
     if (!declared(r.measure)) out.push_back(r);
-  for (auto& r : out) r.headline = headline_of(r.findings);
+  for (auto& r : out) r.headline = headline_of(r.findings, h);
   return out;
 }
 

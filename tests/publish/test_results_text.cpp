@@ -33,7 +33,7 @@ namespace {
 
 Hypothesis h1(bool confirmatory = true) {
   return {"H1", "People stay deceived longer under adaptive than under random selection.",
-          {"error", "confusion"}, "greater", confirmatory};
+          {"error", "confusion"}, "greater", confirmatory, {}};
 }
 
 // A Welch t test's finding of `measure`, adaptive - random, with every structured field.
@@ -270,10 +270,46 @@ TEST(ResultsText, AOneSidedIntervalOfAProportionOfVarianceSaysOneSided) {
             std::string::npos);
 }
 
+// A study of three conditions run for one pair (compare = "adaptive,random"): the hypothesis is
+// about that pair, so its headline is that pair's comparison, not the F across the three conditions
+// (which ranks first otherwise) nor another pair's contrast listed before it.
+TEST(ResultsText, AHypothesisAboutAPairOfThreeConditionsSpeaksThroughThatPair) {
+  Finding across = welch("error", 0.0, Strength::no_evidence_either_way, "no evidence either way");
+  across.id = "H1-model-condition-error";
+  across.contrast.clear();
+  across.direction.clear();
+  across.means.reset();
+  across.estimate.reset();
+  across.omnibus = true;
+  across.test = "F test (mixed model)";
+  across.effect_size.reset();
+  across.statistics = "F(2, 660) = 2.42, p = .090";
+  Finding other = welch("error", 0.09, Strength::evidence_for_difference, "strong evidence for a difference");
+  other.id = "H1-model-pair-error-adaptive-fixed-block";
+  other.contrast = "adaptive - fixed-block";
+  Finding pair = welch("error", 0.02, Strength::no_evidence_either_way, "no evidence either way");
+  pair.id = "H1-model-pair-error-adaptive-random";
+  Hypothesis h = h1(false);
+  const std::string before = md_paragraph(h, {across, other, pair});
+  EXPECT_NE(before.find("Error: F test (mixed model)"), std::string::npos) << before;  // no pair named
+  h.pair = {"adaptive", "random"};
+  const std::string p = md_paragraph(h, {across, other, pair});
+  EXPECT_NE(p.find("Error: adaptive *M* = 0.57, random *M* = 0.55; difference (adaptive \u2212 random) 0.02"),
+            std::string::npos)
+      << p;
+  EXPECT_EQ(p.find("fixed-block"), std::string::npos) << p;
+  EXPECT_EQ(closing(p), "H1 was inconclusive for error and not testable for confusion.");
+  // The pair's sides in the other order, and an exposure contrast of the pair, answer it too.
+  pair.contrast = "random - adaptive";
+  EXPECT_NE(md_paragraph(h, {across, other, pair}).find("Error: random *M* = "), std::string::npos);
+  pair.contrast = "adaptive slope - random slope";
+  EXPECT_NE(md_paragraph(h, {across, other, pair}).find("Error: adaptive slope *M* = "), std::string::npos);
+}
+
 // H2 is two-sided and answered per questionnaire item (the findings' measures, not "questionnaire").
 TEST(ResultsText, ATwoSidedHypothesisPerItemAndTheWordCap) {
   const Hypothesis h2{"H2", "The questionnaire answers differ between adaptive and random.", {"questionnaire"},
-                      "two-sided", false};
+                      "two-sided", false, {}};
   std::vector<Finding> fs;
   const std::vector<std::string> items = {"trust", "entertainment", "deception", "intelligence", "likeability",
                                           "safety", "competence", "warmth", "discomfort", "animacy"};

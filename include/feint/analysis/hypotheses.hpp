@@ -19,6 +19,10 @@ struct Hypothesis {
   /// The expected direction of A relative to B: "greater", "less" or "two-sided".
   std::string direction = "two-sided";
   bool confirmatory = false;  ///< declared before the data (preregistered); else exploratory
+  /// The two conditions it compares, A then B, when it is about a pair (default_hypotheses(a, b));
+  /// empty when it is about all of the study's conditions. The Results text's headline of a
+  /// measure is then that pair's comparison, never another pair's or the test across all.
+  std::vector<std::string> pair;
 };
 
 /// The paper's hypotheses for conditions A and B: H1 (A deceives longer than B: higher error and
