@@ -54,6 +54,7 @@ models::PointerObservedTrial observed(const io::Trial& t) {
   o.times = t.times;
   o.x = t.belief_x;
   o.y = t.belief_y;
+  o.pointer_speed = t.pad_speed;
   // The robot at each pointer sample, on the pointer's clock.
   for (std::size_t i = 0; i < t.robot_x.size(); ++i) o.path.push_back({t.times[i], t.robot_x[i], t.robot_y[i]});
   o.label = t.label();
@@ -114,7 +115,8 @@ void refuse_pad_options(const sim::ObserverFitOptions& o) {
   if (o.prior != defaults.prior)
     refuse("--prior", "P(right) has no meaning on a map of K targets (the prior is uniform, 1/K each)");
   if (o.pad_speed != defaults.pad_speed)
-    refuse("--pad-speed", "it is confusion's speed in the pad's agreement table, which pointer fits do not have");
+    refuse("--pad-speed", "a pad's speed has no meaning for a pointer, and the agreement table's confusion is the "
+                          "raw one, which needs no speed");
 }
 
 }  // namespace

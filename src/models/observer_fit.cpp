@@ -10,7 +10,6 @@
 #include <numbers>
 
 #include <Eigen/Dense>
-#include <boost/math/distributions/chi_squared.hpp>
 #include <fmt/format.h>
 
 #include "feint/error.hpp"
@@ -274,28 +273,13 @@ double observer_log_likelihood(std::span<const ObservedTrial> trials, const Obse
 
 namespace {
 
-/// The learning model starts from the pooled fit (gamma = 0), already near its maximum; beta0 and
-/// gamma are strongly correlated, so Nelder-Mead is restarted until it stops improving.
-std::pair<Theta, double> learning_max(const Objective& f, const Box& box, const Theta& base) {
-  auto r = nelder_mead(f, base, box, box.free, 0.5, 3000);
-  for (int restart = 0; restart < 5; ++restart) {
-    auto r2 = nelder_mead(f, r.first, box, box.free, 0.2, 3000);
-    const bool better = r2.second > r.second + 1e-6;
-    if (r2.second > r.second) r = r2;
-    if (!better) break;
-  }
-  return r;
-}
-
-/// The fit of the free parameters; CIs for all of them, or only for `ci_only` (the learning test
-/// needs gamma's alone; the others get NaN ends).
-ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, std::string unit, bool gamma,
-                        Theta base, std::size_t ntrials, std::size_t ci_only = kParams,
-                        const std::optional<Theta>& start = std::nullopt) {
-  const Box box = observer_box(settings, gamma);
+/// The fit of beta, tau (and the prior when fitted) with their CIs.
+ObserverFit fit_problem(const Problem& p, const ObserverFitSettings& settings, std::string unit, Theta base,
+                        std::size_t ntrials, const std::optional<Theta>& start) {
+  const Box box = observer_box(settings, false);
   const Objective f = [&p](const Theta& x) { return evaluate(p, x).loglik; };
-  const auto found = gamma ? learning_max(f, box, base) : global_max(p, box, base, start);
-  const auto [top, cis] = settle(f, box, found, settings.level, ci_only);
+  const auto found = global_max(p, box, base, start);
+  const auto [top, cis] = settle(f, box, found, settings.level, kParams);
   const Theta& th = top.first;
   ObserverFit fit;
   fit.unit = std::move(unit);
@@ -329,9 +313,8 @@ ObserverFit fit_observer(std::span<const ObservedTrial> trials, const ObserverFi
     from = Theta{start->beta, start->tau,
                  settings.fit_prior ? prior_logit(start->prior_right) : prior_logit(settings.prior_right), 0.0};
   }
-  ObserverFit fit = fit_problem(p, settings, std::move(unit), false,
-                                Theta{1.0, 0.0, prior_logit(settings.prior_right), 0.0}, trials.size(), kParams,
-                                from);
+  ObserverFit fit = fit_problem(p, settings, std::move(unit), Theta{1.0, 0.0, prior_logit(settings.prior_right), 0.0},
+                                trials.size(), from);
   if (!trials.empty()) fit.condition = trials.front().condition;
   return fit;
 }
@@ -342,16 +325,8 @@ LearningTest test_learning(std::span<const ObservedTrial> trials, const Observer
   const Problem p = prepare(trials, settings);
   const Theta base{pooled.parameter("beta").estimate, pooled.parameter("tau").estimate,
                    prior_logit(pooled.observer().prior_right), 0.0};
-  const ObserverFit with = fit_problem(p, settings, pooled.unit, true, base, trials.size(), kGamma);
-  LearningTest lt;
-  lt.condition = pooled.unit;
-  lt.gamma = with.parameter("gamma");
-  lt.beta0 = with.parameter("beta").estimate;
-  lt.log_likelihood0 = pooled.log_likelihood;
-  lt.log_likelihood1 = std::max(with.log_likelihood, pooled.log_likelihood);
-  lt.statistic = 2 * (lt.log_likelihood1 - lt.log_likelihood0);
-  lt.p_value = boost::math::cdf(boost::math::complement(boost::math::chi_squared(1.0), lt.statistic));
-  return lt;
+  const Objective f = [&p](const Theta& x) { return evaluate(p, x).loglik; };
+  return learning_test(f, observer_box(settings, true), base, pooled, settings.level);
 }
 
 }  // namespace feint::models

@@ -126,6 +126,15 @@ std::pair<std::pair<Theta, double>, Intervals> settle(const Objective& f, const 
                                                       std::pair<Theta, double> top, double level,
                                                       std::size_t ci_only);
 
+/// The learning test in a pooled fit, beta_k = beta0 exp(gamma exposure_k) against gamma = 0
+/// (docs/observer.md, "Learning"): `f` scales each trial's beta by exp(th[kGamma] exposure_k) and
+/// `box` frees gamma. The maximum starts at `base` (the pooled fit, gamma = 0), Nelder-Mead
+/// restarted until it stops improving (beta0 and gamma are strongly correlated); gamma gets its
+/// profile CI at `level`; the likelihood ratio against `pooled` (its unit names the condition) is
+/// referred to chi-squared with 1 df. Shared by the pad's fit and the pointer's.
+LearningTest learning_test(const Objective& f, const Box& box, const Theta& base, const ObserverFit& pooled,
+                           double level);
+
 /// 1 / (1 + e^-z) without overflow (the prior's logit back to a probability).
 double logistic(double z) noexcept;
 

@@ -1,9 +1,12 @@
 // What the observer fits share beyond the optimisers (observer_optimise.hpp): the box and the
-// scan's plan, the maximum settled with its profile CIs, and the estimates with their notes. The
+// scan's plan, the maximum settled with its profile CIs, the estimates with their notes, and the
+// learning test. The
 // pad fit (observer_fit.cpp) and the pointer fit (pointer_observer_fit.cpp) differ only in their
 // likelihoods (docs/observer.md, "Estimation and CIs").
+#include <algorithm>
 #include <cmath>
 
+#include <boost/math/distributions/chi_squared.hpp>
 #include <fmt/format.h>
 
 #include "observer_optimise.hpp"
@@ -135,5 +138,38 @@ void describe_estimates(ObserverFit& fit, const Box& box, const Theta& th, const
   bound_notes(fit, th, beta_max, tau_max, wording);
 }
 
+
+namespace {
+
+/// The learning model starts from the pooled fit (gamma = 0), already near its maximum; beta0 and
+/// gamma are strongly correlated, so Nelder-Mead is restarted until it stops improving.
+std::pair<Theta, double> learning_max(const Objective& f, const Box& box, const Theta& base) {
+  auto r = nelder_mead(f, base, box, box.free, 0.5, 3000);
+  for (int restart = 0; restart < 5; ++restart) {
+    auto r2 = nelder_mead(f, r.first, box, box.free, 0.2, 3000);
+    const bool better = r2.second > r.second + 1e-6;
+    if (r2.second > r.second) r = r2;
+    if (!better) break;
+  }
+  return r;
+}
+
+}  // namespace
+
+LearningTest learning_test(const Objective& f, const Box& box, const Theta& base, const ObserverFit& pooled,
+                           double level) {
+  const auto [top, cis] = settle(f, box, learning_max(f, box, base), level, kGamma);
+  const Theta& th = top.first;
+  LearningTest lt;
+  lt.condition = pooled.unit;
+  lt.gamma = estimate_of(kGamma, th, cis.ci[kGamma]);
+  lt.beta0 = th[kBeta];
+  lt.log_likelihood0 = pooled.log_likelihood;
+  // The model with gamma nests the pooled one: a maximum found below it is the optimiser's shortfall.
+  lt.log_likelihood1 = std::max(f(th), pooled.log_likelihood);
+  lt.statistic = 2 * (lt.log_likelihood1 - lt.log_likelihood0);
+  lt.p_value = boost::math::cdf(boost::math::complement(boost::math::chi_squared(1.0), lt.statistic));
+  return lt;
+}
 
 }  // namespace feint::models::detail::observer

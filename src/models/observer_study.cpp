@@ -14,40 +14,18 @@
 #include "feint/stats/effect_size.hpp"
 #include "feint/stats/rank_tests.hpp"
 #include "feint/stats/ttest.hpp"
+#include "observer_study_detail.hpp"
 
 namespace feint::models {
 
 namespace {
 
-/// Running sums for a Pearson correlation and an RMSE of pairs (x = human, y = model).
-struct Sums {
-  double n = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, sdd = 0;
-  void add(double x, double y) {
-    n += 1; sx += x; sy += y; sxx += x * x; syy += y * y; sxy += x * y; sdd += (x - y) * (x - y);
-  }
-  double r() const {
-    if (n < 3) return std::nan("");
-    const double vx = sxx - sx * sx / n, vy = syy - sy * sy / n;
-    if (!(vx > 0) || !(vy > 0)) return std::nan("");
-    return (sxy - sx * sy / n) / std::sqrt(vx * vy);
-  }
-  double rmse() const { return n > 0 ? std::sqrt(sdd / n) : std::nan(""); }
-  double mean_x() const { return n > 0 ? sx / n : std::nan(""); }
-  double mean_y() const { return n > 0 ? sy / n : std::nan(""); }
-};
-
-/// A note without its leading "unit: " (the issue list names the unit already).
-std::string without_unit(const std::string& note, const std::string& unit) {
-  const std::string prefix = unit + ": ";
-  return note.rfind(prefix, 0) == 0 ? note.substr(prefix.size()) : note;
-}
+using detail::observer::AgreementCells;
+using detail::observer::count_exposure;
+using detail::observer::without_unit;
 
 /// Each participant's fitted observer, by (condition, participant).
 using FittedObservers = std::map<std::pair<std::string, std::string>, GoalObserver>;
-
-/// The agreement sums of a (condition, strategy, iteration) cell: errors, confusions, traces.
-using AgreementSums =
-    std::map<std::tuple<std::string, std::string, long long>, std::array<Sums, 3>>;
 
 /// Labels every trial; returns the usable ones, naming each bad one in out.issues.
 std::vector<ObservedTrial> usable_trials(std::vector<ObservedTrial>& trials,
@@ -66,16 +44,6 @@ std::vector<ObservedTrial> usable_trials(std::vector<ObservedTrial>& trials,
     good.push_back(std::move(tr));
   }
   return good;
-}
-
-/// Sorts by condition, participant and iteration, and counts each trial's exposure: earlier trials
-/// of the same strategy by the same participant.
-void count_exposure(std::vector<ObservedTrial>& good) {
-  std::stable_sort(good.begin(), good.end(), [](const ObservedTrial& a, const ObservedTrial& b) {
-    return std::tie(a.condition, a.participant, a.iteration) < std::tie(b.condition, b.participant, b.iteration);
-  });
-  std::map<std::tuple<std::string, std::string, std::string>, int> seen;
-  for (auto& tr : good) tr.exposure = seen[{tr.condition, tr.participant, tr.strategy}]++;
 }
 
 /// Fits each participant (in each condition).
@@ -143,9 +111,9 @@ void fit_conditions(const std::vector<ObservedTrial>& good, const ObserverFitSet
 }
 
 // The model's trace at each participant's fitted parameters against the pad, summed per cell.
-AgreementSums agreement_sums(const std::vector<ObservedTrial>& good, const FittedObservers& fitted,
-                             const ObserverFitSettings& settings, StudyObserverFit& out) {
-  AgreementSums groups;
+AgreementCells agreement_cells(const std::vector<ObservedTrial>& good, const FittedObservers& fitted,
+                               const ObserverFitSettings& settings, StudyObserverFit& out) {
+  AgreementCells cells;
   for (const auto& tr : good) {
     const auto it = fitted.find({tr.condition, tr.participant});
     if (it == fitted.end()) continue;
@@ -160,43 +128,10 @@ AgreementSums agreement_sums(const std::vector<ObservedTrial>& good, const Fitte
       out.issues.push_back({tr.label, fmt::format("left out of the agreement tables: {}", e.what())});
       continue;
     }
-    const std::string cond = tr.condition.empty() ? "all" : tr.condition;
-    const std::string strat = tr.strategy.empty() ? "unknown" : tr.strategy;
-    // Each trial counts in its own cell and in the "all" margins (once, when it is already "all").
-    std::vector<std::string> conds{cond}, strats{strat};
-    if (cond != "all") conds.push_back("all");
-    if (strat != "all") strats.push_back("all");
-    std::vector<long long> its{tr.iteration};
-    if (tr.iteration != 0) its.push_back(0);
-    for (const auto& c : conds) {
-      for (const auto& s : strats) {
-        for (long long k : its) {
-          auto& g = groups[{c, s, k}];
-          g[0].add(hs.error, ms.error);
-          g[1].add(hs.confusion, ms.confusion);
-          for (std::size_t i = 0; i < model.size(); ++i) g[2].add(tr.pads[i], model[i]);
-        }
-      }
-    }
+    cells.add(tr.condition, tr.strategy, tr.iteration,
+              {hs.error, ms.error, hs.confusion, ms.confusion, tr.pads, model});
   }
-  return groups;
-}
-
-AgreementRow agreement_row(const AgreementSums::key_type& key, const std::array<Sums, 3>& g) {
-  AgreementRow r;
-  std::tie(r.condition, r.strategy, r.iteration) = key;
-  r.trials = static_cast<std::size_t>(g[0].n);
-  r.human_error = g[0].mean_x();
-  r.model_error = g[0].mean_y();
-  r.error_r = g[0].r();
-  r.error_rmse = g[0].rmse();
-  r.human_confusion = g[1].mean_x();
-  r.model_confusion = g[1].mean_y();
-  r.confusion_r = g[1].r();
-  r.confusion_rmse = g[1].rmse();
-  r.trace_r = g[2].r();
-  r.trace_rmse = g[2].rmse();
-  return r;
+  return cells;
 }
 
 }  // namespace
@@ -246,8 +181,7 @@ StudyObserverFit fit_study(std::vector<ObservedTrial> trials, const ObserverFitS
     out.comparisons = compare_conditions(out.participants, out.conditions[0].condition,
                                          out.conditions[1].condition, settings.level);
   // 5. Agreement: the model's trace at each participant's fitted parameters against the pad.
-  for (const auto& [key, g] : agreement_sums(good, fitted, settings, out))
-    out.agreement.push_back(agreement_row(key, g));
+  out.agreement = agreement_cells(good, fitted, settings, out).rows();
   return out;
 }
 

@@ -18,6 +18,7 @@
 #include "feint/error.hpp"
 #include "feint/models/deceptiveness.hpp"
 #include "observer_optimise.hpp"
+#include "observer_study_detail.hpp"
 
 namespace feint::models {
 
@@ -223,7 +224,8 @@ Likelihood evaluate(const Problem& p, const Theta& th) {
   Eigen::Index m = 0;
   for (std::size_t tq = 0; tq < p.trials.size(); ++tq) {
     const Prepared& q = p.trials[tq];
-    means(p, tq, slot, th[kBeta]);
+    // The learning model's beta_k = beta0 exp(gamma exposure_k); gamma = 0 leaves beta as it is.
+    means(p, tq, slot, th[kBeta] * std::exp(th[kGamma] * q.trial->exposure));
     auto rx = p.rx.head(q.n), ry = p.ry.head(q.n);
     rx = (p.px.segment(q.offset, q.n) - p.nx.head(q.n)) * q.inv_scale;
     ry = (p.py.segment(q.offset, q.n) - p.ny.head(q.n)) * q.inv_scale;
@@ -360,14 +362,8 @@ ObserverFit fit_pointer_observer(std::span<const PointerObservedTrial> trials,
 
 namespace {
 
-/// A note without its leading "unit: " (the issue list names the unit already).
-std::string without_unit(const std::string& note, const std::string& unit) {
-  const std::string prefix = unit + ": ";
-  return note.rfind(prefix, 0) == 0 ? note.substr(prefix.size()) : note;
-}
-
-/// Labels every trial; keeps the usable ones (sorted by condition, participant, iteration) and
-/// names each bad one in out.issues.
+/// Labels every trial; keeps the usable ones (sorted by condition, participant, iteration, with
+/// their exposure counted) and names each bad one in out.issues.
 std::vector<PointerObservedTrial> usable(std::vector<PointerObservedTrial>& trials, PointerStudyObserverFit& out) {
   std::vector<PointerObservedTrial> good;
   for (auto& tr : trials) {
@@ -380,9 +376,7 @@ std::vector<PointerObservedTrial> usable(std::vector<PointerObservedTrial>& tria
     }
     good.push_back(std::move(tr));
   }
-  std::stable_sort(good.begin(), good.end(), [](const PointerObservedTrial& a, const PointerObservedTrial& b) {
-    return std::tie(a.condition, a.participant, a.iteration) < std::tie(b.condition, b.participant, b.iteration);
-  });
+  count_exposure(good);
   return good;
 }
 
@@ -437,7 +431,32 @@ std::optional<GoalPosteriorObserver> pooled_start(const std::vector<ObserverFit>
   return std::nullopt;
 }
 
+/// The learning test of each condition's pooled fit, on that condition's trials.
+void learning_tests(const std::vector<PointerObservedTrial>& good, const ObserverFitSettings& settings,
+                    PointerStudyObserverFit& out) {
+  for (const auto& pooled : out.conditions) {
+    const auto in = [&pooled](const PointerObservedTrial& t) { return t.condition == pooled.condition; };
+    const auto first = std::find_if(good.begin(), good.end(), in);
+    const auto last = std::find_if_not(first, good.end(), in);
+    try {
+      out.learning.push_back(test_pointer_learning(std::span(first, last), settings, pooled));
+    } catch (const Error& e) {
+      out.issues.push_back({pooled.unit, fmt::format("the learning test failed: {}", e.what())});
+    }
+  }
+}
+
 }  // namespace
+
+LearningTest test_pointer_learning(std::span<const PointerObservedTrial> trials, const ObserverFitSettings& settings,
+                                   const ObserverFit& pooled) {
+  check_settings(settings);
+  check_trials(trials, pooled.unit);
+  const Problem p = prepare(trials, settings);
+  const Objective f = [&p](const Theta& x) { return evaluate(p, x).loglik; };
+  const Theta base{pooled.parameter("beta").estimate, pooled.parameter("tau").estimate, 0.0, 0.0};
+  return learning_test(f, observer_box(settings, true), base, pooled, settings.level);
+}
 
 PointerStudyObserverFit fit_pointer_study(std::vector<PointerObservedTrial> trials,
                                           const ObserverFitSettings& settings) {
@@ -456,9 +475,11 @@ PointerStudyObserverFit fit_pointer_study(std::vector<PointerObservedTrial> tria
       [](const PointerObservedTrial& t) { return t.condition.empty() ? std::string("all") : t.condition; },
       [&out](const PointerObservedTrial& t) { return pooled_start(out.participants, t.condition); },
       out.conditions, out, "pooled");
+  if (settings.learning) learning_tests(good, settings, out);
   if (out.conditions.size() == 2)
     out.comparisons = compare_conditions(out.participants, out.conditions[0].condition,
                                          out.conditions[1].condition, settings.level);
+  out.agreement = pointer_agreement(good, out.participants, settings, out.issues);
   return out;
 }
 

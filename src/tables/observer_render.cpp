@@ -72,6 +72,40 @@ std::string issues_text(const std::vector<models::TrialIssue>& issues) {
   return out;
 }
 
+// The learning test per condition (pad and pointer fits alike).
+std::string learning_text(const std::vector<models::LearningTest>& learning) {
+  if (learning.empty()) return "";
+  std::string out =
+      "\nLearning: beta_k = beta0 exp(gamma exposure_k), exposure = earlier trials of the same "
+      "strategy\n";
+  for (const auto& l : learning) {
+    out += fmt::format("  {:<10} gamma = {}, beta0 = {}, LR chi2(1) = {}, p = {}\n", l.condition,
+                       ci_text(l.gamma), num(l.beta0), num(l.statistic, 3),
+                       l.p_value < 1e-4 ? fmt::format("{:.2e}", l.p_value) : num(l.p_value, 4));
+  }
+  return out;
+}
+
+// The model-human agreement table; `what` says what is compared, in the title's parentheses.
+std::string agreement_text(const std::vector<models::AgreementRow>& agreement, const std::string& what) {
+  std::string out = "\nModel-human agreement (" + what + ")\n";
+  out += fmt::format(
+      "{:<10} {:<13} {:>9} {:>6}  {:>7} {:>7} {:>6} {:>6}  {:>7} {:>7} {:>6} {:>6}  {:>7} {:>7}\n",
+      "condition", "strategy", "iteration", "trials", "E human", "E model", "E r", "E rmse",
+      "C human", "C model", "C r", "C rmse", "trace r", "rmse");
+  for (const auto& g : agreement) {
+    out += fmt::format(
+        "{:<10} {:<13} {:>9} {:>6}  {:>7} {:>7} {:>6} {:>6}  {:>7} {:>7} {:>6} {:>6}  {:>7} "
+        "{:>7}\n",
+        g.condition, g.strategy,
+        g.iteration == 0 ? std::string("all") : std::to_string(g.iteration), g.trials,
+        num(g.human_error), num(g.model_error), num(g.error_r, 2), num(g.error_rmse),
+        num(g.human_confusion), num(g.model_confusion), num(g.confusion_r, 2),
+        num(g.confusion_rmse), num(g.trace_r, 2), num(g.trace_rmse));
+  }
+  return out;
+}
+
 std::string render_text(const models::StudyObserverFit& r, const models::ObserverFitSettings& a,
                         std::size_t rejected_rows, const std::string& path_source) {
   std::string out = fmt::format(
@@ -85,33 +119,8 @@ std::string render_text(const models::StudyObserverFit& r, const models::Observe
     out += fmt::format("{} trial(s) left out while reading the logs (see below).\n", rejected_rows);
   out += fits_text(r.participants, "Per participant", a.fit_prior);
   out += fits_text(r.conditions, "Pooled per condition", a.fit_prior);
-  if (!r.learning.empty()) {
-    out +=
-        "\nLearning: beta_k = beta0 exp(gamma exposure_k), exposure = earlier trials of the same "
-        "strategy\n";
-    for (const auto& l : r.learning) {
-      out += fmt::format("  {:<10} gamma = {}, beta0 = {}, LR chi2(1) = {}, p = {}\n", l.condition,
-                         ci_text(l.gamma), num(l.beta0), num(l.statistic, 3),
-                         l.p_value < 1e-4 ? fmt::format("{:.2e}", l.p_value) : num(l.p_value, 4));
-    }
-  }
-  out +=
-      "\nModel-human agreement (model b(t) at each participant's fit vs the pad; r = Pearson "
-      "correlation)\n";
-  out += fmt::format(
-      "{:<10} {:<13} {:>9} {:>6}  {:>7} {:>7} {:>6} {:>6}  {:>7} {:>7} {:>6} {:>6}  {:>7} {:>7}\n",
-      "condition", "strategy", "iteration", "trials", "E human", "E model", "E r", "E rmse",
-      "C human", "C model", "C r", "C rmse", "trace r", "rmse");
-  for (const auto& g : r.agreement) {
-    out += fmt::format(
-        "{:<10} {:<13} {:>9} {:>6}  {:>7} {:>7} {:>6} {:>6}  {:>7} {:>7} {:>6} {:>6}  {:>7} "
-        "{:>7}\n",
-        g.condition, g.strategy,
-        g.iteration == 0 ? std::string("all") : std::to_string(g.iteration), g.trials,
-        num(g.human_error), num(g.model_error), num(g.error_r, 2), num(g.error_rmse),
-        num(g.human_confusion), num(g.model_confusion), num(g.confusion_r, 2),
-        num(g.confusion_rmse), num(g.trace_r, 2), num(g.trace_rmse));
-  }
+  out += learning_text(r.learning);
+  out += agreement_text(r.agreement, "model b(t) at each participant's fit vs the pad; r = Pearson correlation");
   out += comparisons_text(r.comparisons);
   out += issues_text(r.issues);
   return out;
@@ -168,25 +177,25 @@ std::string json_issues(const std::vector<models::TrialIssue>& issues) {
   return out + "]";
 }
 
-std::string render_json(const models::StudyObserverFit& r, const models::ObserverFitSettings& a,
-                        const std::string& path_source) {
-  std::string out = fmt::format(
-      "{{\n  \"model\": \"pad\", \"method\": \"Maximum likelihood, goal-inference observer; pad noise {}\", \"path\": "
-      "{}, "
-      "\"conf.level\": {},\n  \"participants\": {},\n  \"conditions\": {},\n  \"learning\": [",
-      a.noise == models::PadNoise::ar1 ? "ar1" : "independent", io::json_quote(path_source),
-      io::json_number(a.level), json_fits(r.participants), json_fits(r.conditions));
-  for (std::size_t i = 0; i < r.learning.size(); ++i) {
-    const auto& l = r.learning[i];
+// The learning tests' JSON objects, without the brackets.
+std::string learning_json(const std::vector<models::LearningTest>& learning) {
+  std::string out;
+  for (std::size_t i = 0; i < learning.size(); ++i) {
+    const auto& l = learning[i];
     out += fmt::format(
         "{}\n    {{\"condition\": {}, \"gamma\": {}, \"beta0\": {}, \"statistic\": {}, \"df\": 1, "
         "\"p.value\": {}, \"method\": {}}}",
         i ? "," : "", io::json_quote(l.condition), json_estimate(l.gamma), io::json_number(l.beta0),
         io::json_number(l.statistic), io::json_number(l.p_value), io::json_quote(l.method));
   }
-  out += "],\n  \"agreement\": [";
-  for (std::size_t i = 0; i < r.agreement.size(); ++i) {
-    const auto& g = r.agreement[i];
+  return out;
+}
+
+// The agreement rows' JSON objects, without the brackets.
+std::string agreement_json(const std::vector<models::AgreementRow>& agreement) {
+  std::string out;
+  for (std::size_t i = 0; i < agreement.size(); ++i) {
+    const auto& g = agreement[i];
     out += fmt::format(
         "{}\n    {{\"condition\": {}, \"strategy\": {}, \"iteration\": {}, \"trials\": {}, "
         "\"human_error\": {}, "
@@ -201,6 +210,18 @@ std::string render_json(const models::StudyObserverFit& r, const models::Observe
         io::json_number(g.confusion_rmse), io::json_number(g.trace_r),
         io::json_number(g.trace_rmse));
   }
+  return out;
+}
+
+std::string render_json(const models::StudyObserverFit& r, const models::ObserverFitSettings& a,
+                        const std::string& path_source) {
+  std::string out = fmt::format(
+      "{{\n  \"model\": \"pad\", \"method\": \"Maximum likelihood, goal-inference observer; pad noise {}\", \"path\": "
+      "{}, "
+      "\"conf.level\": {},\n  \"participants\": {},\n  \"conditions\": {},\n  \"learning\": [",
+      a.noise == models::PadNoise::ar1 ? "ar1" : "independent", io::json_quote(path_source),
+      io::json_number(a.level), json_fits(r.participants), json_fits(r.conditions));
+  out += learning_json(r.learning) + "],\n  \"agreement\": [" + agreement_json(r.agreement);
   out += "],\n  \"comparisons\": " + json_comparisons(r.comparisons);
   out += ",\n  \"issues\": " + json_issues(r.issues);
   return out + "\n}\n";
@@ -229,7 +250,9 @@ std::string render_pointer_observer_fit_text(const models::PointerStudyObserverF
     out += fmt::format("{} trial(s) left out while reading the logs (see below).\n", rejected_rows);
   out += fits_text(r.participants, "Per participant", false);
   out += fits_text(r.conditions, "Pooled per condition", false);
-  out += "\nNo model-human agreement table and no learning test: they are defined on the pad's line only.\n";
+  out += learning_text(r.learning);
+  out += agreement_text(r.agreement, "model mean m(t) at each participant's fit vs the pointer; E, C and trace in "
+                                     "layout scales, trace = distance to the true target; r = Pearson correlation");
   out += comparisons_text(r.comparisons);
   out += issues_text(r.issues);
   return out;
@@ -244,6 +267,7 @@ std::string render_pointer_observer_fit_json(const models::PointerStudyObserverF
       io::json_quote("Maximum likelihood, " + pointer_model_text(r, a)),
       a.noise == models::PadNoise::ar1 ? "ar1" : "independent", r.min_targets, r.max_targets, r.layouts,
       io::json_quote(path_source), io::json_number(a.level), json_fits(r.participants), json_fits(r.conditions));
+  out += ",\n  \"learning\": [" + learning_json(r.learning) + "],\n  \"agreement\": [" + agreement_json(r.agreement) + "]";
   out += ",\n  \"comparisons\": " + json_comparisons(r.comparisons);
   out += ",\n  \"issues\": " + json_issues(r.issues);
   return out + "\n}\n";

@@ -23,6 +23,19 @@
 // beta in [0, beta_max] and tau in [0, tau_max] are found and their profile CIs computed by the
 // pad fit's optimisers (the scan over tau, the profile-likelihood ends, the refit from a higher
 // point; docs/observer.md "Estimation and CIs"). The prior is not fitted.
+//
+// As for the pad, a study's fit adds two things (docs/observer.md, "Agreement and learning on
+// pointer traces"):
+// - Learning: in a condition's pooled fit, beta_k = beta0 exp(gamma exposure_k) (exposure = the
+//   participant's earlier trials of the same strategy), gamma = 0 tested by the likelihood ratio
+//   against chi-squared(1), gamma's profile CI in [-1, 1]: the pad's optimiser and test.
+// - Model-human agreement: with each participant's fitted beta and tau, the model's mean m(t_i) is a
+//   belief-point trace; it and the pointer are scored alike (metrics::score_belief_points: error and
+//   confusion in layout scales, the fit's MetricSettings: trimming, dead band, normalisation), per
+//   condition x strategy x iteration cell with "all" margins. The traces are compared sample by
+//   sample on the distance to the true target in layout scales, |p_i - G*| / s and |m(t_i) - G*| / s
+//   (AgreementRow::trace_r, trace_rmse): the quantity the error integrates, and at K = 2 on the
+//   paper's layout the pad's |pad_i - target| (the pad's RMSE exactly).
 #pragma once
 
 #include <cstddef>
@@ -44,13 +57,15 @@ struct PointerObservedTrial {
   std::string participant;
   std::string condition;
   long long iteration = 0;
-  std::string strategy;  // as logged; not used by the fit
+  std::string strategy;  // as logged: the agreement table's cells and the exposure count use it
   std::string variant;
   metrics::Layout layout;          // the start and the K targets (m)
   std::size_t target = 0;          // the true target's index (not used by the likelihood)
   std::vector<PathSample> path;    // robot path
   std::vector<double> times;       // pointer sample times (s)
   std::vector<double> x, y;        // the pointer (m)
+  std::optional<double> pointer_speed;  // layout scales/s: confusion's v in the agreement table
+  double exposure = 0;             // earlier trials of this strategy (fit_pointer_study fills it)
   std::string label;               // how messages name the trial (fit_pointer_study fills it if empty)
 };
 
@@ -81,21 +96,43 @@ ObserverFit fit_pointer_observer(std::span<const PointerObservedTrial> trials,
                                  const ObserverFitSettings& settings, std::string unit,
                                  const std::optional<GoalPosteriorObserver>& start = std::nullopt);
 
-/// A study's pointer fits: per participant, pooled per condition, the two conditions compared.
+/// The learning test, beta_k = beta0 exp(gamma exposure_k) against gamma = 0, on trials whose
+/// `exposure` is filled, against `pooled`: their pooled fit (fit_pointer_observer on the same trials
+/// and settings; its unit names the result). Settings as pointer_observer_log_likelihood; every
+/// trial must pass pointer_trial_problem (InvalidData).
+LearningTest test_pointer_learning(std::span<const PointerObservedTrial> trials, const ObserverFitSettings& settings,
+                                   const ObserverFit& pooled);
+
+/// Model-human agreement per condition x strategy x iteration (with "all" margins; rows ordered as
+/// the pad's): each trial whose participant has a fit in `participants` (matched by unit =
+/// participant and condition) is scored with the pointer and with the model's mean at that fit's
+/// beta and tau (pointer_observer_means), by metrics::score_belief_points with settings.metric and
+/// v = the trial's pointer_speed, else settings.pad_speed; the traces compared on the distance to
+/// the true target in layout scales. A trial that cannot be scored is named in `issues` and left
+/// out of the table.
+std::vector<AgreementRow> pointer_agreement(std::span<const PointerObservedTrial> trials,
+                                            std::span<const ObserverFit> participants,
+                                            const ObserverFitSettings& settings, std::vector<TrialIssue>& issues);
+
+/// A study's pointer fits: per participant, pooled per condition, the learning test, the two
+/// conditions compared, and the model-human agreement.
 struct PointerStudyObserverFit {
   std::vector<ObserverComparison> comparisons;  // two conditions: log beta, then tau
   std::vector<ObserverFit> participants;
   std::vector<ObserverFit> conditions;          // pooled per condition
+  std::vector<AgreementRow> agreement;          // pointer_agreement
+  std::vector<LearningTest> learning;           // per condition (none when settings.learning is off)
   std::vector<TrialIssue> issues;               // trials (or participants) left out, and why; notes
   std::size_t trials_used = 0;
   std::size_t min_targets = 0, max_targets = 0; // K over the trials fitted
   std::size_t layouts = 0;                      // distinct layouts among them
 };
 
-/// Every trial checked (a bad one is named in `issues` and left out), per-participant fits,
-/// pooled fits per condition (started also from their participants' mean), and with exactly two
-/// conditions the participants' log beta and tau compared (compare_conditions). No agreement
-/// tables and no learning test (the pad's; not defined here).
+/// Every trial checked (a bad one is named in `issues` and left out), each trial's exposure counted
+/// (earlier trials of its strategy by its participant, by iteration), per-participant fits, pooled
+/// fits per condition (started also from their participants' mean) with their learning test (when
+/// settings.learning), with exactly two conditions the participants' log beta and tau compared
+/// (compare_conditions), and the model-human agreement at the participants' fits.
 PointerStudyObserverFit fit_pointer_study(std::vector<PointerObservedTrial> trials,
                                           const ObserverFitSettings& settings);
 
