@@ -156,6 +156,24 @@ double Observer::familiarity(Strategy s, Variant v) const noexcept {
   return m / (m + std::pow(params_.half_familiarity, params_.learning_shape));
 }
 
+Recognition Observer::recognition(Strategy s, Variant v) const noexcept {
+  // Familiarity with the seen version argues for the true target, familiarity with the other
+  // version (for optimal: with exaggerating, which starts alike) for the false one.
+  const double f_same = familiarity(s, v);
+  const double f_other = s == Strategy::optimal
+                             ? params_.optimal_suspicion * familiarity(Strategy::exaggerating, Variant::main)
+                             : familiarity(s, v == Variant::main ? Variant::v2 : Variant::main);
+  return {f_same, f_other};
+}
+
+double recognition_progress(const ObserverParams& p, double t) noexcept {
+  return std::clamp((t - p.reaction_delay) / p.recognition_time, 0.0, 1.0);
+}
+
+double learned_logodds(const ObserverParams& p, const Recognition& rec, double r) noexcept {
+  return p.recognition_logodds * r * (rec.f_same - rec.f_other);
+}
+
 void Observer::remember(Strategy s, Variant v) noexcept {
   for (auto& m : memory_) m *= params_.memory_decay;
   memory_[slot(s, v)] += 1.0;
@@ -166,20 +184,11 @@ std::vector<PadSample> Observer::watch(const std::vector<TrajectorySample>& path
                                        Rng& rng) const {
   const auto& P = params_;
   const double T = true_target == Target::left ? 0.0 : 1.0;
-  // Recognition weights (see the header).
-  const double w_same = familiarity(s, v);
-  double w_other = 0;
-  if (s == Strategy::optimal) {
-    w_other = P.optimal_suspicion * familiarity(Strategy::exaggerating, Variant::main) * (1 - w_same);
-  } else {
-    w_other = familiarity(s, v == Variant::main ? Variant::v2 : Variant::main) * (1 - w_same);
-  }
-  // goal_inference: familiarity with the seen version argues for the true target, familiarity
-  // with the other version (for optimal: with exaggerating, which starts alike) for the false one.
-  const double f_same = familiarity(s, v);
-  const double f_other = s == Strategy::optimal
-                             ? P.optimal_suspicion * familiarity(Strategy::exaggerating, Variant::main)
-                             : familiarity(s, v == Variant::main ? Variant::v2 : Variant::main);
+  // Recognition weights (see the header): the heuristic mixes the endings with them, the
+  // goal-inference observer shifts its log-odds by them.
+  const Recognition rec = recognition(s, v);
+  const double w_same = rec.f_same;
+  const double w_other = rec.f_other * (1 - w_same);
   const double half = g.target_distance / 2;
   const models::Goals goals{{-half, g.target_height}, {half, g.target_height}};
   const models::Position start{path.front().x, path.front().y};
@@ -187,9 +196,9 @@ std::vector<PadSample> Observer::watch(const std::vector<TrajectorySample>& path
     // Path evidence in log-odds (feint/models/goal_inference.hpp), plus the learned prior: a
     // recognised strategy shifts the log-odds toward the target its ending is remembered to reach.
     const Point seen = position_at(path, t - P.reaction_delay);
-    const double r = std::clamp((t - P.reaction_delay) / P.recognition_time, 0.0, 1.0);
+    const double r = recognition_progress(P, t);
     const double toward_true = 2 * T - 1;
-    const double learned = P.recognition_logodds * r * (f_same - f_other) * toward_true;
+    const double learned = learned_logodds(P, rec, r) * toward_true;
     const double z = models::belief_logit(start, {seen.x, seen.y}, goals, P.beta, 0.5) + learned;
     return z >= 0 ? 1 / (1 + std::exp(-z)) : std::exp(z) / (1 + std::exp(z));
   };
@@ -197,7 +206,7 @@ std::vector<PadSample> Observer::watch(const std::vector<TrajectorySample>& path
     if (P.model == ParticipantModel::goal_inference) return bayes_belief(t);
     const Point seen = position_at(path, t - P.reaction_delay);
     const double naive = 0.5 + 0.5 * std::tanh(P.inference_gain * seen.x / half);
-    const double r = std::clamp((t - P.reaction_delay) / P.recognition_time, 0.0, 1.0);
+    const double r = recognition_progress(P, t);
     double b = (1 - r * (w_same + w_other)) * naive + r * w_same * T + r * w_other * (1 - T);
     const double dl = std::hypot(seen.x + half, seen.y - g.target_height);
     const double dr = std::hypot(seen.x - half, seen.y - g.target_height);

@@ -19,10 +19,32 @@ metrics::Layout row_layout(std::size_t k, const Geometry& g) {
   return l;
 }
 
-std::vector<PointerSample> watch_pointer(const std::vector<TrajectorySample>& path, const metrics::Layout& layout,
-                                         const ObserverParams& p, Rng& rng) {
+std::vector<double> recognised_posterior(std::span<const double> posterior, std::size_t true_target,
+                                         double learned) {
+  // Tilt toward (learned > 0) or away from (learned < 0) the true target, scaling the side that
+  // gains by 1 and the other by exp(-|learned|): no exponential overflows.
+  const double damp = std::exp(-std::abs(learned));
+  const double w_true = learned >= 0 ? 1.0 : damp;
+  const double w_rest = learned >= 0 ? damp : 1.0;
+  double rest = 0;
+  for (std::size_t k = 0; k < posterior.size(); ++k)
+    if (k != true_target) rest += posterior[k];
+  const double norm = w_true * posterior[true_target] + w_rest * rest;
+  std::vector<double> out(posterior.size());
+  for (std::size_t k = 0; k < posterior.size(); ++k)
+    out[k] = (k == true_target ? w_true : w_rest) * posterior[k] / norm;
+  return out;
+}
+
+namespace {
+
+// Both participants: `learning` null = the one who does not learn.
+std::vector<PointerSample> pointer_trace(const std::vector<TrajectorySample>& path, const metrics::Layout& layout,
+                                         const ObserverParams& p, Rng& rng, const PointerRecognition* learning) {
   metrics::validate(layout, 0, 0);
   if (path.empty()) throw UsageError("watch_pointer: the robot's path is empty");
+  if (learning != nullptr && learning->true_target >= layout.targets.size())
+    throw UsageError("watch_pointer: the true target is not a target of the layout");
   const double s = metrics::layout_scale(layout);
   std::vector<models::PathSample> seen;
   std::vector<double> times;
@@ -41,6 +63,7 @@ std::vector<PointerSample> watch_pointer(const std::vector<TrajectorySample>& pa
   std::vector<PointerSample> out;
   out.reserve(path.size());
   double goal_x = at.x, goal_y = at.y, next_decision = path.front().t;
+  std::vector<double> recognised;
   for (std::size_t i = 0; i < path.size(); ++i) {
     const double t = path[i].t;
     if (i > 0) {
@@ -56,10 +79,17 @@ std::vector<PointerSample> watch_pointer(const std::vector<TrajectorySample>& pa
     }
     out.push_back(at);
     if (t + 1e-12 >= next_decision) {
+      const double learned =
+          learning == nullptr
+              ? 0.0
+              : learned_logodds(p, learning->recognition, recognition_progress(p, t - path.front().t));
+      // learned == 0 keeps the observer's posterior itself (the participant who does not learn).
+      if (learned != 0) recognised = recognised_posterior(posterior[i], learning->true_target, learned);
+      const std::vector<double>& belief = learned != 0 ? recognised : posterior[i];
       double mx = 0, my = 0;
       for (std::size_t k = 0; k < layout.targets.size(); ++k) {
-        mx += posterior[i][k] * layout.targets[k].x;
-        my += posterior[i][k] * layout.targets[k].y;
+        mx += belief[k] * layout.targets[k].x;
+        my += belief[k] * layout.targets[k].y;
       }
       goal_x = mx + p.noise_sd * s * rng.normal();
       goal_y = my + p.noise_sd * s * rng.normal();
@@ -67,6 +97,18 @@ std::vector<PointerSample> watch_pointer(const std::vector<TrajectorySample>& pa
     }
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<PointerSample> watch_pointer(const std::vector<TrajectorySample>& path, const metrics::Layout& layout,
+                                         const ObserverParams& p, Rng& rng) {
+  return pointer_trace(path, layout, p, rng, nullptr);
+}
+
+std::vector<PointerSample> watch_pointer(const std::vector<TrajectorySample>& path, const metrics::Layout& layout,
+                                         const ObserverParams& p, Rng& rng, const PointerRecognition& learning) {
+  return pointer_trace(path, layout, p, rng, &learning);
 }
 
 }  // namespace feint::sim

@@ -64,12 +64,48 @@ metrics::Layout round_layout(const StudySettings& settings, int index, int round
   return metrics::draw_layout(rng, settings.region, k);
 }
 
+double guessing_error(const metrics::Layout& layout) {
+  if (layout.targets.size() < 2) throw UsageError("guessing_error: a layout needs 2 or more targets");
+  const double s = metrics::layout_scale(layout);
+  double sum = 0;
+  for (const auto& truth : layout.targets)
+    for (const auto& guess : layout.targets) sum += metrics::distance(guess, truth) / s;
+  const auto k = static_cast<double>(layout.targets.size());
+  return sum / (k * k);
+}
+
+namespace {
+
+// The study's people and the rounds each plays (within: every condition's block).
+struct StudyRounds {
+  int people = 0;
+  int rounds = 0;
+};
+StudyRounds study_rounds(const StudySettings& settings) noexcept {
+  const auto conditions = static_cast<int>(settings.conditions.size());
+  if (settings.within) return {settings.participants, conditions * settings.iterations};
+  return {conditions * settings.participants, settings.iterations};
+}
+
+}  // namespace
+
+double guessing_error_reference(const StudySettings& settings) {
+  if (!is_pointer_study(settings)) return 0.5;
+  if (!settings.random_layout) return guessing_error(round_layout(settings, 0, 0));
+  const StudyRounds n = study_rounds(settings);
+  double sum = 0;
+  for (int i = 0; i < n.people; ++i)
+    for (int r = 0; r < n.rounds; ++r) sum += guessing_error(round_layout(settings, i, r));
+  return sum / (static_cast<double>(n.people) * n.rounds);
+}
+
 namespace {
 
 // A round of a pointer study: the round's map, the true target (drawn uniformly), the robot's path
-// for the strategy (sim::k_goal_paths) and the participant's pointer.
-void watch_round(const StudySettings& settings, int index, int round, const Iteration& it, TrialRecord& tr,
-                 Rng& rng) {
+// for the strategy (sim::k_goal_paths) and the pointer of the participant, who recognises the
+// strategy with `observer`'s memory.
+void watch_round(const StudySettings& settings, int index, int round, const Iteration& it, const Observer& observer,
+                 TrialRecord& tr, Rng& rng) {
   tr.layout = round_layout(settings, index, round);
   tr.target_index = rng.bounded(static_cast<std::uint32_t>(settings.targets));
   KGoalPathSettings ks;
@@ -77,7 +113,9 @@ void watch_round(const StudySettings& settings, int index, int round, const Iter
   ks.observer.beta = settings.observer.beta;
   tr.robot = k_goal_trajectory(tr.layout, tr.target_index, it.strategy,
                                it.strategy == Strategy::optimal ? Variant::main : it.variant, ks);
-  tr.pointer = watch_pointer(tr.robot, tr.layout, settings.observer, rng);
+  // The participant learns as the pad's does: its memory of the strategies shown so far.
+  const PointerRecognition learning{tr.target_index, observer.recognition(it.strategy, it.variant)};
+  tr.pointer = watch_pointer(tr.robot, tr.layout, settings.observer, rng, learning);
   std::vector<double> times;
   std::vector<metrics::MapPoint> points;
   for (const auto& q : tr.pointer) {
@@ -108,7 +146,7 @@ ParticipantRecord watch_block(const StudySettings& settings, Algorithm condition
     tr.variant = it.variant;
     tr.target = it.target;
     if (is_pointer_study(settings)) {
-      watch_round(settings, index, round0 + static_cast<int>(i), it, tr, rng);
+      watch_round(settings, index, round0 + static_cast<int>(i), it, observer, tr, rng);
     } else {
       const auto path = trajectory(it.strategy, it.variant, it.target, settings.geometry);
       tr.pad = observer.watch(path, it.strategy, it.variant, it.target, settings.geometry, rng);
@@ -230,6 +268,27 @@ std::string condition_names(const StudySettings& settings, std::string_view sep)
 
 namespace {
 
+// The references feint.toml gives: the paper's for the pad; for a pointer study, error's reference
+// is the error of guessing on the study's layouts (docs/simulation.md "References of a study of K
+// targets").
+std::string references_toml(const StudySettings& settings) {
+  if (!is_pointer_study(settings)) return "metric = [\"error=0.5\", \"confusion=0.95@raw\"]\n";
+  const StudyRounds n = study_rounds(settings);
+  const std::string over =
+      settings.random_layout
+          ? fmt::format("the study's {} layouts (every round of every participant)", n.people * n.rounds)
+          : std::string("the study's fixed layout (exact)");
+  return fmt::format(
+      "# References on the layout scale s (the largest distance between two targets; at K = 2 the pad's\n"
+      "# unit). error: the error of a participant who guesses (points at a target drawn uniformly and\n"
+      "# holds it), R = mean of (1/K^2) sum_true sum_k |G_k - G_true| / s\n"
+      "# over {}; at K = 2 the paper's 0.5.\n"
+      "# confusion: the paper's 0.95, kept: a held guess never reverses (confusion 0), so guessing gives\n"
+      "# no reference for it.\n"
+      "metric = [\"error={}\", \"confusion=0.95@raw\"]\n",
+      over, io::format_double(guessing_error_reference(settings)));
+}
+
 // What feint.toml says of a pointer study (nothing for the paper's study: its file is unchanged).
 std::string pointer_toml(const StudySettings& settings) {
   if (!is_pointer_study(settings)) return {};
@@ -271,11 +330,11 @@ std::string study_toml(const StudySettings& settings, std::string_view tool_vers
       "# Confusion on the paper's scale (eq. 4 without normalisation), where the paper's reference\n"
       "# 0.95 lies: the scores and the reference are on one scale (docs/metrics.md).\n"
       "confusion-norm = \"raw\"\n"
-      "metric = [\"error=0.5\", \"confusion=0.95@raw\"]\n",
+      "{}",
       tool_version, design, io::format_double(settings.lambda), settings.seed,
       settings.within ? fmt::format("Each participant saw {}: conditions within participants (paired tests).", each)
                       : "Each participant saw one condition: conditions between participants.",
-      settings.within ? "within" : "between", compare) + pointer_toml(settings);
+      settings.within ? "within" : "between", compare, references_toml(settings)) + pointer_toml(settings);
 }
 
 io::FolderWriter study_folder_writer(bool replace) {

@@ -82,6 +82,24 @@ void read_parameters(ObserverParams& p, const std::string& path);
 ParticipantModel parse_participant_model(std::string_view name);
 std::string_view to_string(ParticipantModel m) noexcept;
 
+/// What a participant remembers of the strategy it watches (the memory and familiarity above):
+/// f_same, the familiarity of the version shown, and f_other, that of the other version (for
+/// optimal: optimal_suspicion x f(exaggerating, main), which starts alike). The pad observer and
+/// the pointer participant (sim/pointer_participant.hpp) both learn from it.
+struct Recognition {
+  double f_same = 0;
+  double f_other = 0;
+};
+
+/// How far recognition has built up at time t of a trial: r = clamp((t - reaction_delay) /
+/// recognition_time, 0, 1).
+double recognition_progress(const ObserverParams& p, double t) noexcept;
+
+/// The learned log-odds toward the true target, recognition_logodds x r x (f_same - f_other)
+/// (goal_inference; the pad multiplies it by 2T - 1, the pointer adds it to the true target's log
+/// prior). 0 when recognition_logodds is 0 or nothing is familiar yet.
+double learned_logodds(const ObserverParams& p, const Recognition& rec, double r) noexcept;
+
 struct PadSample {
   double t = 0;
   double pad = 0.5;
@@ -93,6 +111,8 @@ class Observer {
 
   /// Familiarity in [0, 1) of (strategy, version) now.
   double familiarity(Strategy s, Variant v) const noexcept;
+  /// The familiarities that recognising (s, v) now weighs (see Recognition).
+  Recognition recognition(Strategy s, Variant v) const noexcept;
   /// Watches one trial and returns the pad trace at the trajectory's sample times (pad positions
   /// on a 1e-4 grid, so that a logged trace never exceeds pad_speed). Does not update memory.
   std::vector<PadSample> watch(const std::vector<TrajectorySample>& path, Strategy s, Variant v,

@@ -64,6 +64,18 @@ bool is_pointer_study(const StudySettings& settings) noexcept;
 /// or draw_layout(Rng::stream(seed ^ 0x6c61796f7574, index * 2^20 + round), region, K).
 metrics::Layout round_layout(const StudySettings& settings, int index, int round);
 
+/// The error of a participant who guesses on `layout`: it points at a target drawn uniformly at
+/// random and holds it, with the true target drawn uniformly as the study draws it,
+///     (1/K^2) sum_true sum_k |G_k - G_true| / s,     s = metrics::layout_scale(layout).
+/// At K = 2 it is 0.5 exactly (the undecided pad's error); for 3 targets equally spaced on a row
+/// 4/9 (docs/simulation.md "References of a study of K targets").
+double guessing_error(const metrics::Layout& layout);
+
+/// The study's reference for error, R_error: guessing_error of its fixed layout, or the mean of
+/// guessing_error over every round of every participant (round_layout) when the layouts are drawn
+/// per round: the study's own layouts, so no sampling error. 0.5 for the paper's study.
+double guessing_error_reference(const StudySettings& settings);
+
 struct TrialRecord {
   int iteration = 0;  // 1-based, within its condition
   int block = 1;      // within designs: 1 or 2, the order in which the participant saw the condition
@@ -127,8 +139,9 @@ std::vector<ParticipantRecord> write_study(const StudySettings& settings, const 
                                            std::string_view tool_version = "unknown");
 
 /// The study's feint.toml (written as DIR/feint.toml): the comparison of its conditions, and
-/// confusion on the raw scale with the paper's references, so that `feint analyze DIR` compares the
-/// conditions with the scores and references on one scale, with no setting made by hand.
+/// confusion on the raw scale with the paper's references (a pointer study: error's reference is
+/// guessing_error_reference), so that `feint analyze DIR` compares the conditions with the scores
+/// and references on one scale, with no setting made by hand.
 std::string study_toml(const StudySettings& settings, std::string_view tool_version);
 
 /// `feint simulate study` as the writer of its folder (manifest .feint-simulate.json; --replace).
