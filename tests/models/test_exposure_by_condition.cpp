@@ -2,7 +2,9 @@
 // t.test() (tests/golden/models/exposure_by_condition_golden.R), and its rules and invariants.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -219,4 +221,83 @@ TEST(ExposureByCondition, WithinParticipantsPairedDifferenceMatchesTTestPaired) 
       EXPECT_NE(r.test.note.find("without a slope in both conditions"), std::string::npos) << r.test.note;
     }
   }
+}
+
+// Five more data sets within participants (exposure_within_golden.R, exposure_within_sets*.csv):
+// balanced; unbalanced blocks with missing errors, absent trials and participants in one condition
+// only; three conditions; five participants; a sparse set whose tests are partly not computable (NA
+// in R, not computed here). Every number at 1e-10 relative, log BF at 1e-12 absolute, d_z and its
+// interval (exact roots of the noncentral t) at 1e-11 * max(1, |x|).
+TEST(ExposureByCondition, WithinParticipantsFiveMoreDataSetsMatchR) {
+  const auto data = read_csv(FEINT_SOURCE_DIR "/tests/golden/models/exposure_within_sets.csv");
+  const auto golden = read_csv(FEINT_SOURCE_DIR "/tests/golden/models/exposure_within_sets_golden.csv");
+  std::map<std::string, Data> sets;
+  std::map<std::string, std::vector<std::string>> blocks;
+  std::map<std::string, std::vector<double>> iterations;
+  for (std::size_t i = 1; i < data.size(); ++i) {  // set,participant,condition,iteration,strategy,error
+    const auto& f = data[i];
+    Data& d = sets[f[0]];
+    d.participant.push_back(f[1]);
+    d.condition.push_back(f[2]);
+    blocks[f[0]].push_back(f[1] + "|" + f[2]);
+    iterations[f[0]].push_back(std::stod(f[3]));
+    d.strategy.push_back(f[4]);
+    d.y.push_back(f.size() < 6 || f[5].empty() ? std::nan("") : std::stod(f[5]));
+  }
+  ASSERT_EQ(sets.size(), 5u);
+  std::map<std::string, std::vector<std::vector<std::string>>> rows;  // set -> golden rows, in order
+  std::map<std::string, std::vector<std::string>> conditions;          // set -> conditions, in order
+  for (std::size_t i = 1; i < golden.size(); ++i) {
+    rows[golden[i][0]].push_back(golden[i]);
+    auto& c = conditions[golden[i][0]];
+    if (golden[i][1] == "slope" && std::find(c.begin(), c.end(), golden[i][3]) == c.end()) c.push_back(golden[i][3]);
+  }
+  ASSERT_EQ(rows.size(), 5u);
+  std::size_t compared = 0, not_computable = 0;
+  for (auto& [name, d] : sets) {
+    SCOPED_TRACE(name);
+    d.exposure = feint::models::exposure_counts(blocks[name], iterations[name], d.strategy);
+    const auto res = feint::models::exposure_slopes_by_condition(d.participant, d.condition, d.strategy, d.exposure,
+                                                                 d.y, conditions[name], 0.95,
+                                                                 feint::stats::kJzsMediumScale, true);
+    const auto& g = rows[name];
+    ASSERT_EQ(res.slopes.size() + res.differences.size(), g.size());
+    for (std::size_t i = 0; i < g.size(); ++i) {
+      const auto& row = g[i];  // set,kind,strategy,condition,n,left_out,estimate,se,df,t,p,lower,upper,
+                               // log_bf10,ttestbf_log_bf,d_z,d_z_low,d_z_high
+      const bool slope = row[1] == "slope";
+      const auto& r = slope ? res.slopes[i] : res.differences[i - res.slopes.size()];
+      SCOPED_TRACE(row[1] + " " + row[2] + " " + row[3]);
+      ASSERT_EQ(r.strategy, row[2]);
+      ASSERT_EQ(r.condition, row[3]);
+      EXPECT_EQ(r.participants, std::stoul(row[4]));
+      EXPECT_EQ(r.left_out, std::stoul(row[5]));
+      if (row[6] == "NA") {
+        EXPECT_FALSE(r.test.computed);
+        ++not_computable;
+        continue;
+      }
+      ASSERT_TRUE(r.test.computed) << r.test.note;
+      EXPECT_EQ(r.test.test, slope ? "one_sample_t" : "paired_t");
+      for (const auto& [got, col] : {std::pair{*r.test.estimate, 6}, {r.std_error, 7}, {*r.test.df, 8},
+                                     {*r.test.statistic, 9}, {*r.test.p_value, 10}, {*r.test.conf_low, 11},
+                                     {*r.test.conf_high, 12}}) {
+        feint::test::record("exposure slopes within (lm, t.test paired)", got, std::stod(row[col]), name);
+        EXPECT_PRED3(near_rel, got, std::stod(row[col]), 1e-10) << "column " << golden[0][col];
+      }
+      ++compared;
+      if (slope) continue;
+      ASSERT_TRUE(r.test.log_bf10 && r.test.cohen_d && r.test.cohen_d_low && r.test.cohen_d_high);
+      feint::test::record("exposure slopes within: log BF (exact integral)", *r.test.log_bf10, std::stod(row[13]), name);
+      EXPECT_NEAR(*r.test.log_bf10, std::stod(row[13]), 1e-12);
+      for (const auto& [got, col] : {std::pair{*r.test.cohen_d, 15}, {*r.test.cohen_d_low, 16},
+                                     {*r.test.cohen_d_high, 17}}) {
+        const double want = std::stod(row[col]);
+        feint::test::record("exposure slopes within: d_z and its CI (exact roots)", got, want, name);
+        EXPECT_NEAR(got, want, 1e-11 * std::max(1.0, std::fabs(want))) << "column " << golden[0][col];
+      }
+    }
+  }
+  EXPECT_EQ(compared, 44u);
+  EXPECT_EQ(not_computable, 4u);
 }

@@ -1,13 +1,18 @@
 // The observer's parameters compared between two conditions on the participants' fits: beta on
 // the log scale, tau on its own, Welch's t (with d and the Bayes factor) and Mann–Whitney; the t
-// statistic recomputed here from its formula.
+// statistic recomputed here from its formula, and every number of six generated data sets against
+// R (tests/golden/models/observer_compare_golden.R).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <numeric>
+#include <string>
 #include <vector>
 
+#include "accuracy.hpp"
 #include "feint/models/observer_fit.hpp"
+#include "golden_csv.hpp"
 
 namespace fm = feint::models;
 
@@ -64,4 +69,59 @@ TEST(ObserverComparison, BetaIsComparedOnTheLogScaleAndTauOnItsOwn) {
 TEST(ObserverComparison, AConditionWithOneParticipantGivesNoComparison) {
   const std::vector<fm::ObserverFit> fits{fit("adaptive", 0.3, 0.1), fit("adaptive", 0.4, 0.1), fit("random", 0.3, 0.1)};
   EXPECT_TRUE(fm::compare_conditions(fits, "adaptive", "random", 0.95).empty());
+}
+
+// Six data sets (observer_compare_golden.R): balanced 8 + 8; unbalanced 5 + 11; a beta of 0 (left
+// out of log beta), betas at the range's maximum and taus at 0 (kept, counted); ties (W's normal
+// approximation); 2 + 3 with a third condition that is not compared; 30 + 25 far apart (p to 1e-28).
+// Tolerances (relative, absolute below 1): Welch, W, the rank-biserial r and its interval 1e-10;
+// d, g and their bounds 1e-11 (exact roots of the noncentral t); log BF10 1e-12.
+TEST(ObserverComparison, SixDataSetsEqualR) {
+  const auto data = feint::test::read_csv(feint::test::kModelGoldenDir + "observer_compare_data.csv");
+  std::map<std::string, std::vector<fm::ObserverFit>> sets;
+  for (std::size_t i = 1; i < data.size(); ++i) {  // dataset,participant,condition,beta,tau,beta_at_bound,tau_at_bound
+    const auto& f = data[i];
+    const double beta = std::stod(f[3]), tau = std::stod(f[4]);
+    const bool beta_max = f[5] == "1", tau_zero = f[6] == "1";
+    fm::ObserverFit o;
+    o.unit = f[1];
+    o.condition = f[2];
+    o.parameters = {{"beta", beta, beta * 0.8, beta_max ? beta : beta * 1.2, false, beta_max},
+                    {"tau", tau, tau_zero ? tau : tau * 0.8, tau + 0.01, tau_zero, false}};
+    sets[f[0]].push_back(o);
+  }
+  ASSERT_EQ(sets.size(), 6u);
+  std::map<std::tuple<std::string, std::string, std::string>, std::string> golden;
+  for (const auto& row : feint::test::read_csv(feint::test::kModelGoldenDir + "observer_compare_golden.csv"))
+    if (row.size() == 4 && row[0] != "dataset") golden[{row[0], row[1], row[2]}] = row[3];
+  std::size_t checked = 0;
+  for (const auto& [name, fits] : sets) {
+    const auto c = fm::compare_conditions(fits, "adaptive", "random", 0.95);
+    ASSERT_EQ(c.size(), 2u) << name;
+    for (const auto& cmp : c) {
+      const std::string where = name + " " + cmp.parameter;
+      auto want = [&](const char* q) { return std::stod(golden.at({name, cmp.parameter, q})); };
+      EXPECT_EQ(cmp.welch.n1, want("n_a")) << where;
+      EXPECT_EQ(cmp.welch.n2, want("n_b")) << where;
+      EXPECT_EQ(cmp.at_bound, want("at_bound")) << where;
+      EXPECT_EQ(*cmp.rank.exact, want("exact") == 1) << where;
+      const auto& w = cmp.welch;
+      const auto& r = cmp.rank;
+      for (const auto& [q, got, tol] : std::vector<std::tuple<const char*, std::optional<double>, double>>{
+               {"t", w.statistic, 1e-10},      {"df", w.df, 1e-10},           {"p", w.p_value, 1e-10},
+               {"conf_low", w.conf_low, 1e-10}, {"conf_high", w.conf_high, 1e-10}, {"estimate", w.estimate, 1e-10},
+               {"d", w.cohen_d, 1e-11},        {"d_low", w.cohen_d_low, 1e-11}, {"d_high", w.cohen_d_high, 1e-11},
+               {"g", w.hedges_g, 1e-11},       {"g_low", w.hedges_g_low, 1e-11}, {"g_high", w.hedges_g_high, 1e-11},
+               {"log_bf10", w.log_bf10, 1e-12}, {"W", r.statistic, 1e-10},     {"p_mw", r.p_value, 1e-10},
+               {"rb", r.rank_biserial, 1e-10}, {"rb_low", r.rank_biserial_low, 1e-10},
+               {"rb_high", r.rank_biserial_high, 1e-10}}) {
+        ASSERT_TRUE(got.has_value()) << where << " " << q;
+        feint::test::record(std::string("observer conditions compared (t.test, wilcox.test, d, BF): ") + q, *got,
+                            want(q), where);
+        EXPECT_NEAR(*got, want(q), tol * std::max(1.0, std::fabs(want(q)))) << where << " " << q;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_EQ(checked, 6u * 2u * 18u);
 }

@@ -32,7 +32,11 @@ s$value <- sprintf("%.6f", s$value + ifelse(s$condition == "adaptive", 0.2 * (s$
 write.csv(s, "anova_emm_strong.csv", row.names = FALSE, quote = FALSE)
 s$value <- as.numeric(s$value)
 d0 <- rbind(d0, s)
-for (case in c("balanced_spherical", "unbalanced_nonspherical", "missing_trials", "strong_effect")) {
+# three_conditions (anova_data.csv: 5, 8, 6 participants, unequal variances) comes last, so that the
+# other cases' lines stay as they were; with it the pairs of conditions over the iterations
+# (cond_pairs.<adjust>: none, holm, tukey).
+for (case in c("balanced_spherical", "unbalanced_nonspherical", "missing_trials", "strong_effect",
+               "three_conditions")) {
   d <- d0[d0$case == case & !is.na(d0$value), ]
   d$iteration <- factor(d$iteration)
   a <- suppressMessages(suppressWarnings(aov_ez("participant", "value", d, between = "condition",
@@ -44,5 +48,22 @@ for (case in c("balanced_spherical", "unbalanced_nonspherical", "missing_trials"
   for (adj in c("none", "holm", "tukey"))
     rows(case, paste0("it_by_cond.", adj), contrast(emmeans(a, ~ iteration | condition), "pairwise", adjust = adj), FALSE)
   rows(case, "poly_by_cond", contrast(emmeans(a, ~ iteration | condition), "poly"), FALSE)
+  if (case == "three_conditions") {
+    for (adj in c("none", "holm", "tukey"))
+      rows(case, paste0("cond_pairs.", adj), suppressMessages(contrast(emmeans(a, ~ condition), "pairwise", adjust = adj)), FALSE)
+    # R's qtukey stops at |dq| < 1e-4 (1e-8 on these bounds with three means): the bounds from the
+    # root of R's own ptukey(q, 3, df) = 0.95 (uniroot, tol 1e-14) as well (<label>.lower_exact).
+    for (label in c("cond_by_it", "cond_pairs.tukey")) {
+      est <- out[vapply(out, function(r) r$case == case && r$quantity == paste0(label, ".estimate"), TRUE)]
+      for (r in est) {
+        v <- function(q) as.numeric(out[vapply(out, function(o) o$case == case && o$quantity == paste0(label, ".", q) &&
+                                                   o$name == r$name, TRUE)][[1]]$value)
+        df <- v("df")
+        q <- uniroot(function(q) ptukey(q, 3, df) - 0.95, c(1, 10), tol = 1e-14)$root
+        put(case, paste0(label, ".lower_exact"), r$name, v("estimate") - q / sqrt(2) * v("SE"))
+        put(case, paste0(label, ".upper_exact"), r$name, v("estimate") + q / sqrt(2) * v("SE"))
+      }
+    }
+  }
 }
 write.csv(do.call(rbind, out), "anova_emm_golden.csv", row.names = FALSE, quote = FALSE)

@@ -67,6 +67,25 @@ a4 <- matrix(round(runif(24), 3), nrow = 8); b4 <- matrix(round(runif(24), 3), n
 a4[2:8, 2] <- NA
 b4[, 3] <- a4[, 3] - 0.25
 cases[[4]] <- list(name = "paired_untestable_columns", a = a4, b = b4, alternative = "two.sided")
+# Drawn after the cases above, so that their draws stay as they were.
+# 5. 11 x 5, unbalanced: pairs missing at random and by design (P03 has one pair only, column 4
+#    has 6 pairs), two-sided.
+a5 <- matrix(round(rnorm(55, 0.3, 1), 3), nrow = 11); b5 <- matrix(round(rnorm(55, 0, 1), 3), nrow = 11)
+a5[3, -2] <- NA; b5[c(1, 5, 8, 9, 11), 4] <- NA; a5[cbind(c(2, 6, 10, 7), c(1, 3, 5, 5))] <- NA
+cases[[5]] <- list(name = "paired_unbalanced_missing", a = a5, b = b5, alternative = "two.sided")
+# 6. 12 x 6 with a participant effect on every difference (dependent iterations), a shift growing
+#    over the iterations, 10 % of the pairs missing, one-sided (greater): 4096 sign vectors.
+u <- rnorm(12, 0, 0.8)
+a6 <- matrix(round(rep(u, 6) + rep(0.12 * (1:6), each = 12) + rnorm(72), 3), nrow = 12)
+b6 <- matrix(round(rnorm(72), 3), nrow = 12)
+a6[sample(72, 7)] <- NA
+cases[[6]] <- list(name = "paired_greater_dependent", a = a6, b = b6, alternative = "greater")
+# 7. 7 x 3 on a 0.5 grid: zero differences, tied statistics (columns 1 and 3 the same pairs), a
+#    missing pair; two-sided.
+a7 <- matrix(round(runif(21, 0, 4) * 2) / 2, nrow = 7); b7 <- matrix(round(runif(21, 0, 4) * 2) / 2, nrow = 7)
+b7[c(2, 4), 1] <- a7[c(2, 4), 1]; b7[5, 2] <- a7[5, 2]
+a7[, 3] <- a7[, 1]; b7[, 3] <- b7[, 1]; a7[6, 2] <- NA
+cases[[7]] <- list(name = "paired_ties_zeros", a = a7, b = b7, alternative = "two.sided")
 
 cat("case,participants,columns,alternative,differences,column,t,p_raw,p_adjusted,labellings\n")
 for (cs in cases) {
