@@ -72,11 +72,6 @@ Membership assign_participants(const LongData& data, const std::vector<std::stri
   return m;
 }
 
-// Just below the observed statistic, so that a relabelling equal to it up to rounding reaches it;
-// none (infinite) when the observed one is missing.
-double threshold(const std::optional<double>& s) {
-  return s ? *s - 1e-9 * std::max(1.0, std::fabs(*s)) : kInf;
-}
 
 std::optional<double> magnitude(const std::optional<double>& t) {
   return t ? std::optional<double>(std::fabs(*t)) : std::nullopt;
@@ -115,7 +110,7 @@ void relabelling_p_values(FactorModel& factor, TrendModel& trend, const Membersh
   const bool exact = stats::every_labelling(m.in_b.size(), m.members.size(), options.permutations);
   std::array<Tally, 3> tally;  // interaction, condition, slope difference
   for (std::size_t k = 0; k < 3; ++k) {
-    tally[k].threshold = threshold(statistic(observed, k));
+    tally[k].threshold = detail::relabelling_threshold(statistic(observed, k));
     if (!exact) tally[k].sampled.emplace(options.exceedances, options.permutations + 1);
   }
   std::vector<char> labels(m.in_b.size());

@@ -313,7 +313,6 @@ struct Tally {
   }
 };
 
-double threshold(const std::optional<double>& s) { return s ? *s - 1e-9 * std::max(1.0, std::fabs(*s)) : kInf; }
 
 /// The number of labellings, or `cap` when there are at least that many.
 std::uint64_t count_labellings(const Study& s, const std::vector<int>& group, bool within, std::uint64_t cap) {
@@ -449,7 +448,7 @@ RelabelledConditionTests relabel_general(const LongData& data, const std::vector
   const bool exact = count <= options.permutations + 1;
   std::vector<Tally> tally(tests);
   for (std::size_t k = 0; k < tests; ++k) {
-    tally[k].threshold = threshold(k < 2 ? observed[k] : observed[k] ? std::optional(std::fabs(*observed[k])) : std::nullopt);
+    tally[k].threshold = relabelling_threshold(k < 2 ? observed[k] : observed[k] ? std::optional(std::fabs(*observed[k])) : std::nullopt);
     if (!exact) tally[k].sampled.emplace(options.exceedances, options.permutations + 1);
   }
   bool first = !exact;  // sampling visits the observed labelling first; SequentialPValue counts it
@@ -483,6 +482,10 @@ RelabelledConditionTests relabel_general(const LongData& data, const std::vector
   out.labellings_slope = out.labellings_slopes[0];
   out.stopped_slope = out.stopped_slopes[0];
   return out;
+}
+
+double relabelling_threshold(const std::optional<double>& s) {
+  return s ? *s - 1e-6 * std::max(1.0, std::fabs(*s)) : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace feint::models::detail
