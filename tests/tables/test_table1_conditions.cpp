@@ -57,7 +57,8 @@ tables::Table1Options holm() {
 
 const std::vector<std::string> kBetween = {"b3_balanced.csv", "b4_unbalanced.csv", "b3_missing.csv", "b4_ties.csv",
                                            "tiny_between.csv"};
-const std::vector<std::string> kWithin = {"w3_within.csv", "w4_within.csv", "tiny_within.csv", "w3_strong.csv"};
+const std::vector<std::string> kWithin = {"w3_within.csv", "w4_within.csv", "tiny_within.csv", "w3_strong.csv",
+                                          "w4_missing.csv"};
 
 /// Checks the golden quantities of one dataset; returns how many were compared.
 class Checker {
@@ -185,7 +186,7 @@ TEST(Table1Conditions, WithinParticipantsEveryNumberEqualsR) {
       }
     total += check.checked;
   }
-  EXPECT_EQ(total, (5u + 4 + 2 + 3) * 2 * 15);
+  EXPECT_EQ(total, (5u + 4 + 2 + 3 + 4) * 2 * 15);
   // w3: P07 lacks fixed-block at iteration 4 (both metrics), P04 random's error at iteration 2.
   const auto c = *table("w3_within.csv").conditions;
   ASSERT_EQ(c.warnings.size(), 2u);

@@ -12,6 +12,7 @@
 #      tiny_between.csv   between, 3 conditions of 2, 2, 3 (210 labellings), one empty cell
 #      tiny_within.csv    within, 3 conditions, 4 participants ((3!)^4 = 1296 labellings)
 #      w3_strong.csv      within, 3 conditions far apart, 12 participants, 3 iterations, complete
+#      w4_missing.csv     within, 4 conditions, 10 participants, 4 iterations; absent rows, empty cells
 #  - table1_conditions_golden.csv: dataset, metric, iteration, quantity, value (%.17g; NA = none).
 # Between, per metric and iteration: oneway.test(y ~ g) (Welch, var.equal = FALSE) and its Holm
 # adjustment over the iterations; oneway.test(var.equal = TRUE) = summary(aov(y ~ g)) with
@@ -94,6 +95,13 @@ write_scores(within_data(4, three, 2, c(0, 0.06, -0.04), c(0.04, 0.06, 0.05)), "
 # Drawn last so that the sets above keep their draws: conditions far apart, so that ges's lower
 # bounds are above 0.
 write_scores(within_data(12, three, 3, c(0, 0.08, -0.06), c(0.04, 0.05, 0.04)), "w3_strong.csv")
+# Within, 4 conditions, with absent trials and empty cells in several participants (each
+# iteration's tests keep the participants with every condition there).
+d <- within_data(10, four, 4, c(0, 0.06, -0.04, 0.03), c(0.05, 0.07, 0.06, 0.08))
+d$error[c(5, 38, 77, 121)] <- NA
+d$confusion[c(12, 38, 140)] <- NA
+d <- d[-c(20, 64, 99), ]  # trials that were never recorded
+write_scores(d, "w4_missing.csv")
 
 # ---- the statistics ------------------------------------------------------------------------------
 
@@ -302,7 +310,8 @@ tiny_within_golden <- function(name) {
 
 for (name in c("b3_balanced.csv", "b4_unbalanced.csv", "b3_missing.csv", "b4_ties.csv", "tiny_between.csv"))
   between_golden(name)
-for (name in c("w3_within.csv", "w4_within.csv", "tiny_within.csv", "w3_strong.csv")) within_golden(name)
+for (name in c("w3_within.csv", "w4_within.csv", "tiny_within.csv", "w3_strong.csv", "w4_missing.csv"))
+  within_golden(name)
 tiny_between_golden("tiny_between.csv")
 tiny_within_golden("tiny_within.csv")
 write.csv(out, file.path(dir, "table1_conditions_golden.csv"), row.names = FALSE, quote = FALSE)
