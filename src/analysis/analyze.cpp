@@ -419,6 +419,23 @@ void collect_figure_data(const Study& study, const Scored& sc, const tables::Tab
   }
 }
 
+// Stage 6b. The map of a study of K targets and a pointer (metrics::mean_map): the scored trials'
+// mean robot paths and pointers per strategy and version, the logs read as the scorer read them.
+// A pad study has no map and nothing is said; a study of K targets without one says why (the
+// report's figure notes).
+void collect_map_data(const Study& study, const Scored& sc, StudyResults& r) {
+  try {
+    r.figures.map = mean_map(study.logs, metrics::reading_options(sc.settings), r.scores);
+    if (r.figures.map && r.figures.map->trials == 0) {
+      r.figures.map.reset();
+      r.figures.map_note = "no scored trial was found again in the logs.";
+    }
+  } catch (const Error& e) {
+    r.figures.map.reset();
+    r.figures.map_note = without_prefix(e.what(), sc.prefix);
+  }
+}
+
 }  // namespace
 
 std::optional<std::pair<std::string, std::string>> default_comparison(
@@ -494,6 +511,7 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   analyze_questionnaire(study, compare, r);
   analyze_yes_no_answers(study, compare, r);
   collect_figure_data(study, scored, t, metrics, r);
+  collect_map_data(study, scored, r);
   r.scores.path = "scores.csv";
   // Stage 7. The findings (docs/findings.md): what the study shows, and how strongly. A
   // confirmatory hypothesis with a direction is tested one-sided, in that direction.

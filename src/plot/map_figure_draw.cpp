@@ -1,4 +1,4 @@
-// The map figure: its panels, legend, caption and alt text (see map_figure.hpp).
+// The map figure: its colours, panels, legend, caption and alt text (see map_figure.hpp).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -33,7 +33,7 @@ std::string panel_name(const MapPanel& p) {
 
 std::string target_name(std::size_t k) { return fmt::format("T{}", k); }
 
-std::string unit_words(const MapFigureData& d) {
+std::string unit_words(const MeanMap& d) {
   return d.canonical ? "start-target distances" : "m";
 }
 
@@ -75,7 +75,7 @@ Line path(const std::vector<MapPoint>& points, Colour colour, Dash dash, double 
 }
 
 // A pointer's colour: its trials' true target's (the common frame's true target has the first).
-Colour colour_of(const MapFigureData& d, const MapMean& m) {
+Colour colour_of(const MeanMap& d, const MapMean& m) {
   return target_colour(d.canonical ? 0 : m.true_target);
 }
 
@@ -90,7 +90,7 @@ struct Extent {
   bool contains(MapPoint p) const { return p.x >= x0 && p.x <= x1 && p.y >= y0 && p.y <= y1; }
 };
 
-Extent map_extent(const MapFigureData& d) {
+Extent map_extent(const MeanMap& d) {
   constexpr double inf = std::numeric_limits<double>::infinity();
   Extent e{inf, -inf, inf, -inf, 1};
   auto add = [&](MapPoint p) {
@@ -151,7 +151,7 @@ std::vector<double> ticks_at(double lo, double hi, double step) {
   return t;
 }
 
-void set_axes(Panel& p, const Extent& e, const MapFigureData& d) {
+void set_axes(Panel& p, const Extent& e, const MeanMap& d) {
   const bool x_longer = e.x1 - e.x0 >= e.y1 - e.y0;
   // About three ticks on the longer axis: the panels are narrow (88 pt at one column).
   const auto t = x_longer ? detail::nice_ticks(e.x0, e.x1, 3) : detail::nice_ticks(e.y0, e.y1, 3);
@@ -172,14 +172,14 @@ void set_axes(Panel& p, const Extent& e, const MapFigureData& d) {
 }
 
 // Trials per panel: the total, or per true target in a fixed layout ("n = 20, 21, 19").
-std::string panel_note(const MapFigureData& d, const MapPanel& p) {
+std::string panel_note(const MeanMap& d, const MapPanel& p) {
   if (d.canonical || p.means.size() < 2) return fmt::format("n = {}", p.trials);
   std::vector<std::string> n;
   for (const auto& m : p.means) n.push_back(fmt::format("{}", m.trials));
   return fmt::format("n = {}", fmt::join(n, ", "));
 }
 
-Panel map_panel(const MapFigureData& d, const MapPanel& mp, const Extent& e) {
+Panel map_panel(const MeanMap& d, const MapPanel& mp, const Extent& e) {
   Panel p;
   p.title = panel_name(mp);
   p.note = panel_note(d, mp);
@@ -209,7 +209,7 @@ Panel map_panel(const MapFigureData& d, const MapPanel& mp, const Extent& e) {
   return p;
 }
 
-std::vector<LegendEntry> map_legend(const MapFigureData& d) {
+std::vector<LegendEntry> map_legend(const MeanMap& d) {
   using K = LegendEntry::Kind;
   std::vector<LegendEntry> l;
   l.push_back(
@@ -238,7 +238,14 @@ double distance_to(MapPoint a, MapPoint b) { return std::hypot(a.x - b.x, a.y - 
 
 }  // namespace
 
-Figure map_figure(const MapFigureData& d) {
+Colour target_colour(std::size_t k) noexcept {
+  // Vermillion, bluish green, reddish purple, sky blue, black: Okabe-Ito without the conditions'
+  // blue and orange (and without yellow, too light for a line on white).
+  static constexpr std::size_t colours[] = {6, 3, 7, 2, 0};
+  return okabe_ito(colours[k % 5]);
+}
+
+Figure map_figure(const MeanMap& d) {
   Figure f;
   f.legend = map_legend(d);
   const Extent e = map_extent(d);
@@ -250,7 +257,7 @@ Figure map_figure(const MapFigureData& d) {
   return f;
 }
 
-std::string map_caption(const MapFigureData& d) {
+std::string map_caption(const MeanMap& d) {
   std::size_t robot = 0, decoys = 0, inside = 0;
   const Extent e = map_extent(d);
   for (const auto& p : d.panels) {
@@ -294,7 +301,7 @@ std::string map_caption(const MapFigureData& d) {
   return s;
 }
 
-std::string alt_text(const MapFigureData& d) {
+std::string alt_text(const MeanMap& d) {
   std::vector<std::string> panels;
   double end_lo = std::numeric_limits<double>::infinity(), end_hi = 0;
   for (const auto& p : d.panels) {

@@ -2,15 +2,10 @@
 #include <fmt/format.h>
 
 #include <cctype>
-#include <charconv>
 #include <filesystem>
-#include <set>
-#include <tuple>
 
 #include "feint/error.hpp"
 #include "feint/io/output.hpp"
-#include "feint/io/pointer_trace.hpp"
-#include "feint/metrics/trial_layout.hpp"
 #include "feint/plot/canvas.hpp"
 #include "feint/plot/figures.hpp"
 #include "feint/plot/map_figure.hpp"
@@ -194,94 +189,13 @@ void add_strategy_figures(FigureWriter& w, const analysis::StudyResults& r,
         plot::traces_figure(r.figures.traces, conf_level));
 }
 
-// The strings of a JSON array as the scores' sidecar writes them (io::json_quote: \" \\ \n \r \t,
-// \u00XX below 0x20); the provenance keeps the array's text as written.
-std::vector<std::string> json_strings(std::string_view s) {
-  std::vector<std::string> out;
-  std::size_t i = s.find('[');
-  while (i != std::string_view::npos && i < s.size()) {
-    i = s.find_first_of("\"]", i);
-    if (i == std::string_view::npos || s[i] == ']') break;
-    std::string v;
-    for (++i; i < s.size() && s[i] != '"'; ++i) {
-      if (s[i] != '\\' || i + 1 >= s.size()) {
-        v += s[i];
-        continue;
-      }
-      const char e = s[++i];
-      unsigned code = 0;
-      if (e == 'u' && i + 4 < s.size() &&
-          std::from_chars(s.data() + i + 1, s.data() + i + 5, code, 16).ec == std::errc()) {
-        v += static_cast<char>(code);
-        i += 4;
-      } else {
-        v += e == 'n' ? '\n' : e == 'r' ? '\r' : e == 't' ? '\t' : e;
-      }
-    }
-    out.push_back(std::move(v));
-    ++i;
-  }
-  return out;
-}
-
-// The logs the scores came from, as their sidecar records them (the inputs, and the column map and
-// delimiter they were read with): the map reads the very trials that were scored. The results hold
-// no log list of their own (analysis::StudyResults), and the sidecar is the scores' provenance.
-struct ScoredLogs {
-  std::vector<std::string> files;
-  io::TraceOptions options;
-};
-ScoredLogs scored_logs(const io::ScoresProvenance& p) {
-  ScoredLogs l;
-  const std::string map_key = "settings.column_map.";
-  for (const auto& [k, v] : p.settings) {
-    if (k == "inputs") l.files = json_strings(v);
-    if (k.rfind(map_key, 0) == 0) l.options.column_map[k.substr(map_key.size())] = v;
-    if (k == "settings.delimiter" && v.size() == 1) l.options.delimiter = v[0];
-  }
-  return l;
-}
-
-plot::MapTrial map_trial(io::Trial& t) {
-  plot::MapTrial m;
-  m.strategy = std::move(t.strategy);
-  m.variant = std::move(t.variant);
-  m.layout = metrics::trial_layout(t);
-  m.true_target = t.target_index;
-  m.times = std::move(t.times);
-  m.pointer_x = std::move(t.belief_x);
-  m.pointer_y = std::move(t.belief_y);
-  m.robot_x = std::move(t.robot_x);
-  m.robot_y = std::move(t.robot_y);
-  return m;
-}
-
 // Logs of K targets and a pointer: the map (targets, mean robot paths and pointers per strategy),
-// from the scored trials, read once more. Pad logs have no map: nothing is said about them.
-void add_map_figure(FigureWriter& w, const analysis::StudyResults& r) {
-  ScoredLogs logs = scored_logs(r.table1.provenance);
-  if (logs.files.empty() || logs.files.front() == "<stdin>") return;
-  try {
-    if (!io::is_pointer_log(logs.files.front(), logs.options)) return;
-    std::set<std::tuple<std::string, std::string, long long>> scored;
-    for (const auto& s : r.scores.records) scored.emplace(s.participant, s.condition, s.iteration);
-    logs.options.on_reject = [](const io::Rejection&) {};  // rejected when scored: not in `scored`
-    io::PointerTraceReader reader(logs.files, logs.options);
-    plot::MapAccumulator map;
-    io::Trial t;
-    while (reader.next(t)) {
-      if (scored.count({t.participant, t.condition, t.iteration}) != 0) map.add(map_trial(t));
-    }
-    const plot::MapFigureData d = map.data();
-    if (d.trials == 0) {
-      w.out.notes.push_back("No map figure: no scored trial was found again in the logs.");
-      return;
-    }
-    w.add("map", "Robot paths and pointers on the map, per strategy", plot::alt_text(d),
-          plot::map_caption(d), plot::map_figure(d));
-  } catch (const Error& e) {
-    w.out.notes.push_back(fmt::format("No map figure: {}", e.what()));
-  }
+// drawn from the analysis' data (FigureData::map). Pad logs have no map: nothing is said about them.
+void add_map_figure(FigureWriter& w, const analysis::FigureData& f) {
+  if (!f.map_note.empty()) w.out.notes.push_back(fmt::format("No map figure: {}", f.map_note));
+  if (!f.map) return;
+  w.add("map", "Robot paths and pointers on the map, per strategy", plot::alt_text(*f.map),
+        plot::map_caption(*f.map), plot::map_figure(*f.map));
 }
 
 // The questionnaire: the answers' distribution and the means against the reference.
@@ -319,7 +233,7 @@ DrawnFigures draw_figures(const analysis::StudyResults& r, const std::vector<std
     w.out.notes.push_back(fmt::format("No strategy figures: {}", r.figures.labels_note));
   }
   if (!r.figures.labels.empty()) add_strategy_figures(w, r, level);
-  add_map_figure(w, r);
+  add_map_figure(w, r.figures);
   if (r.likert) add_likert_figures(w, *r.likert, detail::paper_design(r));
   return std::move(w.out);
 }

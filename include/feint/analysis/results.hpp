@@ -59,6 +59,11 @@ struct FigureData {
   std::vector<TrialLabel> labels;  ///< per scored trial; empty when the logs have no strategy
   std::string labels_note;         ///< why there is no strategy figure ("" when there is)
   std::vector<TraceCurve> traces;  ///< mean pad trace per strategy, version and exposure
+  /// Logs of K targets and a pointer: the map of the scored trials (metrics::mean_map), the mean
+  /// robot path and pointer per strategy and version. Empty for pad logs, and when map_note says
+  /// why there is none.
+  std::optional<MeanMap> map;
+  std::string map_note;  ///< why a study of K targets has no map ("" when it has one)
   /// Condition x exposure per strategy, one per metric (metrics::exposure_trend of the scores and
   /// the labels); empty when the logs have no strategy.
   std::vector<metrics::ExposureTrend> exposure;

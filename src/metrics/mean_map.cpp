@@ -1,5 +1,6 @@
-// The map's data: the canonical frame of a trial and the mean paths (see map_figure.hpp).
-#include "feint/plot/map_figure.hpp"
+// The map's data: the canonical frame of a trial, the mean paths, and the logs streamed into them
+// (see feint/metrics/mean_map.hpp).
+#include "feint/metrics/mean_map.hpp"
 
 #include <fmt/format.h>
 
@@ -8,9 +9,11 @@
 #include <limits>
 
 #include "feint/error.hpp"
+#include "feint/io/pointer_trace.hpp"
 #include "feint/metrics/pointer_measures.hpp"
+#include "feint/metrics/trial_layout.hpp"
 
-namespace feint::plot {
+namespace feint::metrics {
 
 MapPoint CanonicalFrame::operator()(MapPoint p) const noexcept {
   const double vx = p.x - start.x, vy = p.y - start.y;
@@ -20,7 +23,7 @@ MapPoint CanonicalFrame::operator()(MapPoint p) const noexcept {
   return {mirrored ? -x : x, y};
 }
 
-CanonicalFrame canonical_frame(const metrics::Layout& layout, std::size_t true_target) {
+CanonicalFrame canonical_frame(const Layout& layout, std::size_t true_target) {
   if (true_target >= layout.targets.size()) {
     throw InvalidData(fmt::format("true target {} is not a target of the layout (K = {})",
                                   true_target, layout.targets.size()));
@@ -53,9 +56,9 @@ std::vector<MapPoint> normalised_path(const std::vector<double>& times,
     throw InvalidData(fmt::format("a path of {} times has {} x and {} y positions", times.size(),
                                   x.size(), y.size()));
   }
-  std::vector<metrics::PointerSample> trace(times.size());
+  std::vector<PointerSample> trace(times.size());
   for (std::size_t i = 0; i < times.size(); ++i) trace[i] = {times[i], x[i], y[i]};
-  const auto norm = metrics::time_normalize(trace, static_cast<int>(kMapPoints));
+  const auto norm = time_normalize(trace, static_cast<int>(kMapPoints));
   std::vector<MapPoint> out(norm.size());
   for (std::size_t i = 0; i < norm.size(); ++i) out[i] = {norm[i].x, norm[i].y};
   return out;
@@ -63,7 +66,7 @@ std::vector<MapPoint> normalised_path(const std::vector<double>& times,
 
 namespace {
 
-std::vector<double> flattened(const metrics::Layout& l) {
+std::vector<double> flattened(const Layout& l) {
   std::vector<double> v = {l.start.x, l.start.y};
   for (const auto& t : l.targets) {
     v.push_back(t.x);
@@ -122,14 +125,14 @@ void MapAccumulator::add(const MapTrial& t) {
   if (frame.mirrored) ++mirrored_;
 }
 
-MapFigureData MapAccumulator::data() const {
-  MapFigureData d;
+MeanMap MapAccumulator::data() const {
+  MeanMap d;
   d.canonical = layouts_.size() > 1;
   d.targets = targets_;
   d.layouts = layouts_.size();
   d.trials = trials_;
   d.mirrored = d.canonical ? mirrored_ : 0;
-  d.layout = d.canonical ? metrics::Layout{{0, 0}, {{0, 1}}} : first_;
+  d.layout = d.canonical ? Layout{{0, 0}, {{0, 1}}} : first_;
   // The maps are ordered by (strategy, version, target): a panel's means are consecutive.
   for (const auto& [key, s] : d.canonical ? canonical_ : metres_) {
     const auto& [strategy, variant, target] = key;
@@ -153,11 +156,35 @@ MapFigureData MapAccumulator::data() const {
   return d;
 }
 
-Colour target_colour(std::size_t k) noexcept {
-  // Vermillion, bluish green, reddish purple, sky blue, black: Okabe-Ito without the conditions'
-  // blue and orange (and without yellow, too light for a line on white).
-  static constexpr std::size_t colours[] = {6, 3, 7, 2, 0};
-  return okabe_ito(colours[k % 5]);
+MapTrial map_trial(io::Trial&& t) {
+  MapTrial m;
+  m.strategy = std::move(t.strategy);
+  m.variant = std::move(t.variant);
+  m.layout = trial_layout(t);
+  m.true_target = t.target_index;
+  m.times = std::move(t.times);
+  m.pointer_x = std::move(t.belief_x);
+  m.pointer_y = std::move(t.belief_y);
+  m.robot_x = std::move(t.robot_x);
+  m.robot_y = std::move(t.robot_y);
+  return m;
 }
 
-}  // namespace feint::plot
+std::optional<MeanMap> mean_map(const std::vector<std::string>& log_files, io::TraceOptions options,
+                                const io::ScoresTable& scored) {
+  if (log_files.empty() || !io::is_pointer_log(log_files.front(), options)) return std::nullopt;
+  std::set<std::tuple<std::string, std::string, long long>> keys;
+  for (const auto& s : scored.records) keys.emplace(s.participant, s.condition, s.iteration);
+  options.on_reject = [](const io::Rejection&) {};  // rejected when scored: not in `scored`
+  io::PointerTraceReader reader(log_files, std::move(options));
+  MapAccumulator map;
+  io::Trial t;
+  while (reader.next(t)) {
+    if (keys.count({t.participant, t.condition, t.iteration}) != 0) {
+      map.add(map_trial(std::move(t)));
+    }
+  }
+  return map.data();
+}
+
+}  // namespace feint::metrics
