@@ -271,9 +271,18 @@ namespace {
 // The references feint.toml gives: the paper's for the pad; for a pointer study, error's reference
 // is the error of guessing on the study's layouts (docs/simulation.md "References of a study of K
 // targets").
+// A reference as the tables print it: 4 decimals, trailing zeros dropped (4/9 -> "0.4444", 0.5 -> "0.5").
+std::string reference_text(double r) {
+  std::string t = fmt::format("{:.4f}", r);
+  while (t.back() == '0') t.pop_back();
+  if (t.back() == '.') t.pop_back();
+  return t;
+}
+
 std::string references_toml(const StudySettings& settings) {
   if (!is_pointer_study(settings)) return "metric = [\"error=0.5\", \"confusion=0.95@raw\"]\n";
   const StudyRounds n = study_rounds(settings);
+  const double r = guessing_error_reference(settings);
   const std::string over =
       settings.random_layout
           ? fmt::format("the study's {} layouts (every round of every participant)", n.people * n.rounds)
@@ -282,11 +291,12 @@ std::string references_toml(const StudySettings& settings) {
       "# References on the layout scale s (the largest distance between two targets; at K = 2 the pad's\n"
       "# unit). error: the error of a participant who guesses (points at a target drawn uniformly and\n"
       "# holds it), R = mean of (1/K^2) sum_true sum_k |G_k - G_true| / s\n"
-      "# over {}; at K = 2 the paper's 0.5.\n"
+      "# over {}; at K = 2 the paper's 0.5. Written to 4 decimals, as a reference a paper states\n"
+      "# (exactly {}).\n"
       "# confusion: the paper's 0.95, kept: a held guess never reverses (confusion 0), so guessing gives\n"
       "# no reference for it.\n"
       "metric = [\"error={}\", \"confusion=0.95@raw\"]\n",
-      over, io::format_double(guessing_error_reference(settings)));
+      over, io::format_double(r), reference_text(r));
 }
 
 // What feint.toml says of a pointer study (nothing for the paper's study: its file is unchanged).
