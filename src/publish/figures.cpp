@@ -175,7 +175,9 @@ void add_strategy_figures(FigureWriter& w, const analysis::StudyResults& r,
           plot::alt_text(e), exposure_caption(e, level, paper), plot::exposure_figure(e));
   }
   if (r.figures.traces.empty()) {
-    w.out.notes.push_back("No trace figure: no scored trial was found again in the logs.");
+    w.out.notes.push_back(r.figures.map ? "No pad-trace figure: the participants pointed on a map (no pad); the map "
+                                          "figure shows their mean pointer."
+                                        : "No trace figure: no scored trial was found again in the logs.");
     return;
   }
   w.add("traces", "Pad traces per strategy",

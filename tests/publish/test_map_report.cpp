@@ -18,7 +18,7 @@ using feint::test::TempDir;
 namespace {
 
 // As the report was made (docs/many-targets.md): from the project's folder, the study named
-// relatively, so that the scores' sidecar records the logs relative to it.
+// relatively, so that the report's Reproduce lines name it as reports/demo-k3 does.
 int analyze_from_source(const std::string& study, const fs::path& out) {
   const std::string cmd = "cd " + shell_quote(FEINT_SOURCE_DIR) + " && " + shell_quote(FEINT_EXE) +
                           " analyze " + study + " -o " + shell_quote(out.string()) +
@@ -68,6 +68,10 @@ TEST(MapReport, ThePanelsAreTheStrategiesAndVersionsOfTheScoredTrials) {
             std::string::npos)
       << map->alt;
   EXPECT_NE(map->caption.find("480 layouts of 3 targets"), std::string::npos) << map->caption;
+  // No pad, so no pad-trace figure, and the note says why (not that the trials were not found).
+  ASSERT_EQ(drawn.notes.size(), 1u);
+  EXPECT_EQ(drawn.notes[0],
+            "No pad-trace figure: the participants pointed on a map (no pad); the map figure shows their mean pointer.");
 }
 
 TEST(MapReport, APadStudyHasNoMapAndNoNoteAboutIt) {
