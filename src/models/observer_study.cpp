@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <tuple>
 
@@ -136,30 +137,104 @@ AgreementCells agreement_cells(const std::vector<ObservedTrial>& good, const Fit
 
 }  // namespace
 
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A participant's estimate on the comparison's scale: log beta (a rate; its difference is the log
+// of a ratio), tau as it is. NaN for beta = 0 (no log: a participant who never infers).
+double comparison_value(const ObserverFit& f, const std::string& parameter) {
+  const auto& p = f.parameter(parameter);
+  return parameter == "beta" ? std::log(p.estimate) : p.estimate;
+}
+
+bool at_range_bound(const ParameterEstimate& p) {
+  return (p.conf_low == p.estimate && p.low_at_bound) || (p.conf_high == p.estimate && p.high_at_bound);
+}
+
+// True when some participant was fitted in both conditions: the design is within participants.
+bool fitted_in_both(std::span<const ObserverFit> participants, const std::string& a, const std::string& b) {
+  std::map<std::string, int> seen;
+  for (const auto& f : participants) {
+    if (f.condition == a) seen[f.unit] |= 1;
+    if (f.condition == b) seen[f.unit] |= 2;
+  }
+  return std::any_of(seen.begin(), seen.end(), [](const auto& s) { return s.second == 3; });
+}
+
+// Within participants: each participant's two estimates paired (paired t with d_z and the
+// one-sample JZS Bayes factor, Wilcoxon signed-rank with the matched-pairs r_rb); participants
+// fitted in one condition only are left out and counted in the note.
+bool compare_paired(ObserverComparison& c, std::span<const ObserverFit> participants, const std::string& parameter,
+                    const stats::TestOptions& options) {
+  std::map<std::string, std::array<double, 2>> pairs;
+  for (const auto& f : participants) {
+    if (f.condition != c.condition_a && f.condition != c.condition_b) continue;
+    const auto it = pairs.try_emplace(f.unit, std::array<double, 2>{kNaN, kNaN}).first;
+    it->second[f.condition == c.condition_a ? 0 : 1] = comparison_value(f, parameter);
+    if (at_range_bound(f.parameter(parameter))) ++c.at_bound;
+  }
+  std::vector<double> xa, xb, diff;
+  std::size_t lone = 0;
+  for (const auto& [who, v] : pairs) {
+    if (!std::isfinite(v[0]) || !std::isfinite(v[1])) {
+      ++lone;
+      continue;
+    }
+    xa.push_back(v[0]);
+    xb.push_back(v[1]);
+    diff.push_back(v[0] - v[1]);
+  }
+  if (xa.size() < 2) return false;
+  c.paired = true;
+  c.welch = stats::t_test_paired(xa, xb, options);
+  stats::add_effect_size_intervals(c.welch);
+  stats::add_bayes_factor(c.welch);
+  c.rank = stats::wilcoxon_signed_rank(diff, 0.0, options);
+  const auto nonzero = static_cast<std::size_t>(std::count_if(diff.begin(), diff.end(), [](double d) { return d != 0; }));
+  stats::add_effect_size_intervals(c.rank, nonzero);
+  if (lone > 0) {
+    const std::string note = fmt::format("{} participant(s) without an estimate in both conditions left out", lone);
+    for (auto* t : {&c.welch, &c.rank}) t->note += (t->note.empty() ? "" : "; ") + note;
+  }
+  return true;
+}
+
+// Between participants: the two groups of participants' estimates (Welch t with d and the JZS
+// Bayes factor, Mann-Whitney with r_rb).
+bool compare_independent(ObserverComparison& c, std::span<const ObserverFit> participants,
+                         const std::string& parameter, const stats::TestOptions& options) {
+  std::vector<double> xa, xb;
+  for (const auto& f : participants) {
+    if (f.condition != c.condition_a && f.condition != c.condition_b) continue;
+    const double v = comparison_value(f, parameter);
+    if (!std::isfinite(v)) continue;
+    (f.condition == c.condition_a ? xa : xb).push_back(v);
+    // An estimate on the range's edge (tau = 0, beta at --beta-max) is kept but counted.
+    if (at_range_bound(f.parameter(parameter))) ++c.at_bound;
+  }
+  if (xa.size() < 2 || xb.size() < 2) return false;
+  c.welch = stats::t_test_welch(xa, xb, options);
+  stats::add_effect_size_intervals(c.welch);
+  stats::add_bayes_factor(c.welch);
+  c.rank = stats::mann_whitney(xa, xb, options);
+  stats::add_effect_size_intervals(c.rank);
+  return true;
+}
+
+}  // namespace
+
 std::vector<ObserverComparison> compare_conditions(std::span<const ObserverFit> participants,
                                                    const std::string& a, const std::string& b,
                                                    double level) {
   std::vector<ObserverComparison> out;
+  const bool within = fitted_in_both(participants, a, b);
+  const stats::TestOptions options{stats::Alternative::two_sided, level};
   for (const std::string parameter : {"beta", "tau"}) {
     ObserverComparison c{parameter == "beta" ? "log beta" : "tau", a, b, {}, {}, 0};
-    std::vector<double> xa, xb;
-    for (const auto& f : participants) {
-      if (f.condition != a && f.condition != b) continue;
-      const auto& p = f.parameter(parameter);
-      const double v = parameter == "beta" ? std::log(p.estimate) : p.estimate;
-      if (!std::isfinite(v)) continue;  // beta = 0 has no log: a participant who never infers
-      (f.condition == a ? xa : xb).push_back(v);
-      // An estimate on the range's edge (tau = 0, beta at --beta-max) is kept but counted.
-      if (p.conf_low == p.estimate && p.low_at_bound) ++c.at_bound;
-      else if (p.conf_high == p.estimate && p.high_at_bound) ++c.at_bound;
-    }
-    if (xa.size() < 2 || xb.size() < 2) return {};
-    const stats::TestOptions options{stats::Alternative::two_sided, level};
-    c.welch = stats::t_test_welch(xa, xb, options);
-    stats::add_effect_size_intervals(c.welch);
-    stats::add_bayes_factor(c.welch);
-    c.rank = stats::mann_whitney(xa, xb, options);
-    stats::add_effect_size_intervals(c.rank);
+    const bool done = within ? compare_paired(c, participants, parameter, options)
+                             : compare_independent(c, participants, parameter, options);
+    if (!done) return {};
     out.push_back(std::move(c));
   }
   return out;

@@ -26,9 +26,14 @@ std::string ci_text(const models::ParameterEstimate& p) {
 std::string comparisons_text(const std::vector<models::ObserverComparison>& comparisons) {
   if (comparisons.empty()) return "";
   const auto& first = comparisons.front();
-  std::string out = fmt::format("\nConditions compared on the participants' fits ({} against {}; Welch t test with d "
-                                "and the JZS Bayes factor, Mann-Whitney test with r_rb):\n",
-                                first.condition_a, first.condition_b);
+  std::string out =
+      first.paired ? fmt::format("\nConditions compared on the participants' fits, paired within each participant ({} "
+                                 "against {}; paired t test with d_z and the JZS Bayes factor, Wilcoxon signed-rank test "
+                                 "with r_rb):\n",
+                                 first.condition_a, first.condition_b)
+                   : fmt::format("\nConditions compared on the participants' fits ({} against {}; Welch t test with d "
+                                 "and the JZS Bayes factor, Mann-Whitney test with r_rb):\n",
+                                 first.condition_a, first.condition_b);
   for (const auto& c : comparisons) {
     const auto& w = c.welch;
     if (!w.computed) {

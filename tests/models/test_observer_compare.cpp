@@ -125,3 +125,49 @@ TEST(ObserverComparison, SixDataSetsEqualR) {
   }
   EXPECT_EQ(checked, 6u * 2u * 18u);
 }
+
+// Within participants (someone fitted in both conditions) each participant's two estimates are
+// paired; a participant fitted in one condition only is left out and counted. R (4.2.2), with
+// a, b = the betas and ta, tb = the taus below:
+//   t.test(log(a), log(b), paired = TRUE): t = 3.2014270905391591, df = 4, p = 0.032856086700188136,
+//     CI [0.026829720040567342, 0.37739161419062378]; wilcox.test(..., paired = TRUE): V = 14,
+//     p = 0.125; exp(ttestBF(log(a), log(b), paired = TRUE)@bayesFactor$bf) = 2.9940859116567093
+//   t.test(ta, tb, paired = TRUE): t = 2.2558335591813887, p = 0.087080950102842725;
+//     wilcox.test: V = 13.5, p = 0.13621686984456766 (normal approximation: a tie)
+TEST(ObserverComparison, WithinParticipantsEachParticipantsPairIsCompared) {
+  const std::vector<double> a{0.40, 0.50, 0.80, 0.60, 0.45}, b{0.30, 0.42, 0.61, 0.62, 0.33};
+  const std::vector<double> ta{0.30, 0.25, 0.41, 0.20, 0.35}, tb{0.22, 0.27, 0.30, 0.18, 0.21};
+  std::vector<fm::ObserverFit> fits;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    for (const bool first : {true, false}) {
+      fm::ObserverFit f = fit(first ? "adaptive" : "random", first ? a[i] : b[i], first ? ta[i] : tb[i]);
+      f.unit = "P" + std::to_string(i);
+      fits.push_back(f);
+    }
+  }
+  fm::ObserverFit lone = fit("random", 5.0, 5.0);
+  lone.unit = "P9";  // fitted in random only
+  fits.push_back(lone);
+  const auto c = fm::compare_conditions(fits, "adaptive", "random", 0.95);
+  ASSERT_EQ(c.size(), 2u);
+  for (const auto& x : c) {
+    EXPECT_TRUE(x.paired);
+    EXPECT_EQ(x.welch.test, "paired_t");
+    EXPECT_EQ(x.rank.test, "wilcoxon_signed_rank");
+    EXPECT_NE(x.welch.note.find("1 participant(s) without an estimate in both conditions left out"), std::string::npos)
+        << x.welch.note;
+  }
+  EXPECT_NEAR(*c[0].welch.statistic, 3.2014270905391591, 1e-12);
+  EXPECT_EQ(*c[0].welch.df, 4.0);
+  EXPECT_NEAR(*c[0].welch.p_value, 0.032856086700188136, 1e-14);
+  EXPECT_NEAR(*c[0].welch.conf_low, 0.026829720040567342, 1e-14);
+  EXPECT_NEAR(*c[0].welch.conf_high, 0.37739161419062378, 1e-14);
+  ASSERT_TRUE(c[0].welch.log_bf10.has_value());
+  EXPECT_NEAR(std::exp(*c[0].welch.log_bf10), 2.9940859116567093, 1e-9);
+  EXPECT_EQ(*c[0].rank.statistic, 14.0);
+  EXPECT_NEAR(*c[0].rank.p_value, 0.125, 1e-15);
+  EXPECT_NEAR(*c[1].welch.statistic, 2.2558335591813887, 1e-12);
+  EXPECT_NEAR(*c[1].welch.p_value, 0.087080950102842725, 1e-14);
+  EXPECT_EQ(*c[1].rank.statistic, 13.5);
+  EXPECT_NEAR(*c[1].rank.p_value, 0.13621686984456766, 1e-14);
+}

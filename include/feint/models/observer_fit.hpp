@@ -160,6 +160,9 @@ struct ObserverComparison {
   stats::TestResult welch;
   stats::TestResult rank;
   std::size_t at_bound = 0;  // participants whose estimate lies at the range's bound (kept)
+  /// Within participants (someone fitted in both conditions): `welch` holds the paired t test
+  /// (d_z, one-sample JZS BF) and `rank` the Wilcoxon signed-rank test of each participant's pair.
+  bool paired = false;
 };
 
 struct StudyObserverFit {
