@@ -193,7 +193,8 @@ std::string apa_string(const stats::TestResult& r) {
     }
   } else if (!f_test && !chi2 && t != "tost") {
     if (r.cohen_d) {
-      out += ", d = " + apa_two_dec(*r.cohen_d) +
+      // A paired test's d is d_z (the mean difference over the differences' sd): named so.
+      out += std::string(r.test == "paired_t" ? ", d_z = " : ", d = ") + apa_two_dec(*r.cohen_d) +
              ci(r.cohen_d_low, r.cohen_d_high, [](double v) { return apa_two_dec(v); });
     }
     if (r.log_bf10) out += ", " + bayes_factor_text(*r.log_bf10);

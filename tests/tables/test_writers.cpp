@@ -129,6 +129,15 @@ TEST(ApaString, OneSampleAndStudentTUseWholeDf) {
   EXPECT_EQ(apa_string(student), "t(58) = 2.50, p = .020, d = 0.64");
 }
 
+// A paired t test's standardised difference is d_z (mean difference / sd of the differences), and
+// the APA string names it so, as the findings and the Results text do.
+TEST(ApaString, APairedTestNamesItsEffectSizeDz) {
+  auto paired = one_sample();
+  paired.test = "paired_t";
+  EXPECT_EQ(apa_string(paired), "t(29) = 2.93, p = .007, d_z = 0.53");
+  EXPECT_EQ(apa_string(one_sample()), "t(29) = 2.93, p = .007, d = 0.53");
+}
+
 TEST(ApaString, WelchDfHasTwoDecimals) {
   EXPECT_EQ(apa_string(welch(-0.1, 0.0151)), "t(57.43) = -2.50, p = .015, d = -0.64");
 }
