@@ -201,7 +201,7 @@ void adjust_family(std::vector<EmmRow>& rows, std::size_t first, EmmAdjust adjus
   for (std::size_t i = first; i < rows.size(); ++i) {
     EmmRow& r = rows[i];
     if (!r.computed) continue;
-    r.p_value = 1 - ptukey(std::abs(r.statistic) * std::numbers::sqrt2, k, r.df);
+    r.p_value = ptukey_upper(std::abs(r.statistic) * std::numbers::sqrt2, k, r.df);
     const double key = std::stod(fmt::format("{:.10g}", r.df));
     auto it = q_cache.find({conf_level, k, key});
     if (it == q_cache.end()) it = q_cache.emplace(std::make_tuple(conf_level, k, key), qtukey(conf_level, k, key)).first;

@@ -56,9 +56,9 @@ void expect_close(double got, double want, const std::string& family, const std:
 // test_mixed_model_within_golden.cpp): SE, df and t within 5e-7 relative, estimates within 5e-7 SE,
 // p within 5e-7 max(1, |t|) relative (a small p magnifies t's error). R's Tukey p is 1 - ptukey
 // (0 below 1e-16, 7.6e-9 off at p = 6.4e-7): 1e-8 absolute more, and to the upper tail integrated
-// from its definition as closely as the rest, plus 1e-15 absolute: feint's Tukey p is 1 - ptukey
-// too (src/models/emmeans.cpp), good to about 1e-16 absolute only (9e-6 relative at p = 1.5e-11,
-// 0 for p = 4.3e-24 in w3_strong); R's Tukey bounds use qtukey (|dq| < 1e-4): 2e-8
+// from its definition as closely as the rest, plus 1e-15 absolute (feint's Tukey p is the upper
+// tail itself, ptukey_upper, so even p = 4.3e-24 in w3_strong agrees; the margin is for the fit's
+// t, not for the tail); R's Tukey bounds use qtukey (|dq| < 1e-4): 2e-8
 // absolute more, and to the bounds from the root of R's ptukey as closely as the rest.
 constexpr double kRel = 5e-7;
 

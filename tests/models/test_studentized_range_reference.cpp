@@ -20,6 +20,7 @@
 namespace {
 
 using feint::models::ptukey;
+using feint::models::ptukey_upper;
 using feint::models::qtukey;
 
 struct Reference {
@@ -61,6 +62,61 @@ TEST(StudentizedRangeReference, PtukeyAgreesWithThe34DigitQuadratureOnTheWholeGr
   RecordProperty("max_abs_error", std::to_string(worst));
 }
 
+// P(Q > q) against bench/ptukey_reference.cpp --upper (tests/golden/models/
+// ptukey_upper_reference.csv: the upper tail as its own integral in binary128, ~1e-24 relative;
+// for two means it equals the closed form 2 P(T > q / sqrt 2) to 2e-24): q 1, 5, 12, 50, 1e4,
+// 1e15, k 2, 5, 20, 100, df 2, 7.3, 30, 1160, 1e9 and infinity, P from 0.99 down to far below
+// 1e-300. Relative error below 1e-12 where P >= 1e-300 (measured 1.2e-13, at q = 50, k = 20, df
+// = infinity, P = 1e-270, where P's condition number in q is ~q^2/2); below that, only that
+// feint's P is below 1e-290. 1 - ptukey fails this from P ~ 1e-4 on and is 0 from P ~ 1e-17 on.
+TEST(StudentizedRangeReference, PtukeyUpperIsRelativelyAccurateInTheFarTail) {
+  std::ifstream in(std::string(FEINT_SOURCE_DIR) +
+                   "/tests/golden/models/ptukey_upper_reference.csv");
+  ASSERT_TRUE(in);
+  std::string line;
+  std::getline(in, line);
+  int rows = 0, tiny = 0;
+  double worst = 0;
+  while (std::getline(in, line)) {
+    std::vector<std::string> c;
+    std::stringstream ss(line);
+    for (std::string cell; std::getline(ss, cell, ',');) c.push_back(cell);
+    ASSERT_EQ(c.size(), 4u);
+    const double q = std::stod(c[0]), k = std::stod(c[1]);
+    const double df = c[2] == "Inf" ? std::numeric_limits<double>::infinity() : std::stod(c[2]);
+    const long double want = std::stold(c[3]);
+    const double got = ptukey_upper(q, k, df);
+    ++rows;
+    if (want < 1e-300L) {
+      EXPECT_LT(got, 1e-290) << "q " << q << " k " << k << " df " << df;
+      continue;
+    }
+    const double rel = static_cast<double>(std::abs((got - want) / want));
+    EXPECT_LT(rel, 1e-12) << "q " << q << " k " << k << " df " << df << " P " << c[3];
+    worst = std::max(worst, rel);
+    if (want < 1e-20L) ++tiny;
+  }
+  EXPECT_EQ(rows, 6 * 4 * 6);
+  EXPECT_GE(tiny, 20);  // the far tail is in the grid
+  RecordProperty("max_rel_error", std::to_string(worst));
+}
+
+// On the 1,768-point grid: P(Q > q) to 1e-12 relative plus 5e-24 (the reference's 1 - P is
+// accurate to ~2e-24 absolute: its z range [-13, 13] leaves that much out at k = 100, q = 50),
+// and within 1e-15 of 1 - ptukey (the same probability; measured 7.8e-16). Where P > 1e-10 the
+// relative error is 4e-15 (1 - ptukey: 1.3e-6).
+TEST(StudentizedRangeReference, PtukeyUpperAgreesWithTheGridAndWithOneMinusPtukey) {
+  const auto rows = reference();
+  ASSERT_EQ(rows.size(), 13u * 8u * 17u);
+  for (const auto& r : rows) {
+    const double got = ptukey_upper(r.q, r.k, r.df);
+    const double want = static_cast<double>(r.upper);
+    EXPECT_NEAR(got, want, 1e-12 * want + 5e-24) << "q " << r.q << " k " << r.k << " df " << r.df;
+    EXPECT_NEAR(got, 1 - ptukey(r.q, r.k, r.df), 1e-15)
+        << "q " << r.q << " k " << r.k << " df " << r.df;
+  }
+}
+
 TEST(StudentizedRangeReference, TukeyQuantilesOfTheDemoFamilies) {
   // The 95 % Tukey quantiles for 20 means at the dfs of the demo study's families (feint anova:
   // 58; feint model: 1160, and 1102 with Kenward-Roger). The 34-digit ptukey at these q
@@ -79,6 +135,7 @@ TEST(StudentizedRangeReference, TukeyPValueOfADemoContrast) {
   // at q = 4.417781022824765; the earlier ptukey gave 0.172819030017473).
   const double q = 3.1238429190366332 * std::sqrt(2.0);
   EXPECT_NEAR(1 - ptukey(q, 20, 1101.999999999954), 0.17281902995024412194, 1e-15);
+  EXPECT_NEAR(ptukey_upper(q, 20, 1101.999999999954), 0.17281902995024412194, 1e-15);
 }
 
 }  // namespace
