@@ -16,6 +16,7 @@
 #include "feint/io/csv.hpp"
 #include "feint/io/trace.hpp"
 #include "pointer_design.hpp"
+#include "observer_stage.hpp"
 #include "scratch_folder.hpp"
 
 namespace feint::analysis {
@@ -512,6 +513,7 @@ StudyResults analyze(const Study& study, const std::string& tool_version) {
   analyze_yes_no_answers(study, compare, r);
   collect_figure_data(study, scored, t, metrics, r);
   collect_map_data(study, scored, r);
+  detail::fit_observer_stage(study.logs, metrics::reading_options(scored.settings), r);
   r.scores.path = "scores.csv";
   // Stage 7. The findings (docs/findings.md): what the study shows, and how strongly. A
   // confirmatory hypothesis with a direction is tested one-sided, in that direction.

@@ -12,6 +12,7 @@
 #include "condition_effect.hpp"
 #include "exposure_findings.hpp"
 #include "finding_words.hpp"
+#include "observer_stage.hpp"
 #include "omnibus_findings.hpp"
 #include "questionnaire_findings.hpp"
 #include "feint/error.hpp"
@@ -476,6 +477,7 @@ std::vector<Finding> study_findings(const StudyResults& r, const std::vector<tab
                                       r.table1.options.bf_prior_r))
     out.push_back(std::move(f));
   detail::add_exposure_findings(out, r, metrics, rules);
+  for (auto& f : detail::observer_findings(r, rules)) out.push_back(std::move(f));
   // H2 after every H1 finding.
   detail::add_questionnaire_findings(out, r, rules);
   return out;

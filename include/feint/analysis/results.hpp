@@ -20,6 +20,7 @@
 #include "feint/metrics/score.hpp"
 #include "feint/models/condition_design.hpp"
 #include "feint/models/fitted_trend.hpp"
+#include "feint/models/observer_fit.hpp"
 #include "feint/tables/anova.hpp"
 #include "feint/tables/likert.hpp"
 #include "feint/tables/likert_conditions.hpp"
@@ -114,6 +115,11 @@ struct StudyResults {
   /// Condition x exposure per strategy, one per metric (two conditions and the trials' strategies
   /// needed; analysis::exposure_table); the findings' source "exposure".
   std::vector<tables::ExposureTable> exposure;
+  /// The goal-inference observer's log beta and tau compared between the compared pair (fitted to
+  /// each participant's pad traces; docs/analysis.md "The observer's parameters compared"); empty
+  /// for pointer logs or when no pair is compared, and with `observer_note` when it failed.
+  std::vector<models::ObserverComparison> observer;
+  std::string observer_note;
   FigureData figures;
   Diagnostics diagnostics;
   std::vector<Finding> findings;  ///< filled by the findings engine (empty until then)
